@@ -1,0 +1,122 @@
+//! `powderfmu analyze`: the derived parameters and closed-form results of one scene, as named values
+//! with units. The keys are listed once in `OUTPUTS`; the CLI help and the docs print that table.
+
+use crate::error::ParamError;
+use crate::law::nan::Nan;
+use crate::law::params::{alpha_y0, f_y0, k_hertz, Effective, NanParams};
+use crate::law::{AnyLaw, NormalLaw};
+use crate::scene::Scene;
+use crate::theory::energy_balance;
+use crate::theory::sticking::{cohesion_yield_number, critical_yield_pressure, sticking_velocities};
+use crate::theory::time_step::{critical_time_step, rayleigh_time_step};
+use serde_json::{json, Map, Value};
+
+/// One output of `analyze`: key, unit and meaning.
+pub struct Output {
+    pub name: &'static str,
+    pub unit: &'static str,
+    pub doc: &'static str,
+}
+
+/// Every number `analyze` prints.
+pub const OUTPUTS: &[Output] = &[
+    Output { name: "reduced_radius", unit: "m", doc: "R* (R for a wall, R/2 for an identical particle)" },
+    Output { name: "effective_mass", unit: "kg", doc: "m* (m for a wall)" },
+    Output { name: "effective_modulus", unit: "Pa", doc: "E*, 1/E* = (1-nu1^2)/E1 + (1-nu2^2)/E2 (004 Eq. 3.15)" },
+    Output { name: "effective_shear_modulus", unit: "Pa", doc: "G*, 1/G* = (2-nu1)/G1 + (2-nu2)/G2" },
+    Output { name: "yield_pressure", unit: "Pa", doc: "p_y = min(p_y1, p_y2) after 000 Eqs. 32-34" },
+    Output { name: "f_ce", unit: "N", doc: "JKR pull-off force 1.5 pi Gamma R* (000 Eq. 5)" },
+    Output { name: "f_0", unit: "N", doc: "8/9 f_ce, the drop at first contact (000 Eq. 4)" },
+    Output { name: "k_el", unit: "N/m", doc: "elastic stiffness before yield (000 Eq. 52, 45 or given)" },
+    Output { name: "k_cl", unit: "N/m", doc: "adhesive stiffness before yield (000 Eq. 36 or 38)" },
+    Output { name: "k_p", unit: "N/m", doc: "plastic stiffness" },
+    Output { name: "f_y", unit: "N", doc: "yield force (000 Eq. 28)" },
+    Output { name: "alpha_y", unit: "m", doc: "yield overlap (000 Eq. 29)" },
+    Output { name: "alpha_0", unit: "m", doc: "zero-force overlap before yield f_0/k_el (000 Eq. 6)" },
+    Output { name: "f_y0", unit: "N", doc: "Thornton-Ning yield force (000 Eq. 30)" },
+    Output { name: "alpha_y0", unit: "m", doc: "Thornton-Ning yield overlap (000 Eq. 31)" },
+    Output { name: "hertz_stiffness_at_yield", unit: "N/m", doc: "2 E* sqrt(R* alpha_y) (000 Eq. 41; Table 3's k_H)" },
+    Output { name: "w_jkr", unit: "J", doc: "JKR adhesion work 7.09 (Gamma^5 R*^4/E*^2)^(1/3) (000 Eq. 37)" },
+    Output { name: "jkr_sticking_velocity", unit: "m/s", doc: "V_s (000 Eq. 73)" },
+    Output { name: "yield_velocity", unit: "m/s", doc: "V_y0, yield velocity without cohesion (000 Eq. 74)" },
+    Output { name: "adhesive_yield_velocity", unit: "m/s", doc: "V_y (000 Eq. 75); null when f_y < f_0 (adhesion-induced plasticity)" },
+    Output { name: "sticking_velocity", unit: "m/s", doc: "V_ys, plastic adhesive sticking velocity, undamped (000 Eqs. 77-79)" },
+    Output { name: "critical_yield_pressure", unit: "Pa", doc: "p_y below which f_y < f_0 with k_el by Eq. 52 (000 Eq. 80)" },
+    Output { name: "cohesion_yield_number", unit: "-", doc: "CY = p_y^3 R* / (E*^2 Gamma) (000 Eq. 81)" },
+    Output { name: "rayleigh_time_step", unit: "s", doc: "Rayleigh time step of the particle (000 Eq. 71)" },
+    Output { name: "critical_time_step", unit: "s", doc: "2 sqrt(m*/k_el) (000 Eq. 68)" },
+    Output { name: "pull_off_force_fresh", unit: "N", doc: "the active law's pull-off force before any loading" },
+    Output { name: "impact_velocity", unit: "m/s", doc: "with --velocity: the impact speed asked for" },
+    Output { name: "max_overlap", unit: "m", doc: "with --velocity: largest overlap of the undamped impact (active law)" },
+    Output { name: "max_force", unit: "N", doc: "with --velocity: largest force of the undamped impact (active law)" },
+    Output { name: "rebound_velocity", unit: "m/s", doc: "with --velocity: rebound speed by energy balance (active law), 0 if it sticks" },
+    Output { name: "restitution", unit: "-", doc: "with --velocity: rebound / impact velocity (active law)" },
+];
+
+/// Analyses a scene: derived parameters, closed-form results, and, with `velocity`, one undamped impact
+/// of the active law by energy balance.
+pub fn analyze(scene: &Scene, velocity: Option<f64>) -> Result<Value, ParamError> {
+    let law = AnyLaw::from_scene(scene)?;
+    let eff = Effective::from_scene(scene)?;
+    let mut out = Map::new();
+    let mut notes: Vec<String> = Vec::new();
+    out.insert("contact_model".into(), json!(scene.contact_model.name()));
+    out.insert("reduced_radius".into(), json!(eff.radius));
+    out.insert("effective_mass".into(), json!(eff.mass));
+    out.insert("effective_modulus".into(), json!(eff.youngs_modulus));
+    out.insert("effective_shear_modulus".into(), json!(eff.shear_modulus));
+    out.insert("yield_pressure".into(), json!(eff.yield_pressure));
+    out.insert("f_ce".into(), json!(eff.f_ce()));
+    out.insert("f_0".into(), json!(8.0 / 9.0 * eff.f_ce()));
+    out.insert("rayleigh_time_step".into(), json!(rayleigh_time_step(eff.particle_radius, eff.density, eff.particle_shear_modulus, eff.poisson_ratio)));
+    out.insert("pull_off_force_fresh".into(), json!(law.pull_off_force(&law.initial_history())));
+    match NanParams::from_scene(scene, &eff) {
+        Ok(p) => {
+            let nan = Nan::new(p);
+            let v = sticking_velocities(&nan, eff.mass);
+            let (r, e) = (p.radius, p.youngs_modulus);
+            out.insert("k_el".into(), json!(p.k_el));
+            out.insert("k_cl".into(), json!(p.k_cl));
+            out.insert("k_p".into(), json!(p.k_p));
+            out.insert("f_y".into(), json!(p.f_y));
+            out.insert("alpha_y".into(), json!(p.alpha_y));
+            out.insert("alpha_0".into(), json!(p.alpha_0));
+            out.insert("f_y0".into(), json!(f_y0(r, e, p.yield_pressure)));
+            out.insert("alpha_y0".into(), json!(alpha_y0(r, e, p.yield_pressure)));
+            out.insert("hertz_stiffness_at_yield".into(), json!(k_hertz(e, r, p.alpha_y)));
+            out.insert("w_jkr".into(), json!(p.w_jkr));
+            out.insert("jkr_sticking_velocity".into(), json!(v.jkr_sticking_velocity));
+            out.insert("yield_velocity".into(), json!(v.yield_velocity));
+            out.insert("adhesive_yield_velocity".into(), json!(v.adhesive_yield_velocity));
+            out.insert("sticking_velocity".into(), json!(v.sticking_velocity));
+            out.insert("adhesion_induced_plasticity".into(), json!(p.f_y < p.f_0));
+            out.insert("yields_at_sticking".into(), json!(v.yields_at_sticking));
+            out.insert("critical_time_step".into(), json!(critical_time_step(eff.mass, p.k_el)));
+            if p.surface_energy > 0.0 {
+                out.insert("critical_yield_pressure".into(), json!(critical_yield_pressure(p.surface_energy, e, r)));
+                out.insert("cohesion_yield_number".into(), json!(cohesion_yield_number(p.yield_pressure, r, e, p.surface_energy)));
+            } else {
+                notes.push("surface_energy is 0: no adhesion, so no critical yield pressure and CY is infinite".into());
+            }
+            if scene.contact_model.name() != "nan" {
+                notes.push("k_el .. sticking_velocity are the Nan law's (000 Sec. 3-4) for these materials".into());
+            }
+        }
+        Err(err) => notes.push(format!("Nan law parameters not derived: {err}")),
+    }
+    if let Some(v) = velocity {
+        let o = energy_balance::impact(&law, eff.mass, v, eff.radius).map_err(|e| ParamError::Inconsistent { name: "impact_velocity", why: e.to_string() })?;
+        out.insert("impact_velocity".into(), json!(v));
+        out.insert("max_overlap".into(), json!(o.max_overlap));
+        out.insert("max_force".into(), json!(o.max_force));
+        out.insert("rebound_velocity".into(), json!(o.rebound_velocity));
+        out.insert("restitution".into(), json!(o.restitution));
+        out.insert("sticks".into(), json!(o.sticks));
+    }
+    let units: Map<String, Value> = OUTPUTS.iter().filter(|o| out.contains_key(o.name)).map(|o| (o.name.to_string(), json!(o.unit))).collect();
+    out.insert("units".into(), Value::Object(units));
+    if !notes.is_empty() {
+        out.insert("notes".into(), json!(notes));
+    }
+    Ok(Value::Object(out))
+}

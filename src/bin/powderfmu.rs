@@ -1,0 +1,85 @@
+//! The `powderfmu` command-line tool: the physics of the FMUs without FMI.
+
+use powderfmu::analysis::{analyze, OUTPUTS};
+use powderfmu::scene::{Scene, KEYS};
+use std::process::ExitCode;
+
+const USAGE: &str = "usage: powderfmu analyze SCENE.json [--velocity V]   (powderfmu analyze --help lists every key)";
+
+fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    match args.first().map(String::as_str) {
+        Some("analyze") => run_analyze(&args[1..]),
+        Some("--help") | Some("-h") | Some("help") => {
+            println!("powderfmu: contact mechanics of elasto-plastic adhesive spheres\n\n{USAGE}\n\nsubcommands:\n  analyze   derived parameters and closed-form results of a scene, as JSON");
+            ExitCode::SUCCESS
+        }
+        Some("--version") => {
+            println!("powderfmu {}", env!("CARGO_PKG_VERSION"));
+            ExitCode::SUCCESS
+        }
+        Some(other) => fail(&format!("unknown subcommand `{other}`\n{USAGE}")),
+        None => fail(USAGE),
+    }
+}
+
+fn run_analyze(args: &[String]) -> ExitCode {
+    if args.iter().any(|a| a == "--help" || a == "-h") {
+        print_analyze_help();
+        return ExitCode::SUCCESS;
+    }
+    let mut path = None;
+    let mut velocity = None;
+    let mut i = 0;
+    while i < args.len() {
+        match args[i].as_str() {
+            "--velocity" => {
+                let Some(text) = args.get(i + 1) else { return fail("--velocity needs a value in m/s") };
+                match text.parse::<f64>() {
+                    Ok(v) if v.is_finite() && v > 0.0 => velocity = Some(v),
+                    _ => return fail(&format!("--velocity = `{text}` is not allowed: give a positive speed in m/s")),
+                }
+                i += 2;
+            }
+            a if a.starts_with('-') => return fail(&format!("unknown option `{a}`\n{USAGE}")),
+            a => {
+                if path.replace(a.to_string()).is_some() {
+                    return fail(&format!("give one scene file\n{USAGE}"));
+                }
+                i += 1;
+            }
+        }
+    }
+    let Some(path) = path else { return fail(USAGE) };
+    let text = match std::fs::read_to_string(&path) {
+        Ok(t) => t,
+        Err(e) => return fail(&format!("cannot read scene `{path}`: {e}")),
+    };
+    let result = Scene::from_json(&text).and_then(|scene| analyze(&scene, velocity));
+    match result {
+        Ok(value) => {
+            println!("{}", serde_json::to_string_pretty(&value).expect("a JSON value always serialises"));
+            ExitCode::SUCCESS
+        }
+        Err(e) => fail(&format!("{path}: {e}")),
+    }
+}
+
+fn print_analyze_help() {
+    println!("powderfmu analyze SCENE.json [--velocity V]\n");
+    println!("Reads a scene (a JSON object of the keys below, SI units) and prints, as JSON, the derived");
+    println!("parameters and the closed-form results. With --velocity V [m/s] it adds one undamped impact of");
+    println!("the active law on the wall by energy balance.\n\nSCENE KEYS\n");
+    for k in KEYS {
+        println!("  {:<32} [{}] default {}\n      {}", k.name, k.unit, k.default, k.doc);
+    }
+    println!("\nOUTPUT KEYS (the `units` object of the output repeats the unit of each)\n");
+    for o in OUTPUTS {
+        println!("  {:<32} [{}] {}", o.name, o.unit, o.doc);
+    }
+}
+
+fn fail(message: &str) -> ExitCode {
+    eprintln!("powderfmu: error: {message}");
+    ExitCode::from(2)
+}

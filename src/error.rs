@@ -1,0 +1,87 @@
+//! The one error type for bad input: it names the parameter, the value given and what is allowed.
+
+use std::fmt;
+
+/// A parameter that is missing, out of range, or inconsistent with another.
+#[derive(Debug, Clone, PartialEq)]
+pub enum ParamError {
+    /// A numeric value outside its allowed range.
+    OutOfRange { name: &'static str, value: f64, allowed: String },
+    /// A value the law needs that the scene does not give.
+    Missing { name: &'static str, why: String },
+    /// A string value that is not one of the known choices.
+    UnknownChoice { name: String, value: String, allowed: String },
+    /// Two or more values that are each valid but not together.
+    Inconsistent { name: &'static str, why: String },
+    /// A scene key that no parameter has (most often a typo).
+    UnknownKey { name: String, hint: String },
+    /// The scene file is not what it should be (not JSON, wrong type of a value).
+    Malformed { what: String },
+}
+
+impl fmt::Display for ParamError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            ParamError::OutOfRange { name, value, allowed } => {
+                write!(f, "parameter `{name}` = {value:e} is out of range: allowed {allowed}")
+            }
+            ParamError::Missing { name, why } => write!(f, "parameter `{name}` is required: {why}"),
+            ParamError::UnknownChoice { name, value, allowed } => {
+                write!(f, "parameter `{name}` = \"{value}\" is not known: allowed {allowed}")
+            }
+            ParamError::Inconsistent { name, why } => write!(f, "parameter `{name}`: {why}"),
+            ParamError::UnknownKey { name, hint } => write!(f, "unknown scene key `{name}`{hint}"),
+            ParamError::Malformed { what } => write!(f, "malformed scene: {what}"),
+        }
+    }
+}
+
+impl std::error::Error for ParamError {}
+
+impl ParamError {
+    /// The parameter the error is about, if it names one.
+    pub fn parameter(&self) -> Option<&str> {
+        match self {
+            ParamError::OutOfRange { name, .. }
+            | ParamError::Missing { name, .. }
+            | ParamError::Inconsistent { name, .. } => Some(name),
+            ParamError::UnknownChoice { name, .. } | ParamError::UnknownKey { name, .. } => Some(name),
+            ParamError::Malformed { .. } => None,
+        }
+    }
+}
+
+/// Checks `lo < value < hi` (open bounds) and finiteness.
+pub fn check_open(name: &'static str, value: f64, lo: f64, hi: f64, unit: &str) -> Result<f64, ParamError> {
+    if value.is_finite() && value > lo && value < hi {
+        Ok(value)
+    } else {
+        Err(ParamError::OutOfRange { name, value, allowed: range_text(lo, hi, false, unit) })
+    }
+}
+
+/// Checks `lo <= value < hi` and finiteness.
+pub fn check_closed_low(name: &'static str, value: f64, lo: f64, hi: f64, unit: &str) -> Result<f64, ParamError> {
+    if value.is_finite() && value >= lo && value < hi {
+        Ok(value)
+    } else {
+        Err(ParamError::OutOfRange { name, value, allowed: range_text(lo, hi, true, unit) })
+    }
+}
+
+/// A finite, strictly positive value.
+pub fn check_positive(name: &'static str, value: f64, unit: &str) -> Result<f64, ParamError> {
+    check_open(name, value, 0.0, f64::INFINITY, unit)
+}
+
+/// A finite, non-negative value.
+pub fn check_non_negative(name: &'static str, value: f64, unit: &str) -> Result<f64, ParamError> {
+    check_closed_low(name, value, 0.0, f64::INFINITY, unit)
+}
+
+fn range_text(lo: f64, hi: f64, closed_low: bool, unit: &str) -> String {
+    let left = if closed_low { "[" } else { "(" };
+    let hi_text = if hi.is_infinite() { "inf".to_string() } else { format!("{hi}") };
+    let unit = if unit.is_empty() { String::new() } else { format!(" {unit}") };
+    format!("{left}{lo}, {hi_text}){unit}")
+}

@@ -1,0 +1,52 @@
+//! Hertz's elastic law (`004` Eq. 3.14): f = 4/3 E* sqrt(R*) alpha^(3/2) for alpha > 0. No history.
+
+use super::{Branch, Evaluation, NormalLaw};
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct Hertz {
+    pub radius: f64,
+    pub youngs_modulus: f64,
+}
+
+impl Hertz {
+    pub fn new(radius: f64, youngs_modulus: f64) -> Hertz {
+        Hertz { radius, youngs_modulus }
+    }
+}
+
+impl NormalLaw for Hertz {
+    type History = ();
+
+    fn initial_history(&self) {}
+
+    fn evaluate(&self, alpha: f64, _h: &()) -> Evaluation<()> {
+        if alpha <= 0.0 {
+            return Evaluation { force: 0.0, stiffness: 0.0, branch: Branch::Separated, lower: f64::NEG_INFINITY, upper: 0.0, history: () };
+        }
+        let root = (self.radius * alpha).sqrt();
+        Evaluation {
+            force: 4.0 / 3.0 * self.youngs_modulus * root * alpha,
+            stiffness: 2.0 * self.youngs_modulus * root, // 000 Eq. 41
+            branch: Branch::Elastic,
+            lower: 0.0,
+            upper: f64::INFINITY,
+            history: (),
+        }
+    }
+
+    fn has_yielded(&self, _h: &()) -> bool {
+        false
+    }
+
+    fn sliding_normal_force(&self, force: f64, _alpha: f64, _h: &()) -> f64 {
+        force
+    }
+
+    fn pull_off_force(&self, _h: &()) -> f64 {
+        0.0
+    }
+
+    fn plastic_overlap(&self, _h: &()) -> f64 {
+        0.0
+    }
+}

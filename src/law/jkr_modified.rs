@@ -1,0 +1,53 @@
+//! The EDEM-style modified JKR law (`004` Sec. 5.1.1, Fig. 5.1): the JKR curve for alpha > 0 only.
+//! At contact the force drops to -8/9 f_c as in JKR; on unloading the contact breaks as soon as the
+//! overlap is zero, so the extra adhesion work of JKR below alpha = 0 is never done. No history.
+
+use super::jkr::{on_curve, JkrCurve};
+use super::{Branch, Evaluation, NormalLaw};
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct JkrModified {
+    pub curve: JkrCurve,
+}
+
+impl JkrModified {
+    pub fn new(radius: f64, youngs_modulus: f64, surface_energy: f64) -> JkrModified {
+        JkrModified { curve: JkrCurve::new(radius, youngs_modulus, surface_energy) }
+    }
+}
+
+impl NormalLaw for JkrModified {
+    type History = ();
+
+    fn initial_history(&self) {}
+
+    fn evaluate(&self, alpha: f64, _h: &()) -> Evaluation<()> {
+        if alpha <= 0.0 {
+            return Evaluation { force: 0.0, stiffness: 0.0, branch: Branch::Separated, lower: f64::NEG_INFINITY, upper: 0.0, history: () };
+        }
+        let mut e = on_curve(&self.curve, 0.0, alpha, ());
+        // For alpha > 0 the JKR contact radius is above a_c: always the elastic branch.
+        e.branch = Branch::Elastic;
+        e.lower = 0.0;
+        e.upper = f64::INFINITY;
+        e
+    }
+
+    fn has_yielded(&self, _h: &()) -> bool {
+        false
+    }
+
+    /// As JKR: mu (F_n + 2 F_c) (004 Eq. 3.49).
+    fn sliding_normal_force(&self, force: f64, _alpha: f64, _h: &()) -> f64 {
+        force + 2.0 * self.curve.pull_off_force()
+    }
+
+    /// The largest tension on the curve for alpha > 0: 8/9 f_c, at alpha = 0.
+    fn pull_off_force(&self, _h: &()) -> f64 {
+        8.0 / 9.0 * self.curve.pull_off_force()
+    }
+
+    fn plastic_overlap(&self, _h: &()) -> f64 {
+        0.0
+    }
+}

@@ -1,0 +1,239 @@
+//! Normal contact laws. Conventions (DESIGN 4): overlap `alpha > 0` is compression, force `f > 0` is
+//! repulsion. Every law answers one question through `NormalLaw::evaluate`: at this overlap, with this
+//! history, what is the force, which branch is it on, how stiff is that branch, over which overlaps does
+//! the branch hold, and what would the history be if this state were accepted. Laws never integrate in
+//! time, never allocate and never panic.
+
+pub mod damping;
+pub mod hertz;
+pub mod jkr;
+pub mod jkr_modified;
+pub mod linear;
+pub mod luding;
+pub mod nan;
+pub mod params;
+pub mod pasha;
+pub mod pasha_simplified;
+pub mod tangential;
+pub mod thornton_ning;
+pub mod tomas;
+pub mod walton_braun;
+
+use crate::error::ParamError;
+use crate::scene::{ModelKind, Scene};
+use params::Effective;
+
+/// The branch of a force-overlap diagram the contact is on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Branch {
+    /// Not in contact, no force.
+    Separated,
+    /// Not in contact, but attracted (the van der Waals tail of the Tomas law).
+    Attraction,
+    /// Reversible elastic branch (also its tensile part down to the pull-off point).
+    Elastic,
+    /// Plastic loading: the history grows with the overlap.
+    Plastic,
+    /// Beyond the pull-off point (lines AB and EF of 000 Fig. 1; Luding's adhesion limit).
+    Adhesive,
+    /// The Tomas reloading curve (003 Table 1).
+    Reloading,
+}
+
+impl Branch {
+    /// The integer contact state of the FMUs: 0 separated, 1 elastic, 2 plastic, 3 adhesive,
+    /// 4 reloading, 5 attracted without contact.
+    pub fn contact_state(self) -> i32 {
+        match self {
+            Branch::Separated => 0,
+            Branch::Elastic => 1,
+            Branch::Plastic => 2,
+            Branch::Adhesive => 3,
+            Branch::Reloading => 4,
+            Branch::Attraction => 5,
+        }
+    }
+
+    pub fn in_contact(self) -> bool {
+        !matches!(self, Branch::Separated | Branch::Attraction)
+    }
+}
+
+/// The answer of a law at one overlap.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Evaluation<H> {
+    /// Normal force f [N], positive repulsive.
+    pub force: f64,
+    /// df/dalpha on this branch [N/m] (for damping, time steps and Jacobians).
+    pub stiffness: f64,
+    pub branch: Branch,
+    /// The branch holds for `lower <= alpha <= upper` with the history passed in; outside it another
+    /// branch (or a history update) applies. Integrators land on these to switch exactly.
+    pub lower: f64,
+    pub upper: f64,
+    /// The history to keep if this state is accepted (never stored by the law itself).
+    pub history: H,
+}
+
+/// The interface every normal law offers.
+pub trait NormalLaw {
+    /// What the contact remembers: a small `Copy` value.
+    type History: Copy + std::fmt::Debug + PartialEq;
+
+    /// The history of a contact that has never touched.
+    fn initial_history(&self) -> Self::History;
+
+    /// Force, branch, stiffness, branch interval and updated history at overlap `alpha`.
+    fn evaluate(&self, alpha: f64, history: &Self::History) -> Evaluation<Self::History>;
+
+    /// Whether the contact has yielded (selects the damping factor beta, 000 Sec. 2.3).
+    fn has_yielded(&self, history: &Self::History) -> bool;
+
+    /// The normal load of the Coulomb limit, shifted by the law's adhesion (000 Eq. 23, 004 Eqs. 4.27-4.28,
+    /// 3.49, 3.75, 003 Eq. 10). The sliding limit is `mu * max(this, 0)`.
+    fn sliding_normal_force(&self, force: f64, alpha: f64, history: &Self::History) -> f64;
+
+    /// The maximum tensile force the contact can take with this history (pull-off force, positive) [N].
+    fn pull_off_force(&self, history: &Self::History) -> f64;
+
+    /// The permanent (plastic) overlap of this history [m]: where the unloading branch meets zero force.
+    fn plastic_overlap(&self, history: &Self::History) -> f64;
+}
+
+/// Any of the laws, chosen at run time from a scene. Dispatch is one `match`.
+#[derive(Debug, Clone, PartialEq)]
+pub enum AnyLaw {
+    Nan(nan::Nan),
+    Pasha(pasha::Pasha),
+    PashaSimplified(pasha_simplified::PashaSimplified),
+    Luding(luding::Luding),
+    ThorntonNing(thornton_ning::ThorntonNing),
+    Tomas(tomas::Tomas),
+    Hertz(hertz::Hertz),
+    Jkr(jkr::Jkr),
+    JkrModified(jkr_modified::JkrModified),
+    Linear(linear::Linear),
+    WaltonBraun(walton_braun::WaltonBraun),
+}
+
+/// The history of any law.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum AnyHistory {
+    Nan(nan::NanHistory),
+    Pasha(pasha::PashaHistory),
+    PashaSimplified(pasha::PashaHistory),
+    Luding(luding::LudingHistory),
+    ThorntonNing(thornton_ning::TnHistory),
+    Tomas(tomas::TomasHistory),
+    Hertz(()),
+    Jkr(jkr::JkrHistory),
+    JkrModified(()),
+    Linear(()),
+    WaltonBraun(walton_braun::WbHistory),
+}
+
+impl AnyLaw {
+    /// Builds the scene's law with its parameters derived and checked.
+    pub fn from_scene(s: &Scene) -> Result<AnyLaw, ParamError> {
+        let eff = Effective::from_scene(s)?;
+        Ok(match s.contact_model {
+            ModelKind::Nan => AnyLaw::Nan(nan::Nan::new(params::NanParams::from_scene(s, &eff)?)),
+            ModelKind::Pasha => AnyLaw::Pasha(pasha::Pasha::from_scene(s, &eff)?),
+            ModelKind::PashaSimplified => AnyLaw::PashaSimplified(pasha_simplified::PashaSimplified::from_scene(s, &eff)?),
+            ModelKind::Luding => AnyLaw::Luding(luding::Luding::from_scene(s, &eff)?),
+            ModelKind::ThorntonNing => AnyLaw::ThorntonNing(thornton_ning::ThorntonNing::from_scene(&eff)?),
+            ModelKind::Tomas => AnyLaw::Tomas(tomas::Tomas::from_scene(s, &eff)?),
+            ModelKind::Hertz => AnyLaw::Hertz(hertz::Hertz::new(eff.radius, eff.youngs_modulus)),
+            ModelKind::Jkr => AnyLaw::Jkr(jkr::Jkr::new(eff.radius, eff.youngs_modulus, eff.surface_energy)),
+            ModelKind::JkrModified => AnyLaw::JkrModified(jkr_modified::JkrModified::new(eff.radius, eff.youngs_modulus, eff.surface_energy)),
+            ModelKind::Linear => AnyLaw::Linear(linear::Linear::from_scene(s, &eff)?),
+            ModelKind::WaltonBraun => AnyLaw::WaltonBraun(walton_braun::WaltonBraun::from_scene(s, &eff)?),
+        })
+    }
+
+    pub fn model(&self) -> ModelKind {
+        match self {
+            AnyLaw::Nan(_) => ModelKind::Nan,
+            AnyLaw::Pasha(_) => ModelKind::Pasha,
+            AnyLaw::PashaSimplified(_) => ModelKind::PashaSimplified,
+            AnyLaw::Luding(_) => ModelKind::Luding,
+            AnyLaw::ThorntonNing(_) => ModelKind::ThorntonNing,
+            AnyLaw::Tomas(_) => ModelKind::Tomas,
+            AnyLaw::Hertz(_) => ModelKind::Hertz,
+            AnyLaw::Jkr(_) => ModelKind::Jkr,
+            AnyLaw::JkrModified(_) => ModelKind::JkrModified,
+            AnyLaw::Linear(_) => ModelKind::Linear,
+            AnyLaw::WaltonBraun(_) => ModelKind::WaltonBraun,
+        }
+    }
+}
+
+/// Dispatches one method call to the law inside `AnyLaw`, checking the history variant matches.
+macro_rules! dispatch {
+    ($self:ident, $h:ident, $law:ident, $hist:ident => $body:expr, $wrap:expr, $mismatch:expr) => {
+        match ($self, $h) {
+            (AnyLaw::Nan($law), AnyHistory::Nan($hist)) => $wrap(AnyHistory::Nan, $body),
+            (AnyLaw::Pasha($law), AnyHistory::Pasha($hist)) => $wrap(AnyHistory::Pasha, $body),
+            (AnyLaw::PashaSimplified($law), AnyHistory::PashaSimplified($hist)) => $wrap(AnyHistory::PashaSimplified, $body),
+            (AnyLaw::Luding($law), AnyHistory::Luding($hist)) => $wrap(AnyHistory::Luding, $body),
+            (AnyLaw::ThorntonNing($law), AnyHistory::ThorntonNing($hist)) => $wrap(AnyHistory::ThorntonNing, $body),
+            (AnyLaw::Tomas($law), AnyHistory::Tomas($hist)) => $wrap(AnyHistory::Tomas, $body),
+            (AnyLaw::Hertz($law), AnyHistory::Hertz($hist)) => $wrap(AnyHistory::Hertz, $body),
+            (AnyLaw::Jkr($law), AnyHistory::Jkr($hist)) => $wrap(AnyHistory::Jkr, $body),
+            (AnyLaw::JkrModified($law), AnyHistory::JkrModified($hist)) => $wrap(AnyHistory::JkrModified, $body),
+            (AnyLaw::Linear($law), AnyHistory::Linear($hist)) => $wrap(AnyHistory::Linear, $body),
+            (AnyLaw::WaltonBraun($law), AnyHistory::WaltonBraun($hist)) => $wrap(AnyHistory::WaltonBraun, $body),
+            _ => $mismatch,
+        }
+    };
+}
+
+fn wrap_eval<H>(f: fn(H) -> AnyHistory, e: Evaluation<H>) -> Evaluation<AnyHistory> {
+    Evaluation { force: e.force, stiffness: e.stiffness, branch: e.branch, lower: e.lower, upper: e.upper, history: f(e.history) }
+}
+
+fn plain<H, T>(_: fn(H) -> AnyHistory, v: T) -> T {
+    v
+}
+
+impl NormalLaw for AnyLaw {
+    type History = AnyHistory;
+
+    fn initial_history(&self) -> AnyHistory {
+        match self {
+            AnyLaw::Nan(l) => AnyHistory::Nan(l.initial_history()),
+            AnyLaw::Pasha(l) => AnyHistory::Pasha(l.initial_history()),
+            AnyLaw::PashaSimplified(l) => AnyHistory::PashaSimplified(l.initial_history()),
+            AnyLaw::Luding(l) => AnyHistory::Luding(l.initial_history()),
+            AnyLaw::ThorntonNing(l) => AnyHistory::ThorntonNing(l.initial_history()),
+            AnyLaw::Tomas(l) => AnyHistory::Tomas(l.initial_history()),
+            AnyLaw::Hertz(l) => AnyHistory::Hertz(l.initial_history()),
+            AnyLaw::Jkr(l) => AnyHistory::Jkr(l.initial_history()),
+            AnyLaw::JkrModified(l) => AnyHistory::JkrModified(l.initial_history()),
+            AnyLaw::Linear(l) => AnyHistory::Linear(l.initial_history()),
+            AnyLaw::WaltonBraun(l) => AnyHistory::WaltonBraun(l.initial_history()),
+        }
+    }
+
+    /// A history of another law is a programming error; it is answered with the law's own initial
+    /// history rather than a panic.
+    fn evaluate(&self, alpha: f64, history: &AnyHistory) -> Evaluation<AnyHistory> {
+        dispatch!(self, history, l, h => l.evaluate(alpha, h), wrap_eval, self.evaluate(alpha, &self.initial_history()))
+    }
+
+    fn has_yielded(&self, history: &AnyHistory) -> bool {
+        dispatch!(self, history, l, h => l.has_yielded(h), plain, false)
+    }
+
+    fn sliding_normal_force(&self, force: f64, alpha: f64, history: &AnyHistory) -> f64 {
+        dispatch!(self, history, l, h => l.sliding_normal_force(force, alpha, h), plain, force)
+    }
+
+    fn pull_off_force(&self, history: &AnyHistory) -> f64 {
+        dispatch!(self, history, l, h => l.pull_off_force(h), plain, 0.0)
+    }
+
+    fn plastic_overlap(&self, history: &AnyHistory) -> f64 {
+        dispatch!(self, history, l, h => l.plastic_overlap(h), plain, 0.0)
+    }
+}

@@ -1,0 +1,159 @@
+//! Nan, Goh & Rahman's improved linear elasto-plastic adhesive law (`000` Sec. 2, Eqs. 3-20), read as
+//! the state machine of DESIGN 4.
+//!
+//! History: `established` (the paper's cs) and `alpha_max`, which starts at `alpha_y`, so the contact
+//! before yield is the same formulas with k_e = k_el, alpha_p = alpha_0, f_cp = f_ce, alpha_c0 = 0.
+//!
+//! Branches for an established contact (000 Fig. 1):
+//! - `alpha < alpha_fp`: detached (force 0, history kept; re-established at `alpha_c0`, Fig. 2(d));
+//! - `alpha_fp <= alpha <= alpha_cp`: f_c = -f_cp + k_c (alpha_cp - alpha)  (Eq. 19, lines AB / EF);
+//! - `alpha_cp < alpha <= alpha_max`: f_e = k_e (alpha - alpha_p)            (Eq. 17, lines BC / DE);
+//! - `alpha > alpha_max`: f_p = f_y + k_p (alpha - alpha_y)                    (Eq. 18, line CD),
+//!   and alpha_max follows alpha (Eq. 10), which recomputes k_e, k_c, alpha_p, f_cp and the overlaps of
+//!   Eqs. 11-14 so that the force stays continuous.
+
+use super::params::NanParams;
+use super::{Branch, Evaluation, NormalLaw};
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct Nan {
+    pub p: NanParams,
+    /// The branch points before yield (alpha_max = alpha_y), computed once.
+    before_yield: NanPoints,
+}
+
+/// What the contact remembers.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct NanHistory {
+    /// The paper's cs: the contact is established (000 Eq. 20).
+    pub established: bool,
+    /// Largest overlap of plastic loading, at least alpha_y (000 Eq. 10) [m].
+    pub alpha_max: f64,
+}
+
+/// The quantities that follow from alpha_max (000 Eqs. 11-14, 46, 59).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct NanPoints {
+    pub k_e: f64,
+    pub k_c: f64,
+    pub alpha_p: f64,
+    pub f_cp: f64,
+    pub alpha_c0: f64,
+    pub alpha_cp: f64,
+    pub alpha_fp: f64,
+}
+
+impl Nan {
+    pub fn new(p: NanParams) -> Nan {
+        let mut law = Nan { p, before_yield: NanPoints { k_e: 0.0, k_c: 0.0, alpha_p: 0.0, f_cp: 0.0, alpha_c0: 0.0, alpha_cp: 0.0, alpha_fp: 0.0 } };
+        law.before_yield = law.points_after_yield(p.alpha_y);
+        // Before yield the general formulas reduce exactly to these (000 Sec. 2.1); set them exactly.
+        law.before_yield.k_e = p.k_el;
+        law.before_yield.k_c = p.k_cl;
+        law.before_yield.alpha_p = p.alpha_0;
+        law.before_yield.f_cp = p.f_ce;
+        law.before_yield.alpha_c0 = 0.0;
+        law.before_yield.alpha_cp = p.alpha_0 - p.f_ce / p.k_el; // alpha_ce, Eq. 8
+        law.before_yield.alpha_fp = law.before_yield.alpha_cp - 4.0 / 9.0 * p.f_ce / p.k_cl; // alpha_fe, Eq. 9
+        law
+    }
+
+    /// Branch points for a given alpha_max.
+    pub fn points(&self, alpha_max: f64) -> NanPoints {
+        if alpha_max <= self.p.alpha_y {
+            self.before_yield
+        } else {
+            self.points_after_yield(alpha_max)
+        }
+    }
+
+    fn points_after_yield(&self, alpha_max: f64) -> NanPoints {
+        let p = &self.p;
+        let k_e = p.k_e(alpha_max);
+        let k_c = k_e * p.k_cl / p.k_el; // k_e/k_c = k_el/k_cl (000 Sec. 3.2)
+        let alpha_p = (1.0 - p.k_p / k_e) * alpha_max + (p.k_p * p.alpha_y - p.f_y) / k_e; // Eq. 16
+        let f_cp = p.f_cp(k_e, alpha_p, alpha_max);
+        NanPoints {
+            k_e,
+            k_c,
+            alpha_p,
+            f_cp,
+            alpha_c0: alpha_p - 8.0 / 9.0 * f_cp / k_e,                    // Eq. 12
+            alpha_cp: alpha_p - f_cp / k_e,                                // Eq. 13
+            alpha_fp: alpha_p - f_cp / k_e - 4.0 / 9.0 * f_cp / k_c,       // Eq. 14
+        }
+    }
+}
+
+impl NormalLaw for Nan {
+    type History = NanHistory;
+
+    fn initial_history(&self) -> NanHistory {
+        NanHistory { established: false, alpha_max: self.p.alpha_y }
+    }
+
+    fn evaluate(&self, alpha: f64, h: &NanHistory) -> Evaluation<NanHistory> {
+        let pts = self.points(h.alpha_max);
+        let separated = |established: bool| Evaluation {
+            force: 0.0,
+            stiffness: 0.0,
+            branch: Branch::Separated,
+            lower: f64::NEG_INFINITY,
+            upper: pts.alpha_c0,
+            history: NanHistory { established, alpha_max: h.alpha_max },
+        };
+        if !h.established && alpha < pts.alpha_c0 {
+            return separated(false);
+        }
+        if alpha < pts.alpha_fp {
+            return separated(false);
+        }
+        let history = NanHistory { established: true, alpha_max: h.alpha_max };
+        if alpha <= pts.alpha_cp {
+            return Evaluation {
+                force: -pts.f_cp + pts.k_c * (pts.alpha_cp - alpha), // Eq. 19
+                stiffness: -pts.k_c,
+                branch: Branch::Adhesive,
+                lower: pts.alpha_fp,
+                upper: pts.alpha_cp,
+                history,
+            };
+        }
+        if alpha <= h.alpha_max {
+            return Evaluation {
+                force: pts.k_e * (alpha - pts.alpha_p), // Eq. 17
+                stiffness: pts.k_e,
+                branch: Branch::Elastic,
+                lower: pts.alpha_cp,
+                upper: h.alpha_max,
+                history,
+            };
+        }
+        let p = &self.p;
+        Evaluation {
+            force: p.f_y + p.k_p * (alpha - p.alpha_y), // Eq. 18
+            stiffness: p.k_p,
+            branch: Branch::Plastic,
+            lower: alpha,
+            upper: f64::INFINITY,
+            history: NanHistory { established: true, alpha_max: alpha },
+        }
+    }
+
+    fn has_yielded(&self, h: &NanHistory) -> bool {
+        h.alpha_max > self.p.alpha_y
+    }
+
+    /// 000 Eq. 23: the limit is mu f; no adhesion shift.
+    fn sliding_normal_force(&self, force: f64, _alpha: f64, _h: &NanHistory) -> f64 {
+        force
+    }
+
+    fn pull_off_force(&self, h: &NanHistory) -> f64 {
+        self.points(h.alpha_max).f_cp
+    }
+
+    fn plastic_overlap(&self, h: &NanHistory) -> f64 {
+        self.points(h.alpha_max).alpha_p
+    }
+}

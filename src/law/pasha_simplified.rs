@@ -1,0 +1,85 @@
+//! Pasha's simplified law (`004` Sec. 4.1.4-4.1.5, Fig. 4.20): no initial elastic stage, a linear
+//! pull-off locus, and detachment at zero force.
+//!
+//! - loading (from first contact at alpha = 0): k_p (alpha - alpha_0), alpha_0 = 8/9 f_ce / k_p (004 Eq. A3.3);
+//! - unloading k_e (alpha - alpha_p) down to the pull-off locus f_cp = k_cp alpha_cp + f_0p (Eq. 4.17),
+//!   which it meets at alpha_cp = (k_e alpha_p - f_0p) / (k_e + k_cp);
+//! - then k_e (2 alpha_cp - alpha_p - alpha) to zero force at alpha_fp = 2 alpha_cp - alpha_p, where the
+//!   contact breaks (the zero-force breakage 004 Sec. 4.1.5 uses); re-contact at max(alpha_fp, 0).
+
+use super::params::Effective;
+use super::pasha::{pasha_evaluate, PashaHistory, PashaPoints, PashaStiffness};
+use super::{Evaluation, NormalLaw};
+use crate::error::ParamError;
+use crate::scene::Scene;
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct PashaSimplified {
+    pub f_ce: f64,
+    pub stiffness: PashaStiffness,
+    pub k_p: f64,
+    /// k_cp of Eq. 4.17 [N/m].
+    pub k_cp: f64,
+    /// f_0p of Eq. 4.17 [N].
+    pub f_0p: f64,
+    /// alpha_0 = 8/9 f_ce / k_p [m].
+    pub alpha_0: f64,
+}
+
+impl PashaSimplified {
+    pub fn from_scene(s: &Scene, eff: &Effective) -> Result<PashaSimplified, ParamError> {
+        let stiffness = PashaStiffness::from_scene(s, eff, "pasha_simplified")?;
+        let f_ce = eff.f_ce();
+        let f_0p = s.pasha_pull_off_intercept.unwrap_or(f_ce);
+        PashaSimplified::new(f_ce, stiffness, s.pasha_pull_off_stiffness, f_0p)
+    }
+
+    pub fn new(f_ce: f64, stiffness: PashaStiffness, k_cp: f64, f_0p: f64) -> Result<PashaSimplified, ParamError> {
+        if f_0p < 8.0 / 9.0 * f_ce * (1.0 - 1e-12) {
+            return Err(ParamError::OutOfRange {
+                name: "pasha_pull_off_intercept",
+                value: f_0p,
+                allowed: format!("[8/9 f_ce = {:e}, inf) N: the pull-off locus must lie below the loading line", 8.0 / 9.0 * f_ce),
+            });
+        }
+        Ok(PashaSimplified { f_ce, stiffness, k_p: stiffness.k_p, k_cp, f_0p, alpha_0: 8.0 / 9.0 * f_ce / stiffness.k_p })
+    }
+
+    pub fn points(&self, alpha_max: f64) -> PashaPoints {
+        let k_e = self.stiffness.at(alpha_max);
+        let f_max = self.k_p * (alpha_max - self.alpha_0);
+        let alpha_p = alpha_max - f_max / k_e;
+        let alpha_cp = (k_e * alpha_p - self.f_0p) / (k_e + self.k_cp);
+        PashaPoints { k_e, alpha_p, f_cp: self.k_cp * alpha_cp + self.f_0p, alpha_cp, alpha_fp: 2.0 * alpha_cp - alpha_p }
+    }
+}
+
+impl NormalLaw for PashaSimplified {
+    type History = PashaHistory;
+
+    fn initial_history(&self) -> PashaHistory {
+        PashaHistory { established: false, alpha_max: 0.0 }
+    }
+
+    fn evaluate(&self, alpha: f64, h: &PashaHistory) -> Evaluation<PashaHistory> {
+        let pts = self.points(h.alpha_max);
+        pasha_evaluate(alpha, h, &pts, |a| self.k_p * (a - self.alpha_0), self.k_p)
+    }
+
+    fn has_yielded(&self, h: &PashaHistory) -> bool {
+        h.alpha_max > 0.0
+    }
+
+    /// 004 Eq. 4.28: mu (F_n + k_cp alpha + f_0p - f_ce).
+    fn sliding_normal_force(&self, force: f64, alpha: f64, _h: &PashaHistory) -> f64 {
+        force + self.k_cp * alpha + self.f_0p - self.f_ce
+    }
+
+    fn pull_off_force(&self, h: &PashaHistory) -> f64 {
+        self.points(h.alpha_max).f_cp
+    }
+
+    fn plastic_overlap(&self, h: &PashaHistory) -> f64 {
+        self.points(h.alpha_max).alpha_p
+    }
+}

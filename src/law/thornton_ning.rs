@@ -1,0 +1,163 @@
+//! Thornton & Ning's nonlinear elasto-plastic adhesive law (`004` Sec. 3.4.4.1 with the JKR relations of
+//! Sec. 3.4.3.1): the high-fidelity reference the linear laws approximate.
+//!
+//! - Before yield: the JKR curve of R* (forms at alpha = 0 with -8/9 f_ce).
+//! - Yield when the JKR pressure at the centre reaches p_y, at the contact radius a_y of Eq. 3.55:
+//!   p_y = 2 E* a_y / (pi R*) - sqrt(2 Gamma E* / (pi a_y)).
+//! - Plastic loading with the tangent stiffness of Eq. 3.56, with a the JKR contact radius at the current
+//!   overlap (Eq. 3.42). Integrated in closed form (docs/models.md derives it):
+//!   f_p(alpha) = f_y + pi R* p_y (alpha - alpha_y) - 2 pi Gamma R* (sqrt(a / a_y) - 1).
+//! - Unloading and reloading below alpha_max: the JKR curve of the flattened radius
+//!   R_p = R* F*_max / (F_max + sqrt(4 f_ce F*_max)) (Eq. 3.58), F*_max = 4 E* a_max^3 / (3 R*), shifted by
+//!   alpha_p so that it passes through (alpha_max, F_max). Pull-off f_cp = 1.5 pi Gamma R_p (Eq. 3.59);
+//!   detachment at -5/9 f_cp; re-contact at alpha_c0 = alpha_p with -8/9 f_cp (004 Sec. 3.4.4.1).
+
+use super::jkr::{on_curve, JkrCurve};
+use super::params::Effective;
+use super::{Branch, Evaluation, NormalLaw};
+use crate::error::ParamError;
+use crate::numeric::brent;
+use std::f64::consts::PI;
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct ThorntonNing {
+    /// The JKR curve of R*.
+    pub curve: JkrCurve,
+    pub yield_pressure: f64,
+    /// Contact radius at yield (Eq. 3.55) [m].
+    pub a_y: f64,
+    /// Force and overlap at yield [N], [m].
+    pub f_y: f64,
+    pub alpha_y: f64,
+    /// The overlap beyond which first loading is plastic: alpha_y, or the detachment overlap when the
+    /// contact yields as soon as it forms (adhesion-induced yield) [m].
+    pub alpha_yield_start: f64,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TnHistory {
+    pub established: bool,
+    /// Largest overlap of plastic loading (starts at the yield overlap) [m].
+    pub alpha_max: f64,
+    /// Radius of the unloading curve, R* before yield [m].
+    pub r_p: f64,
+    /// Shift of the unloading curve, 0 before yield [m].
+    pub alpha_p: f64,
+}
+
+impl ThorntonNing {
+    pub fn from_scene(eff: &Effective) -> Result<ThorntonNing, ParamError> {
+        let p_y = eff.require_yield_pressure("thornton_ning")?;
+        Ok(ThorntonNing::new(eff.radius, eff.youngs_modulus, eff.surface_energy, p_y))
+    }
+
+    pub fn new(radius: f64, youngs_modulus: f64, surface_energy: f64, yield_pressure: f64) -> ThorntonNing {
+        let curve = JkrCurve::new(radius, youngs_modulus, surface_energy);
+        let a_y = yield_radius(radius, youngs_modulus, surface_energy, yield_pressure);
+        let (f_y, alpha_y) = (curve.force(a_y), curve.overlap(a_y));
+        let alpha_yield_start = if a_y >= curve.detach_radius() { alpha_y } else { curve.detach_overlap() };
+        ThorntonNing { curve, yield_pressure, a_y, f_y, alpha_y, alpha_yield_start }
+    }
+
+    /// Plastic loading force and its stiffness at an overlap (closed form of Eq. 3.56).
+    pub fn plastic_force(&self, alpha: f64) -> (f64, f64) {
+        let r = self.curve.radius;
+        let gamma = self.curve.surface_energy;
+        let a = self.curve.contact_radius(alpha);
+        let k_flat = PI * r * self.yield_pressure;
+        let f = self.f_y + k_flat * (alpha - self.alpha_y) - 2.0 * PI * gamma * r * ((a / self.a_y).sqrt() - 1.0);
+        let dalpha_da = 2.0 * a / r - 0.5 * (2.0 * PI * gamma / self.curve.youngs_modulus / a).sqrt();
+        let k = k_flat - PI * gamma * r / (a * self.a_y).sqrt() / dalpha_da;
+        (f, k)
+    }
+
+    /// The unloading curve after plastic loading to alpha_max: (R_p, alpha_p) of Eq. 3.58.
+    pub fn unloading_curve(&self, alpha_max: f64) -> (f64, f64) {
+        let r = self.curve.radius;
+        let e = self.curve.youngs_modulus;
+        let a_max = self.curve.contact_radius(alpha_max);
+        let f_star = 4.0 * e * a_max.powi(3) / (3.0 * r);
+        let (f_max, _) = self.plastic_force(alpha_max);
+        let r_p = r * f_star / (f_max + (4.0 * self.curve.pull_off_force() * f_star).sqrt());
+        let flat = JkrCurve::new(r_p, e, self.curve.surface_energy);
+        (r_p, alpha_max - flat.overlap(a_max))
+    }
+}
+
+/// a_y from 004 Eq. 3.55; the right side grows with a, so the root is unique.
+pub fn yield_radius(r: f64, e: f64, gamma: f64, p_y: f64) -> f64 {
+    let pressure = |a: f64| 2.0 * e * a / (PI * r) - (2.0 * gamma * e / (PI * a)).sqrt() - p_y;
+    let mut hi = PI * r * p_y / (2.0 * e);
+    while pressure(hi) < 0.0 {
+        hi *= 2.0;
+    }
+    let mut lo = hi;
+    while pressure(lo) > 0.0 {
+        lo *= 0.5;
+    }
+    brent(pressure, lo, hi, 0.0).unwrap_or(hi)
+}
+
+impl NormalLaw for ThorntonNing {
+    type History = TnHistory;
+
+    fn initial_history(&self) -> TnHistory {
+        TnHistory { established: false, alpha_max: self.alpha_yield_start, r_p: self.curve.radius, alpha_p: 0.0 }
+    }
+
+    fn evaluate(&self, alpha: f64, h: &TnHistory) -> Evaluation<TnHistory> {
+        let flat = JkrCurve::new(h.r_p, self.curve.youngs_modulus, self.curve.surface_energy);
+        let alpha_c0 = h.alpha_p;
+        let alpha_f = h.alpha_p + flat.detach_overlap();
+        if (!h.established && alpha < alpha_c0) || alpha < alpha_f {
+            return Evaluation {
+                force: 0.0,
+                stiffness: 0.0,
+                branch: Branch::Separated,
+                lower: f64::NEG_INFINITY,
+                upper: alpha_c0,
+                history: TnHistory { established: false, ..*h },
+            };
+        }
+        if alpha > h.alpha_max {
+            let (force, stiffness) = self.plastic_force(alpha);
+            let (r_p, alpha_p) = self.unloading_curve(alpha);
+            return Evaluation {
+                force,
+                stiffness,
+                branch: Branch::Plastic,
+                lower: alpha,
+                upper: f64::INFINITY,
+                history: TnHistory { established: true, alpha_max: alpha, r_p, alpha_p },
+            };
+        }
+        let mut e = on_curve(&flat, h.alpha_p, alpha, TnHistory { established: true, ..*h });
+        e.upper = e.upper.min(h.alpha_max);
+        e
+    }
+
+    fn has_yielded(&self, h: &TnHistory) -> bool {
+        h.alpha_max > self.alpha_yield_start
+    }
+
+    /// Thornton & Yin's criterion with the flattened radius: mu (F_n + 2 f_cp) (004 Eqs. 3.49, 3.59).
+    fn sliding_normal_force(&self, force: f64, _alpha: f64, h: &TnHistory) -> f64 {
+        force + 3.0 * PI * self.curve.surface_energy * h.r_p
+    }
+
+    /// f_cp = 1.5 pi Gamma R_p (004 Eq. 3.59).
+    fn pull_off_force(&self, h: &TnHistory) -> f64 {
+        1.5 * PI * self.curve.surface_energy * h.r_p
+    }
+
+    /// Where the unloading curve crosses zero force: alpha_p plus the JKR zero-force overlap of R_p.
+    fn plastic_overlap(&self, h: &TnHistory) -> f64 {
+        if h.alpha_p == 0.0 {
+            return 0.0;
+        }
+        let flat = JkrCurve::new(h.r_p, self.curve.youngs_modulus, self.curve.surface_energy);
+        // f = 0 where F_H = 4 f_c (000 Eq. B9): a^3 = 3 R_p f_c / E*.
+        let a0 = (3.0 * h.r_p * flat.pull_off_force() / self.curve.youngs_modulus).cbrt();
+        h.alpha_p + flat.overlap(a0)
+    }
+}

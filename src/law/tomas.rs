@@ -1,0 +1,251 @@
+//! Tomas' elasto-plastic adhesive law for ultrafine particles (`003` Table 1 and Eqs. 5-11,
+//! `004` Sec. 3.4.4.3, Eqs. 3.61-3.67).
+//!
+//! Tomas writes the Hertz term as 2/3 E* sqrt(r) h^(3/2) with his E* = 2 [(1-nu1^2)/E1 + (1-nu2^2)/E2]^-1,
+//! twice ours, so here it is c h^(3/2) with c = 4/3 E* sqrt(R*) (the Hertz force). With
+//! k_1 = pi R* p_f (kappa_A - kappa_p) (plastic line) and k_A = pi R* kappa_p p_f (adhesion limit, p_vdW = kappa_p p_f):
+//! - approach: van der Waals attraction -F_H0 a_F^2 / (a_F - alpha)^2 for alpha < 0 (004 Eq. 3.61);
+//! - elastic loading c alpha^(3/2) - F_H0 up to alpha_y = R* (3 pi p_f (kappa_A - kappa_p) / (2 E*_Tomas))^2
+//!   (004 Eq. 3.62), where it meets the plastic line k_1 alpha - F_H0 (003 Table 1);
+//! - unloading from (alpha_max, F_max): c (alpha - h_min)^(3/2) - k_A h_min - F_H0, with h_min found
+//!   iteratively so the curve starts at F_max (003 Table 1, note *); it ends on the adhesion limit at
+//!   point A (h_min, F_A), the largest tension;
+//! - reloading: F_max - c (alpha_max - alpha)^(3/2), the mirror curve from A back to (alpha_max, F_max);
+//!   a reversal inside the lens starts a scaled copy of the other curve from the reversal point, so the
+//!   force stays continuous (docs/models.md);
+//! - below h_min the contact has failed and the separation s = h_min - alpha is bridged by the van der
+//!   Waals tail -F_H0 a_F^2/(a_F + s)^2 - k_A h_min a_F^3/(a_F + s)^3 (004 Eq. 3.67, measured from A so it
+//!   starts at F_A); beyond s = 99 a_F (tail below 1e-4 of F_H0) the surfaces are apart and the contact
+//!   forgets its history: Tomas' model keeps no permanent deformation (004 Sec. 3.4.4.3).
+
+use super::params::Effective;
+use super::{Branch, Evaluation, NormalLaw};
+use crate::error::ParamError;
+use crate::numeric::brent;
+use crate::scene::Scene;
+use std::f64::consts::PI;
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct Tomas {
+    /// c = 4/3 E* sqrt(R*) [N/m^1.5].
+    pub c: f64,
+    /// k_1 = pi R* p_f (kappa_A - kappa_p) [N/m].
+    pub k1: f64,
+    /// k_A = pi R* kappa_p p_f [N/m].
+    pub k_a: f64,
+    /// F_H0 [N].
+    pub f0: f64,
+    /// a_F [m].
+    pub a_f: f64,
+    /// alpha_y [m].
+    pub alpha_y: f64,
+    /// kappa = kappa_p / (kappa_A - kappa_p), the contact consolidation coefficient (003 Eq. 6).
+    pub kappa: f64,
+}
+
+/// Which lens curve the contact is on after yield.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum LensMode {
+    Unloading,
+    Reloading,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TomasHistory {
+    pub yielded: bool,
+    /// Largest overlap (at least alpha_y) [m].
+    pub alpha_max: f64,
+    /// h_min of the unloading curve from alpha_max [m].
+    pub h_min: f64,
+    /// Force at point A (negative) [N].
+    pub f_a: f64,
+    pub mode: LensMode,
+    /// Start of the current lens curve [m], [N].
+    pub anchor_alpha: f64,
+    pub anchor_force: f64,
+    /// Overlap of the last accepted state: tells loading from unloading [m].
+    pub last_alpha: f64,
+}
+
+impl Tomas {
+    pub fn from_scene(s: &Scene, eff: &Effective) -> Result<Tomas, ParamError> {
+        let p_f = match s.tomas_yield_strength {
+            Some(p) => p,
+            None => eff.require_yield_pressure("tomas (no tomas_yield_strength given)")?,
+        };
+        let f0 = s.tomas_contact_adhesion_force.unwrap_or(2.0 * PI * eff.surface_energy * eff.radius);
+        Ok(Tomas::new(eff.radius, eff.youngs_modulus, p_f, s.tomas_area_coefficient, s.tomas_repulsion_coefficient, f0, s.tomas_separation))
+    }
+
+    pub fn new(r: f64, e_star: f64, p_f: f64, kappa_a: f64, kappa_p: f64, f0: f64, a_f: f64) -> Tomas {
+        let c = 4.0 / 3.0 * e_star * r.sqrt();
+        let k1 = PI * r * p_f * (kappa_a - kappa_p);
+        Tomas { c, k1, k_a: PI * r * kappa_p * p_f, f0, a_f, alpha_y: (k1 / c).powi(2), kappa: kappa_p / (kappa_a - kappa_p) }
+    }
+
+    /// h_min for unloading from alpha_max: c (alpha_max - h)^(3/2) - k_A h = k_1 alpha_max (003 Table 1 *).
+    pub fn h_min(&self, alpha_max: f64) -> f64 {
+        let g = |h: f64| self.c * (alpha_max - h).max(0.0).powf(1.5) - self.k_a * h - self.k1 * alpha_max;
+        brent(g, 0.0, alpha_max, 0.0).unwrap_or(0.0)
+    }
+
+    fn after_plastic(&self, alpha: f64) -> TomasHistory {
+        let h_min = self.h_min(alpha);
+        TomasHistory {
+            yielded: true,
+            alpha_max: alpha,
+            h_min,
+            f_a: -self.k_a * h_min - self.f0,
+            mode: LensMode::Unloading,
+            anchor_alpha: alpha,
+            anchor_force: self.k1 * alpha - self.f0,
+            last_alpha: alpha,
+        }
+    }
+
+    /// The van der Waals tail at separation s beyond the failure point at h_min.
+    fn tail(&self, s: f64, h_min: f64) -> (f64, f64) {
+        let d = self.a_f + s;
+        let (q2, q3) = ((self.a_f / d).powi(2), (self.a_f / d).powi(3));
+        let f = -self.f0 * q2 - self.k_a * h_min * q3;
+        // df/dalpha = -df/ds.
+        let k = -(2.0 * self.f0 * q2 / d + 3.0 * self.k_a * h_min * q3 / d);
+        (f, k)
+    }
+
+    /// Force and stiffness on a lens curve.
+    fn lens(&self, h: &TomasHistory, mode: LensMode, anchor_alpha: f64, anchor_force: f64, alpha: f64) -> (f64, f64) {
+        let f_max = self.k1 * h.alpha_max - self.f0;
+        match mode {
+            LensMode::Unloading => {
+                let span = anchor_alpha - h.h_min;
+                if span <= 0.0 {
+                    return (h.f_a, 0.0);
+                }
+                let x = ((alpha - h.h_min) / span).max(0.0);
+                let df = anchor_force - h.f_a;
+                (h.f_a + df * x.powf(1.5), 1.5 * df / span * x.sqrt())
+            }
+            LensMode::Reloading => {
+                let span = h.alpha_max - anchor_alpha;
+                if span <= 0.0 {
+                    return (f_max, 0.0);
+                }
+                let x = ((h.alpha_max - alpha) / span).max(0.0);
+                let df = f_max - anchor_force;
+                (f_max - df * x.powf(1.5), 1.5 * df / span * x.sqrt())
+            }
+        }
+    }
+}
+
+impl NormalLaw for Tomas {
+    type History = TomasHistory;
+
+    fn initial_history(&self) -> TomasHistory {
+        TomasHistory {
+            yielded: false,
+            alpha_max: self.alpha_y,
+            h_min: 0.0,
+            f_a: -self.f0,
+            mode: LensMode::Unloading,
+            anchor_alpha: 0.0,
+            anchor_force: -self.f0,
+            last_alpha: f64::NEG_INFINITY,
+        }
+    }
+
+    fn evaluate(&self, alpha: f64, h: &TomasHistory) -> Evaluation<TomasHistory> {
+        let cutoff = 99.0 * self.a_f;
+        if alpha > h.alpha_max {
+            return Evaluation {
+                force: self.k1 * alpha - self.f0,
+                stiffness: self.k1,
+                branch: Branch::Plastic,
+                lower: alpha,
+                upper: f64::INFINITY,
+                history: self.after_plastic(alpha),
+            };
+        }
+        if alpha < h.h_min {
+            let s = h.h_min - alpha;
+            if s > cutoff {
+                return Evaluation {
+                    force: 0.0,
+                    stiffness: 0.0,
+                    branch: Branch::Separated,
+                    lower: f64::NEG_INFINITY,
+                    upper: -cutoff,
+                    history: self.initial_history(),
+                };
+            }
+            let (force, stiffness) = self.tail(s, h.h_min);
+            let history = if h.yielded {
+                TomasHistory { mode: LensMode::Reloading, anchor_alpha: h.h_min, anchor_force: h.f_a, last_alpha: alpha, ..*h }
+            } else {
+                TomasHistory { last_alpha: alpha, ..*h }
+            };
+            return Evaluation { force, stiffness, branch: Branch::Attraction, lower: h.h_min - cutoff, upper: h.h_min, history };
+        }
+        if !h.yielded {
+            // Reversible Hertz branch before yield (h_min = 0).
+            let root = alpha.sqrt();
+            return Evaluation {
+                force: self.c * root * alpha - self.f0,
+                stiffness: 1.5 * self.c * root,
+                branch: Branch::Elastic,
+                lower: 0.0,
+                upper: h.alpha_max,
+                history: TomasHistory { last_alpha: alpha, ..*h },
+            };
+        }
+        // Inside the lens: a reversal starts the other curve at the last accepted point.
+        let (mut mode, mut anchor_alpha, mut anchor_force) = (h.mode, h.anchor_alpha, h.anchor_force);
+        let reversed = match h.mode {
+            LensMode::Unloading => alpha > h.last_alpha,
+            LensMode::Reloading => alpha < h.last_alpha,
+        };
+        if reversed && h.last_alpha.is_finite() && h.last_alpha >= h.h_min && h.last_alpha <= h.alpha_max {
+            let (f_last, _) = self.lens(h, h.mode, h.anchor_alpha, h.anchor_force, h.last_alpha);
+            mode = if h.mode == LensMode::Unloading { LensMode::Reloading } else { LensMode::Unloading };
+            anchor_alpha = h.last_alpha;
+            anchor_force = f_last;
+        }
+        let (force, stiffness) = self.lens(h, mode, anchor_alpha, anchor_force, alpha);
+        let (branch, lower, upper) = match mode {
+            LensMode::Unloading => (Branch::Elastic, h.h_min, alpha),
+            LensMode::Reloading => (Branch::Reloading, alpha, h.alpha_max),
+        };
+        Evaluation {
+            force,
+            stiffness,
+            branch,
+            lower,
+            upper,
+            history: TomasHistory { mode, anchor_alpha, anchor_force, last_alpha: alpha, ..*h },
+        }
+    }
+
+    fn has_yielded(&self, h: &TomasHistory) -> bool {
+        h.yielded
+    }
+
+    /// 003 Eq. 10: mu (1 + kappa) (F_H0 + F_N).
+    fn sliding_normal_force(&self, force: f64, _alpha: f64, _h: &TomasHistory) -> f64 {
+        (1.0 + self.kappa) * (self.f0 + force)
+    }
+
+    /// The tension at point A: F_H0 + k_A h_min.
+    fn pull_off_force(&self, h: &TomasHistory) -> f64 {
+        -h.f_a
+    }
+
+    /// Zero force on the full unloading curve from alpha_max.
+    fn plastic_overlap(&self, h: &TomasHistory) -> f64 {
+        if !h.yielded {
+            return 0.0;
+        }
+        let f_max = self.k1 * h.alpha_max - self.f0;
+        h.h_min + (h.alpha_max - h.h_min) * (-h.f_a / (f_max - h.f_a)).powf(2.0 / 3.0)
+    }
+}

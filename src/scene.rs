@@ -1,0 +1,524 @@
+//! A scene: the named parameter values of one contact. The names are the FMU variable names, the keys
+//! of the scene JSON the command-line tool reads, and the names in `docs/models.md`. SI units.
+//!
+//! `KEYS` is the one table of every key: its unit, default and meaning. The CLI help, the unknown-key
+//! check and the docs all read it.
+
+use crate::error::{check_closed_low, check_non_negative, check_open, check_positive, ParamError};
+use serde_json::{Map, Value};
+
+/// One scene key: name, unit, default (as text) and what it means (with its seed reference).
+#[derive(Debug, Clone, Copy)]
+pub struct Key {
+    pub name: &'static str,
+    pub unit: &'static str,
+    pub default: &'static str,
+    pub doc: &'static str,
+}
+
+/// Every scene key, in the order the help prints them.
+pub const KEYS: &[Key] = &[
+    Key { name: "contact_model", unit: "-", default: "nan", doc: "normal contact law: nan, pasha, pasha_simplified, luding, thornton_ning, tomas, hertz, jkr, jkr_modified, linear, walton_braun" },
+    Key { name: "contact_partner", unit: "-", default: "wall", doc: "wall (a flat of the wall_* properties) or particle (an identical particle: R* = R/2, m* = m/2)" },
+    Key { name: "particle_radius", unit: "m", default: "required", doc: "sphere radius R" },
+    Key { name: "particle_density", unit: "kg/m^3", default: "required", doc: "solid density rho" },
+    Key { name: "particle_youngs_modulus", unit: "Pa", default: "required", doc: "Young's modulus E of the particle" },
+    Key { name: "particle_poisson_ratio", unit: "-", default: "required", doc: "Poisson ratio nu of the particle, in (-1, 0.5)" },
+    Key { name: "particle_yield_pressure", unit: "Pa", default: "none", doc: "limiting contact pressure p_y of the particle (000 Sec. 3.1); or give particle_yield_stress" },
+    Key { name: "particle_yield_stress", unit: "Pa", default: "none", doc: "compressive yield stress sigma_y; p_y = C sigma_y by yield_pressure_correlation (000 Eqs. 32-33)" },
+    Key { name: "yield_pressure_correlation", unit: "-", default: "jackson_green", doc: "jackson_green: C = 1.295 exp(0.736 nu) (000 Eq. 32); chang: p_y = (0.454 + 0.41 nu) 2.8 sigma_y (000 Eq. 33)" },
+    Key { name: "yield_stress_rate_coefficient", unit: "-", default: "0", doc: "Y of the strain-rate law sigma_y = sigma_y^s (1 + Y ln(V_i/V_0)) (000 Eq. 34); scales p_y" },
+    Key { name: "strain_rate", unit: "1/s", default: "none", doc: "characteristic strain rate V_i of the simulation (000 Eq. 34)" },
+    Key { name: "reference_strain_rate", unit: "1/s", default: "none", doc: "quasi-static strain rate V_0 at which the yield stress was measured (000 Eq. 34)" },
+    Key { name: "wall_youngs_modulus", unit: "Pa", default: "rigid", doc: "Young's modulus of the wall; omit for a rigid wall" },
+    Key { name: "wall_poisson_ratio", unit: "-", default: "0.3", doc: "Poisson ratio of the wall, in (-1, 0.5)" },
+    Key { name: "wall_yield_pressure", unit: "Pa", default: "none", doc: "limiting contact pressure of the wall; p_y = min(particle, wall)" },
+    Key { name: "surface_energy", unit: "J/m^2", default: "0", doc: "interface energy Gamma (work of adhesion): f_ce = 1.5 pi Gamma R* (000 Eq. 5)" },
+    Key { name: "restitution_coefficient", unit: "-", default: "1", doc: "elastic restitution e_0 of the viscous damping, in (0, 1] (000 Eq. 26, 004 Eq. 4.25)" },
+    Key { name: "damping_factor_elastic", unit: "-", default: "1", doc: "beta of 000 Eq. 26 before yield" },
+    Key { name: "damping_factor_plastic", unit: "-", default: "0.1", doc: "beta of 000 Eq. 26 after yield (000 Sec. 2.3)" },
+    Key { name: "friction_coefficient", unit: "-", default: "0.5", doc: "sliding friction mu (000 Eq. 23)" },
+    Key { name: "elastic_stiffness", unit: "N/m", default: "pi R* p_y", doc: "k_el, elastic stiffness before yield (nan); constant k_e (pasha, pasha_simplified); unloading k_e (walton_braun). Default 000 Eq. 52" },
+    Key { name: "unloading_stiffness_reference", unit: "N/m", default: "none", doc: "k_e0 of a measured unloading line; with unloading_overlap_reference gives k_el by 000 Eqs. 45 and 29 (or 49)" },
+    Key { name: "unloading_overlap_reference", unit: "m", default: "none", doc: "alpha_max0, the overlap at which the measured unloading line with k_e0 starts (000 Eq. 43)" },
+    Key { name: "plastic_stiffness", unit: "N/m", default: "elastic_stiffness", doc: "k_p, plastic loading stiffness (000 Eq. 18, 004 Eq. 4.3); must not exceed k_el" },
+    Key { name: "unloading_stiffness_law", unit: "-", default: "sqrt", doc: "nan k_e after yield: sqrt, k_e = k_el sqrt(alpha_max/alpha_y) (000 Eq. 46); sqrt_plus_plastic, k_e = k_p + (k_el - k_p) sqrt(alpha_max/alpha_y) (000 Eqs. 47-49)" },
+    Key { name: "pull_off_law", unit: "-", default: "energy", doc: "nan f_cp: energy (000 Eq. 59), pasha (Eq. 61), curvature (Eq. 64), work_ratio (Eq. 67)" },
+    Key { name: "adhesive_stiffness_law", unit: "-", default: "exact", doc: "nan k_cl: exact (000 Eq. 36 with W_JKR of Eq. 37) or approximate (Eq. 38)" },
+    Key { name: "pasha_stiffness_law", unit: "-", default: "constant", doc: "pasha k_e: constant, or load_dependent k_e = k_p + (r/R*)^2 (k_e_max - k_p), r^2 = 2 R* alpha_max - alpha_max^2 (004 Eqs. 4.21-4.23)" },
+    Key { name: "pasha_max_elastic_stiffness", unit: "N/m", default: "none", doc: "k_e_max of 004 Eq. 4.23 (the stiffness at an overlap of R*); required with load_dependent" },
+    Key { name: "pasha_pull_off_stiffness", unit: "N/m", default: "0", doc: "k_cp, slope of the linear pull-off locus f_cp = k_cp alpha_cp + f_0p (004 Eq. 4.17; pasha_simplified)" },
+    Key { name: "pasha_pull_off_intercept", unit: "N", default: "f_ce", doc: "f_0p of the linear pull-off locus (004 Eq. 4.17; pasha_simplified); at least 8/9 f_ce" },
+    Key { name: "luding_loading_stiffness", unit: "N/m", default: "plastic_stiffness", doc: "k_1, plastic loading stiffness (003 Eq. 4)" },
+    Key { name: "luding_max_unloading_stiffness", unit: "N/m", default: "5 k_1", doc: "k_2 hat, the unloading stiffness reached at alpha* (004 Eqs. 3.71, 3.74)" },
+    Key { name: "luding_adhesion_stiffness", unit: "N/m", default: "0", doc: "k_c, slope of the adhesion limit -k_c alpha - f_0 (003 Eq. 4)" },
+    Key { name: "luding_plasticity_depth", unit: "-", default: "0.05", doc: "phi_f, dimensionless plasticity depth: alpha* = k2/(k2 - k1) phi_f 2 R* (004 Eq. 3.71)" },
+    Key { name: "luding_contact_adhesion_force", unit: "N", default: "8/9 f_ce", doc: "f_0, attraction at first contact (003 Eq. 4; 004 Table 4.2 sets it to 8/9 f_ce)" },
+    Key { name: "tomas_yield_strength", unit: "Pa", default: "p_y", doc: "p_f, plastic micro-yield strength of the contact (003 Table 1)" },
+    Key { name: "tomas_area_coefficient", unit: "-", default: "0.834", doc: "kappa_A, elastic-plastic contact area coefficient in [2/3, 1] (004 Sec. 3.4.4.3); default from 003 Sec. 3.3 limestone" },
+    Key { name: "tomas_repulsion_coefficient", unit: "-", default: "0.152", doc: "kappa_p, plastic repulsion coefficient p_vdW/p_f in [0, kappa_A) (003 Sec. 3.3 limestone)" },
+    Key { name: "tomas_contact_adhesion_force", unit: "N", default: "2 pi Gamma R*", doc: "F_H0, van der Waals attraction at contact (004 Eqs. 3.50, 3.61)" },
+    Key { name: "tomas_separation", unit: "m", default: "4e-10", doc: "a_F=0, minimum centre separation of the van der Waals force (004 Eq. 3.61: 0.3-0.4 nm)" },
+    Key { name: "linear_stiffness", unit: "N/m", default: "elastic_stiffness", doc: "k_n of the linear spring (004 Eq. 3.9)" },
+    Key { name: "walton_braun_stiffening_slope", unit: "1/m", default: "0", doc: "S of k_e = k_p + S F_max (004 Eq. 3.38); 0 keeps k_e constant" },
+];
+
+/// The normal contact laws a scene can name.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ModelKind {
+    Nan,
+    Pasha,
+    PashaSimplified,
+    Luding,
+    ThorntonNing,
+    Tomas,
+    Hertz,
+    Jkr,
+    JkrModified,
+    Linear,
+    WaltonBraun,
+}
+
+impl ModelKind {
+    pub const ALL: [ModelKind; 11] = [
+        ModelKind::Nan,
+        ModelKind::Pasha,
+        ModelKind::PashaSimplified,
+        ModelKind::Luding,
+        ModelKind::ThorntonNing,
+        ModelKind::Tomas,
+        ModelKind::Hertz,
+        ModelKind::Jkr,
+        ModelKind::JkrModified,
+        ModelKind::Linear,
+        ModelKind::WaltonBraun,
+    ];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            ModelKind::Nan => "nan",
+            ModelKind::Pasha => "pasha",
+            ModelKind::PashaSimplified => "pasha_simplified",
+            ModelKind::Luding => "luding",
+            ModelKind::ThorntonNing => "thornton_ning",
+            ModelKind::Tomas => "tomas",
+            ModelKind::Hertz => "hertz",
+            ModelKind::Jkr => "jkr",
+            ModelKind::JkrModified => "jkr_modified",
+            ModelKind::Linear => "linear",
+            ModelKind::WaltonBraun => "walton_braun",
+        }
+    }
+
+    pub fn parse(s: &str) -> Result<ModelKind, ParamError> {
+        ModelKind::ALL.iter().copied().find(|m| m.name() == s).ok_or_else(|| ParamError::UnknownChoice {
+            name: "contact_model".into(),
+            value: s.into(),
+            allowed: ModelKind::ALL.iter().map(|m| m.name()).collect::<Vec<_>>().join(", "),
+        })
+    }
+}
+
+/// What the particle touches.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Partner {
+    Wall,
+    Particle,
+}
+
+/// Correlation from yield stress to limiting contact pressure.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum YieldCorrelation {
+    /// 000 Eq. 32: p_y = 1.295 exp(0.736 nu) sigma_y.
+    JacksonGreen,
+    /// 000 Eq. 33: p_y = (0.454 + 0.41 nu) 2.8 sigma_y.
+    Chang,
+}
+
+/// How k_e grows after yield in the Nan law.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum UnloadingStiffnessLaw {
+    /// 000 Eqs. 42-46.
+    Sqrt,
+    /// 000 Eqs. 47-49.
+    SqrtPlusPlastic,
+}
+
+/// How the maximum pull-off force grows after yield in the Nan law (000 Table 4).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PullOffLaw {
+    /// 000 Eq. 59.
+    Energy,
+    /// 000 Eq. 61.
+    Pasha,
+    /// 000 Eq. 64.
+    Curvature,
+    /// 000 Eq. 67.
+    WorkRatio,
+}
+
+/// Which form of the k_cl correlation.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum AdhesiveStiffnessLaw {
+    /// 000 Eq. 36 with Eq. 37.
+    Exact,
+    /// 000 Eq. 38.
+    Approximate,
+}
+
+/// Constant or load-dependent unloading stiffness in the Pasha laws.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PashaStiffnessLaw {
+    Constant,
+    /// 004 Eq. 4.23.
+    LoadDependent,
+}
+
+/// The validated inputs of one contact. Optional values are `None` when the scene leaves them to
+/// a default that depends on other values (see `crate::law::params`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Scene {
+    pub contact_model: ModelKind,
+    pub contact_partner: Partner,
+    pub particle_radius: f64,
+    pub particle_density: f64,
+    pub particle_youngs_modulus: f64,
+    pub particle_poisson_ratio: f64,
+    pub particle_yield_pressure: Option<f64>,
+    pub particle_yield_stress: Option<f64>,
+    pub yield_pressure_correlation: YieldCorrelation,
+    pub yield_stress_rate_coefficient: f64,
+    pub strain_rate: Option<f64>,
+    pub reference_strain_rate: Option<f64>,
+    pub wall_youngs_modulus: Option<f64>,
+    pub wall_poisson_ratio: f64,
+    pub wall_yield_pressure: Option<f64>,
+    pub surface_energy: f64,
+    pub restitution_coefficient: f64,
+    pub damping_factor_elastic: f64,
+    pub damping_factor_plastic: f64,
+    pub friction_coefficient: f64,
+    pub elastic_stiffness: Option<f64>,
+    pub unloading_stiffness_reference: Option<f64>,
+    pub unloading_overlap_reference: Option<f64>,
+    pub plastic_stiffness: Option<f64>,
+    pub unloading_stiffness_law: UnloadingStiffnessLaw,
+    pub pull_off_law: PullOffLaw,
+    pub adhesive_stiffness_law: AdhesiveStiffnessLaw,
+    pub pasha_stiffness_law: PashaStiffnessLaw,
+    pub pasha_max_elastic_stiffness: Option<f64>,
+    pub pasha_pull_off_stiffness: f64,
+    pub pasha_pull_off_intercept: Option<f64>,
+    pub luding_loading_stiffness: Option<f64>,
+    pub luding_max_unloading_stiffness: Option<f64>,
+    pub luding_adhesion_stiffness: f64,
+    pub luding_plasticity_depth: f64,
+    pub luding_contact_adhesion_force: Option<f64>,
+    pub tomas_yield_strength: Option<f64>,
+    pub tomas_area_coefficient: f64,
+    pub tomas_repulsion_coefficient: f64,
+    pub tomas_contact_adhesion_force: Option<f64>,
+    pub tomas_separation: f64,
+    pub linear_stiffness: Option<f64>,
+    pub walton_braun_stiffening_slope: f64,
+}
+
+impl Scene {
+    /// A scene with the required particle values and every other key at its default.
+    pub fn new(model: ModelKind, radius: f64, density: f64, youngs_modulus: f64, poisson_ratio: f64) -> Scene {
+        Scene {
+            contact_model: model,
+            contact_partner: Partner::Wall,
+            particle_radius: radius,
+            particle_density: density,
+            particle_youngs_modulus: youngs_modulus,
+            particle_poisson_ratio: poisson_ratio,
+            particle_yield_pressure: None,
+            particle_yield_stress: None,
+            yield_pressure_correlation: YieldCorrelation::JacksonGreen,
+            yield_stress_rate_coefficient: 0.0,
+            strain_rate: None,
+            reference_strain_rate: None,
+            wall_youngs_modulus: None,
+            wall_poisson_ratio: 0.3,
+            wall_yield_pressure: None,
+            surface_energy: 0.0,
+            restitution_coefficient: 1.0,
+            damping_factor_elastic: 1.0,
+            damping_factor_plastic: 0.1,
+            friction_coefficient: 0.5,
+            elastic_stiffness: None,
+            unloading_stiffness_reference: None,
+            unloading_overlap_reference: None,
+            plastic_stiffness: None,
+            unloading_stiffness_law: UnloadingStiffnessLaw::Sqrt,
+            pull_off_law: PullOffLaw::Energy,
+            adhesive_stiffness_law: AdhesiveStiffnessLaw::Exact,
+            pasha_stiffness_law: PashaStiffnessLaw::Constant,
+            pasha_max_elastic_stiffness: None,
+            pasha_pull_off_stiffness: 0.0,
+            pasha_pull_off_intercept: None,
+            luding_loading_stiffness: None,
+            luding_max_unloading_stiffness: None,
+            luding_adhesion_stiffness: 0.0,
+            luding_plasticity_depth: 0.05,
+            luding_contact_adhesion_force: None,
+            tomas_yield_strength: None,
+            tomas_area_coefficient: 0.834,
+            tomas_repulsion_coefficient: 0.152,
+            tomas_contact_adhesion_force: None,
+            tomas_separation: 4e-10,
+            linear_stiffness: None,
+            walton_braun_stiffening_slope: 0.0,
+        }
+    }
+
+    /// Reads a scene from JSON text: an object whose keys are in `KEYS`.
+    pub fn from_json(text: &str) -> Result<Scene, ParamError> {
+        let value: Value = serde_json::from_str(text).map_err(|e| ParamError::Malformed { what: format!("not valid JSON: {e}") })?;
+        let map = value.as_object().ok_or_else(|| ParamError::Malformed { what: "the top level must be a JSON object of parameter names".into() })?;
+        Scene::from_map(map)
+    }
+
+    /// Reads a scene from a JSON object.
+    pub fn from_map(map: &Map<String, Value>) -> Result<Scene, ParamError> {
+        for k in map.keys() {
+            if !KEYS.iter().any(|key| key.name == k) {
+                return Err(ParamError::UnknownKey { name: k.clone(), hint: nearest_key_hint(k) });
+            }
+        }
+        let num = |name: &'static str| -> Result<Option<f64>, ParamError> {
+            match map.get(name) {
+                None | Some(Value::Null) => Ok(None),
+                Some(Value::Number(n)) => Ok(n.as_f64()),
+                Some(other) => Err(ParamError::Malformed { what: format!("`{name}` must be a number, got {other}") }),
+            }
+        };
+        let text = |name: &'static str| -> Result<Option<String>, ParamError> {
+            match map.get(name) {
+                None | Some(Value::Null) => Ok(None),
+                Some(Value::String(s)) => Ok(Some(s.clone())),
+                Some(other) => Err(ParamError::Malformed { what: format!("`{name}` must be a string, got {other}") }),
+            }
+        };
+        let required = |name: &'static str| -> Result<f64, ParamError> {
+            num(name)?.ok_or_else(|| ParamError::Missing { name, why: "every scene gives the particle's radius, density, Young's modulus and Poisson ratio".into() })
+        };
+        let model = match text("contact_model")? {
+            Some(s) => ModelKind::parse(&s)?,
+            None => ModelKind::Nan,
+        };
+        let mut s = Scene::new(
+            model,
+            required("particle_radius")?,
+            required("particle_density")?,
+            required("particle_youngs_modulus")?,
+            required("particle_poisson_ratio")?,
+        );
+        if let Some(p) = text("contact_partner")? {
+            s.contact_partner = choice("contact_partner", &p, &[("wall", Partner::Wall), ("particle", Partner::Particle)])?;
+        }
+        if let Some(c) = text("yield_pressure_correlation")? {
+            s.yield_pressure_correlation =
+                choice("yield_pressure_correlation", &c, &[("jackson_green", YieldCorrelation::JacksonGreen), ("chang", YieldCorrelation::Chang)])?;
+        }
+        if let Some(c) = text("unloading_stiffness_law")? {
+            s.unloading_stiffness_law = choice(
+                "unloading_stiffness_law",
+                &c,
+                &[("sqrt", UnloadingStiffnessLaw::Sqrt), ("sqrt_plus_plastic", UnloadingStiffnessLaw::SqrtPlusPlastic)],
+            )?;
+        }
+        if let Some(c) = text("pull_off_law")? {
+            s.pull_off_law = choice(
+                "pull_off_law",
+                &c,
+                &[("energy", PullOffLaw::Energy), ("pasha", PullOffLaw::Pasha), ("curvature", PullOffLaw::Curvature), ("work_ratio", PullOffLaw::WorkRatio)],
+            )?;
+        }
+        if let Some(c) = text("adhesive_stiffness_law")? {
+            s.adhesive_stiffness_law =
+                choice("adhesive_stiffness_law", &c, &[("exact", AdhesiveStiffnessLaw::Exact), ("approximate", AdhesiveStiffnessLaw::Approximate)])?;
+        }
+        if let Some(c) = text("pasha_stiffness_law")? {
+            s.pasha_stiffness_law =
+                choice("pasha_stiffness_law", &c, &[("constant", PashaStiffnessLaw::Constant), ("load_dependent", PashaStiffnessLaw::LoadDependent)])?;
+        }
+        s.particle_yield_pressure = num("particle_yield_pressure")?;
+        s.particle_yield_stress = num("particle_yield_stress")?;
+        if let Some(v) = num("yield_stress_rate_coefficient")? {
+            s.yield_stress_rate_coefficient = v;
+        }
+        s.strain_rate = num("strain_rate")?;
+        s.reference_strain_rate = num("reference_strain_rate")?;
+        s.wall_youngs_modulus = num("wall_youngs_modulus")?;
+        if let Some(v) = num("wall_poisson_ratio")? {
+            s.wall_poisson_ratio = v;
+        }
+        s.wall_yield_pressure = num("wall_yield_pressure")?;
+        let set = |slot: &mut f64, name: &'static str| -> Result<(), ParamError> {
+            if let Some(v) = num(name)? {
+                *slot = v;
+            }
+            Ok(())
+        };
+        set(&mut s.surface_energy, "surface_energy")?;
+        set(&mut s.restitution_coefficient, "restitution_coefficient")?;
+        set(&mut s.damping_factor_elastic, "damping_factor_elastic")?;
+        set(&mut s.damping_factor_plastic, "damping_factor_plastic")?;
+        set(&mut s.friction_coefficient, "friction_coefficient")?;
+        s.elastic_stiffness = num("elastic_stiffness")?;
+        s.unloading_stiffness_reference = num("unloading_stiffness_reference")?;
+        s.unloading_overlap_reference = num("unloading_overlap_reference")?;
+        s.plastic_stiffness = num("plastic_stiffness")?;
+        s.pasha_max_elastic_stiffness = num("pasha_max_elastic_stiffness")?;
+        set(&mut s.pasha_pull_off_stiffness, "pasha_pull_off_stiffness")?;
+        s.pasha_pull_off_intercept = num("pasha_pull_off_intercept")?;
+        s.luding_loading_stiffness = num("luding_loading_stiffness")?;
+        s.luding_max_unloading_stiffness = num("luding_max_unloading_stiffness")?;
+        set(&mut s.luding_adhesion_stiffness, "luding_adhesion_stiffness")?;
+        set(&mut s.luding_plasticity_depth, "luding_plasticity_depth")?;
+        s.luding_contact_adhesion_force = num("luding_contact_adhesion_force")?;
+        s.tomas_yield_strength = num("tomas_yield_strength")?;
+        set(&mut s.tomas_area_coefficient, "tomas_area_coefficient")?;
+        set(&mut s.tomas_repulsion_coefficient, "tomas_repulsion_coefficient")?;
+        s.tomas_contact_adhesion_force = num("tomas_contact_adhesion_force")?;
+        set(&mut s.tomas_separation, "tomas_separation")?;
+        s.linear_stiffness = num("linear_stiffness")?;
+        set(&mut s.walton_braun_stiffening_slope, "walton_braun_stiffening_slope")?;
+        if s.contact_partner == Partner::Particle {
+            for name in ["wall_youngs_modulus", "wall_poisson_ratio", "wall_yield_pressure"] {
+                if map.contains_key(name) {
+                    return Err(ParamError::Inconsistent {
+                        name: KEYS.iter().find(|k| k.name == name).map(|k| k.name).unwrap_or("contact_partner"),
+                        why: "given, but contact_partner is particle (an identical particle); remove it or set contact_partner to wall".into(),
+                    });
+                }
+            }
+        }
+        s.validate()?;
+        Ok(s)
+    }
+
+    /// Range checks on every value given. Cross-checks that need derived values live in `law::params`.
+    pub fn validate(&self) -> Result<(), ParamError> {
+        check_positive("particle_radius", self.particle_radius, "m")?;
+        check_positive("particle_density", self.particle_density, "kg/m^3")?;
+        check_positive("particle_youngs_modulus", self.particle_youngs_modulus, "Pa")?;
+        check_open("particle_poisson_ratio", self.particle_poisson_ratio, -1.0, 0.5, "")?;
+        opt_positive("particle_yield_pressure", self.particle_yield_pressure, "Pa")?;
+        opt_positive("particle_yield_stress", self.particle_yield_stress, "Pa")?;
+        check_non_negative("yield_stress_rate_coefficient", self.yield_stress_rate_coefficient, "")?;
+        opt_positive("strain_rate", self.strain_rate, "1/s")?;
+        opt_positive("reference_strain_rate", self.reference_strain_rate, "1/s")?;
+        opt_positive("wall_youngs_modulus", self.wall_youngs_modulus, "Pa")?;
+        check_open("wall_poisson_ratio", self.wall_poisson_ratio, -1.0, 0.5, "")?;
+        opt_positive("wall_yield_pressure", self.wall_yield_pressure, "Pa")?;
+        check_non_negative("surface_energy", self.surface_energy, "J/m^2")?;
+        check_open("restitution_coefficient", self.restitution_coefficient, 0.0, 1.0 + f64::EPSILON, "")?;
+        check_non_negative("damping_factor_elastic", self.damping_factor_elastic, "")?;
+        check_non_negative("damping_factor_plastic", self.damping_factor_plastic, "")?;
+        check_non_negative("friction_coefficient", self.friction_coefficient, "")?;
+        opt_positive("elastic_stiffness", self.elastic_stiffness, "N/m")?;
+        opt_positive("unloading_stiffness_reference", self.unloading_stiffness_reference, "N/m")?;
+        opt_positive("unloading_overlap_reference", self.unloading_overlap_reference, "m")?;
+        opt_positive("plastic_stiffness", self.plastic_stiffness, "N/m")?;
+        opt_positive("pasha_max_elastic_stiffness", self.pasha_max_elastic_stiffness, "N/m")?;
+        check_non_negative("pasha_pull_off_stiffness", self.pasha_pull_off_stiffness, "N/m")?;
+        if let Some(v) = self.pasha_pull_off_intercept {
+            check_non_negative("pasha_pull_off_intercept", v, "N")?;
+        }
+        opt_positive("luding_loading_stiffness", self.luding_loading_stiffness, "N/m")?;
+        opt_positive("luding_max_unloading_stiffness", self.luding_max_unloading_stiffness, "N/m")?;
+        check_non_negative("luding_adhesion_stiffness", self.luding_adhesion_stiffness, "N/m")?;
+        check_open("luding_plasticity_depth", self.luding_plasticity_depth, 0.0, 0.5, "")?;
+        if let Some(v) = self.luding_contact_adhesion_force {
+            check_non_negative("luding_contact_adhesion_force", v, "N")?;
+        }
+        opt_positive("tomas_yield_strength", self.tomas_yield_strength, "Pa")?;
+        check_closed_low("tomas_area_coefficient", self.tomas_area_coefficient, 2.0 / 3.0, 1.0 + f64::EPSILON, "")?;
+        check_closed_low("tomas_repulsion_coefficient", self.tomas_repulsion_coefficient, 0.0, self.tomas_area_coefficient, "(below tomas_area_coefficient)")?;
+        if let Some(v) = self.tomas_contact_adhesion_force {
+            check_non_negative("tomas_contact_adhesion_force", v, "N")?;
+        }
+        check_positive("tomas_separation", self.tomas_separation, "m")?;
+        opt_positive("linear_stiffness", self.linear_stiffness, "N/m")?;
+        check_non_negative("walton_braun_stiffening_slope", self.walton_braun_stiffening_slope, "1/m")?;
+        if self.unloading_stiffness_reference.is_some() != self.unloading_overlap_reference.is_some() {
+            return Err(ParamError::Inconsistent {
+                name: "unloading_stiffness_reference",
+                why: "give both unloading_stiffness_reference (k_e0) and unloading_overlap_reference (alpha_max0), or neither".into(),
+            });
+        }
+        if self.unloading_stiffness_reference.is_some() && self.elastic_stiffness.is_some() {
+            return Err(ParamError::Inconsistent {
+                name: "elastic_stiffness",
+                why: "give either elastic_stiffness or the measured unloading line (unloading_stiffness_reference, unloading_overlap_reference), not both".into(),
+            });
+        }
+        if self.yield_stress_rate_coefficient > 0.0 && (self.strain_rate.is_none() || self.reference_strain_rate.is_none()) {
+            return Err(ParamError::Missing {
+                name: "strain_rate",
+                why: "yield_stress_rate_coefficient > 0 needs strain_rate and reference_strain_rate (000 Eq. 34)".into(),
+            });
+        }
+        Ok(())
+    }
+}
+
+fn opt_positive(name: &'static str, v: Option<f64>, unit: &str) -> Result<(), ParamError> {
+    match v {
+        Some(x) => check_positive(name, x, unit).map(|_| ()),
+        None => Ok(()),
+    }
+}
+
+fn choice<T: Copy>(name: &'static str, value: &str, options: &[(&str, T)]) -> Result<T, ParamError> {
+    options.iter().find(|(k, _)| *k == value).map(|(_, v)| *v).ok_or_else(|| ParamError::UnknownChoice {
+        name: name.into(),
+        value: value.into(),
+        allowed: options.iter().map(|(k, _)| *k).collect::<Vec<_>>().join(", "),
+    })
+}
+
+/// " (did you mean `x`?)" for the closest known key, or "" when nothing is close.
+fn nearest_key_hint(unknown: &str) -> String {
+    let best = KEYS.iter().map(|k| (edit_distance(unknown, k.name), k.name)).min();
+    match best {
+        Some((d, name)) if d <= 3.max(unknown.len() / 4) => format!(" (did you mean `{name}`?)"),
+        _ => "; run `powderfmu analyze --help` for the list of keys".into(),
+    }
+}
+
+fn edit_distance(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut prev: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.chars().enumerate() {
+        let mut cur = vec![i + 1; b.len() + 1];
+        for (j, cb) in b.iter().enumerate() {
+            cur[j + 1] = (prev[j] + usize::from(ca != *cb)).min(prev[j + 1] + 1).min(cur[j] + 1);
+        }
+        prev = cur;
+    }
+    prev[b.len()]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_scene_field_has_a_key_and_keys_are_unique() {
+        let mut names: Vec<_> = KEYS.iter().map(|k| k.name).collect();
+        names.sort();
+        names.dedup();
+        assert_eq!(names.len(), KEYS.len());
+    }
+
+    #[test]
+    fn unknown_key_suggests_the_nearest() {
+        let err = Scene::from_json(r#"{"particle_radius":1e-6,"particle_density":1000,"particle_youngs_modulus":1e9,"particle_poisson_ratio":0.3,"surface_enrgy":0.1}"#)
+            .unwrap_err();
+        assert!(err.to_string().contains("did you mean `surface_energy`"), "{err}");
+    }
+}
