@@ -41,12 +41,10 @@ impl JkrCurve {
     /// df/dalpha at contact radius a (equal to 000 Eq. B2).
     pub fn stiffness(&self, a: f64) -> f64 {
         let df_da = 4.0 * self.youngs_modulus * a * a / self.radius - 1.5 * (8.0 * PI * self.surface_energy * self.youngs_modulus * a).sqrt();
-        let dalpha_da = 2.0 * a / self.radius - 0.5 * self.b / a.sqrt();
-        if dalpha_da > 0.0 {
-            df_da / dalpha_da
-        } else {
-            f64::NEG_INFINITY
-        }
+        // The slope is infinite at detachment (d alpha / d a = 0); cap it at a million times the Hertz
+        // scale 2a/R so that damping and time steps built on it stay finite.
+        let dalpha_da = (2.0 * a / self.radius - 0.5 * self.b / a.sqrt()).max(2e-6 * a / self.radius);
+        df_da / dalpha_da
     }
 
     /// Pull-off force f_c = 1.5 pi Gamma R (000 Eq. 5).

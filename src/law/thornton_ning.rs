@@ -66,7 +66,7 @@ impl ThorntonNing {
         let a = self.curve.contact_radius(alpha);
         let k_flat = PI * r * self.yield_pressure;
         let f = self.f_y + k_flat * (alpha - self.alpha_y) - 2.0 * PI * gamma * r * ((a / self.a_y).sqrt() - 1.0);
-        let dalpha_da = 2.0 * a / r - 0.5 * (2.0 * PI * gamma / self.curve.youngs_modulus / a).sqrt();
+        let dalpha_da = (2.0 * a / r - 0.5 * (2.0 * PI * gamma / self.curve.youngs_modulus / a).sqrt()).max(2e-6 * a / r);
         let k = k_flat - PI * gamma * r / (a * self.a_y).sqrt() / dalpha_da;
         (f, k)
     }
