@@ -40,6 +40,9 @@ impl JkrCurve {
 
     /// df/dalpha at contact radius a (equal to 000 Eq. B2).
     pub fn stiffness(&self, a: f64) -> f64 {
+        if self.b == 0.0 {
+            return 2.0 * self.youngs_modulus * a; // Hertz (000 Eq. 41); also right at a = 0
+        }
         let df_da = 4.0 * self.youngs_modulus * a * a / self.radius - 1.5 * (8.0 * PI * self.surface_energy * self.youngs_modulus * a).sqrt();
         // The slope is infinite at detachment (d alpha / d a = 0); cap it at a million times the Hertz
         // scale 2a/R so that damping and time steps built on it stay finite.
