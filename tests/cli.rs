@@ -1,0 +1,137 @@
+//! The command-line tool as a user runs it: 000 Table 6 through `powderfmu analyze`, the help, and bad
+//! input that must fail with a message naming the parameter and exit non-zero.
+
+use powderfmu::analysis::OUTPUTS;
+use powderfmu::scene::KEYS;
+use serde_json::{json, Value};
+use std::process::Command;
+
+fn write_scene(name: &str, v: &Value) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("powderfmu-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join(name);
+    std::fs::write(&path, serde_json::to_string_pretty(v).unwrap()).unwrap();
+    path
+}
+
+fn run(args: &[&str]) -> (i32, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_powderfmu")).args(args).output().unwrap();
+    (out.status.code().unwrap_or(-1), String::from_utf8_lossy(&out.stdout).into(), String::from_utf8_lossy(&out.stderr).into())
+}
+
+/// 000 Table 5 (DESIGN 9: Gamma = 0.24 J/m^2, E* from particle and wall).
+fn table5(radius: f64, p_y: f64) -> Value {
+    json!({
+        "contact_model": "nan",
+        "particle_radius": radius, "particle_density": 1350.0,
+        "particle_youngs_modulus": 1.2e9, "particle_poisson_ratio": 0.33, "particle_yield_pressure": p_y,
+        "wall_youngs_modulus": 166e9, "wall_poisson_ratio": 0.28, "wall_yield_pressure": 120e6,
+        "surface_energy": 0.24
+    })
+}
+
+#[test]
+fn table6_through_analyze_within_1_percent() {
+    let radii = [3.445e-6, 2.45e-6, 1.72e-6, 1.29e-6];
+    let v_s = [0.49, 0.66, 0.88, 1.12];
+    for (p_y, v_ys) in [(25e6, [1.51, 2.25, 3.4, 4.76]), (30e6, [1.24, 1.86, 2.83, 3.96])] {
+        for (i, r) in radii.iter().enumerate() {
+            let path = write_scene(&format!("t6_{i}_{p_y}.json"), &table5(*r, p_y));
+            let (code, out, err) = run(&["analyze", path.to_str().unwrap()]);
+            assert_eq!(code, 0, "{err}");
+            let v: Value = serde_json::from_str(&out).unwrap();
+            let got_vs = v["jkr_sticking_velocity"].as_f64().unwrap();
+            let got_vys = v["sticking_velocity"].as_f64().unwrap();
+            assert!((got_vs / v_s[i] - 1.0).abs() < 0.011, "R {r}: V_s {got_vs} vs {}", v_s[i]);
+            assert!((got_vys / v_ys[i] - 1.0).abs() < 0.01, "R {r}, p_y {p_y}: V_ys {got_vys} vs {}", v_ys[i]);
+            assert_eq!(v["units"]["sticking_velocity"], "m/s");
+        }
+    }
+}
+
+#[test]
+fn analyze_prints_every_required_key_with_its_unit() {
+    let path = write_scene("keys.json", &table5(2.45e-6, 30e6));
+    let (code, out, _) = run(&["analyze", path.to_str().unwrap(), "--velocity", "3"]);
+    assert_eq!(code, 0);
+    let v: Value = serde_json::from_str(&out).unwrap();
+    for key in [
+        "reduced_radius", "effective_modulus", "f_ce", "k_el", "k_cl", "k_p", "f_y", "alpha_y", "alpha_0",
+        "jkr_sticking_velocity", "yield_velocity", "adhesive_yield_velocity", "sticking_velocity",
+        "cohesion_yield_number", "rayleigh_time_step", "restitution",
+    ] {
+        assert!(v.get(key).is_some(), "missing {key}");
+        assert!(v["units"].get(key).is_some() || v[key].is_null(), "no unit for {key}");
+    }
+    // 3 m/s is above V_ys = 1.86 m/s: the sphere rebounds.
+    assert!(v["restitution"].as_f64().unwrap() > 0.0);
+}
+
+#[test]
+fn help_lists_every_scene_key_and_output_with_units() {
+    let (code, out, _) = run(&["analyze", "--help"]);
+    assert_eq!(code, 0);
+    for k in KEYS {
+        assert!(out.contains(k.name) && out.contains(&format!("[{}]", k.unit)), "help misses {}", k.name);
+    }
+    for o in OUTPUTS {
+        assert!(out.contains(o.name), "help misses output {}", o.name);
+    }
+}
+
+fn expect_error(name: &str, scene: Value, must_contain: &[&str]) {
+    let path = write_scene(name, &scene);
+    let (code, out, err) = run(&["analyze", path.to_str().unwrap()]);
+    assert_ne!(code, 0, "{name} should fail");
+    assert!(out.is_empty(), "{name}: nothing on stdout on error");
+    for text in must_contain {
+        assert!(err.contains(text), "{name}: `{text}` not in: {err}");
+    }
+}
+
+#[test]
+fn bad_input_fails_naming_the_parameter_and_its_range() {
+    let base = table5(2.45e-6, 30e6);
+    let with = |k: &str, v: Value| {
+        let mut s = base.clone();
+        s[k] = v;
+        s
+    };
+    expect_error("neg_radius.json", with("particle_radius", json!(-1e-6)), &["particle_radius", "(0, inf) m"]);
+    expect_error("zero_radius.json", with("particle_radius", json!(0.0)), &["particle_radius", "(0, inf) m"]);
+    expect_error("zero_modulus.json", with("particle_youngs_modulus", json!(0.0)), &["particle_youngs_modulus", "(0, inf) Pa"]);
+    expect_error("neg_density.json", with("particle_density", json!(-1350.0)), &["particle_density", "kg/m^3"]);
+    expect_error("nu_half.json", with("particle_poisson_ratio", json!(0.5)), &["particle_poisson_ratio", "(-1, 0.5)"]);
+    expect_error("nu_minus1.json", with("particle_poisson_ratio", json!(-1.0)), &["particle_poisson_ratio", "(-1, 0.5)"]);
+    expect_error("kp_too_big.json", with("plastic_stiffness", json!(1e6)), &["plastic_stiffness", "exceeds k_el"]);
+    expect_error("gamma_kcl.json", with("surface_energy", json!(50.0)), &["surface_energy", "k_cl negative", "J/m^2"]);
+    expect_error("model.json", with("contact_model", json!("hookean")), &["contact_model", "hookean", "nan, pasha"]);
+    expect_error("typo.json", with("surface_enrgy", json!(0.1)), &["surface_enrgy", "did you mean `surface_energy`"]);
+    expect_error("string.json", with("particle_radius", json!("2.45e-6")), &["particle_radius", "must be a number"]);
+    let mut missing = base.clone();
+    missing.as_object_mut().unwrap().remove("particle_density");
+    expect_error("missing.json", missing, &["particle_density", "required"]);
+    let mut no_py = base.clone();
+    no_py.as_object_mut().unwrap().remove("particle_yield_pressure");
+    no_py.as_object_mut().unwrap().remove("wall_yield_pressure");
+    expect_error("no_py.json", no_py, &["particle_yield_pressure", "contact_model nan"]);
+}
+
+#[test]
+fn unreadable_or_malformed_scenes_fail_cleanly() {
+    let (code, _, err) = run(&["analyze", "/nonexistent/scene.json"]);
+    assert_ne!(code, 0);
+    assert!(err.contains("cannot read scene"));
+    let dir = std::env::temp_dir().join(format!("powderfmu-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let p = dir.join("broken.json");
+    std::fs::write(&p, "{ not json").unwrap();
+    let (code, _, err) = run(&["analyze", p.to_str().unwrap()]);
+    assert_ne!(code, 0);
+    assert!(err.contains("not valid JSON"), "{err}");
+    let (code, _, err) = run(&["analyze", p.to_str().unwrap(), "--velocity", "-2"]);
+    assert_ne!(code, 0);
+    assert!(err.contains("--velocity"));
+    let (code, _, _) = run(&["frobnicate"]);
+    assert_ne!(code, 0);
+}
