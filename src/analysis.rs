@@ -68,7 +68,10 @@ pub fn analyze(scene: &Scene, velocity: Option<f64>) -> Result<Value, ParamError
     out.insert("yield_pressure".into(), json!(eff.yield_pressure));
     out.insert("f_ce".into(), json!(eff.f_ce()));
     out.insert("f_0".into(), json!(8.0 / 9.0 * eff.f_ce()));
-    out.insert("rayleigh_time_step".into(), json!(rayleigh_time_step(eff.particle_radius, eff.density, eff.particle_shear_modulus, eff.poisson_ratio)));
+    out.insert(
+        "rayleigh_time_step".into(),
+        json!(rayleigh_time_step(eff.particle_radius, eff.density, eff.particle_shear_modulus, eff.poisson_ratio)),
+    );
     out.insert("pull_off_force_fresh".into(), json!(law.pull_off_force(&law.initial_history())));
     match NanParams::from_scene(scene, &eff) {
         Ok(p) => {
@@ -105,7 +108,8 @@ pub fn analyze(scene: &Scene, velocity: Option<f64>) -> Result<Value, ParamError
         Err(err) => notes.push(format!("Nan law parameters not derived: {err}")),
     }
     if let Some(v) = velocity {
-        let o = energy_balance::impact(&law, eff.mass, v, eff.radius).map_err(|e| ParamError::Inconsistent { name: "impact_velocity", why: e.to_string() })?;
+        let o = energy_balance::impact(&law, eff.mass, v, eff.radius)
+            .map_err(|e| ParamError::Inconsistent { name: "impact_velocity", why: e.to_string() })?;
         out.insert("impact_velocity".into(), json!(v));
         out.insert("max_overlap".into(), json!(o.max_overlap));
         out.insert("max_force".into(), json!(o.max_force));

@@ -42,9 +42,7 @@ impl ParamError {
     /// The parameter the error is about, if it names one.
     pub fn parameter(&self) -> Option<&str> {
         match self {
-            ParamError::OutOfRange { name, .. }
-            | ParamError::Missing { name, .. }
-            | ParamError::Inconsistent { name, .. } => Some(name),
+            ParamError::OutOfRange { name, .. } | ParamError::Missing { name, .. } | ParamError::Inconsistent { name, .. } => Some(name),
             ParamError::UnknownChoice { name, .. } | ParamError::UnknownKey { name, .. } => Some(name),
             ParamError::Malformed { .. } => None,
         }

@@ -108,7 +108,6 @@ pub fn gauss_legendre<F: FnMut(f64) -> f64>(mut f: F, a: f64, b: f64, pieces: us
     0.5 * h * sum
 }
 
-
 /// Tanh-sinh (double exponential) quadrature of `f` over `[a, b]`. Accurate to near machine precision
 /// for integrands that are smooth inside but have square-root behaviour at an end, as the JKR curve has
 /// at detachment. About 100 evaluations; `f` is never evaluated at the end points themselves.

@@ -302,7 +302,10 @@ impl Scene {
             }
         };
         let required = |name: &'static str| -> Result<f64, ParamError> {
-            num(name)?.ok_or_else(|| ParamError::Missing { name, why: "every scene gives the particle's radius, density, Young's modulus and Poisson ratio".into() })
+            num(name)?.ok_or_else(|| ParamError::Missing {
+                name,
+                why: "every scene gives the particle's radius, density, Young's modulus and Poisson ratio".into(),
+            })
         };
         let model = match text("contact_model")? {
             Some(s) => ModelKind::parse(&s)?,
@@ -333,7 +336,12 @@ impl Scene {
             s.pull_off_law = choice(
                 "pull_off_law",
                 &c,
-                &[("energy", PullOffLaw::Energy), ("pasha", PullOffLaw::Pasha), ("curvature", PullOffLaw::Curvature), ("work_ratio", PullOffLaw::WorkRatio)],
+                &[
+                    ("energy", PullOffLaw::Energy),
+                    ("pasha", PullOffLaw::Pasha),
+                    ("curvature", PullOffLaw::Curvature),
+                    ("work_ratio", PullOffLaw::WorkRatio),
+                ],
             )?;
         }
         if let Some(c) = text("adhesive_stiffness_law")? {
@@ -341,8 +349,11 @@ impl Scene {
                 choice("adhesive_stiffness_law", &c, &[("exact", AdhesiveStiffnessLaw::Exact), ("approximate", AdhesiveStiffnessLaw::Approximate)])?;
         }
         if let Some(c) = text("pasha_stiffness_law")? {
-            s.pasha_stiffness_law =
-                choice("pasha_stiffness_law", &c, &[("constant", PashaStiffnessLaw::Constant), ("load_dependent", PashaStiffnessLaw::LoadDependent)])?;
+            s.pasha_stiffness_law = choice(
+                "pasha_stiffness_law",
+                &c,
+                &[("constant", PashaStiffnessLaw::Constant), ("load_dependent", PashaStiffnessLaw::LoadDependent)],
+            )?;
         }
         s.particle_yield_pressure = num("particle_yield_pressure")?;
         s.particle_yield_stress = num("particle_yield_stress")?;
@@ -437,7 +448,13 @@ impl Scene {
         }
         opt_positive("tomas_yield_strength", self.tomas_yield_strength, "Pa")?;
         check_closed_low("tomas_area_coefficient", self.tomas_area_coefficient, 2.0 / 3.0, 1.0 + f64::EPSILON, "")?;
-        check_closed_low("tomas_repulsion_coefficient", self.tomas_repulsion_coefficient, 0.0, self.tomas_area_coefficient, "(below tomas_area_coefficient)")?;
+        check_closed_low(
+            "tomas_repulsion_coefficient",
+            self.tomas_repulsion_coefficient,
+            0.0,
+            self.tomas_area_coefficient,
+            "(below tomas_area_coefficient)",
+        )?;
         if let Some(v) = self.tomas_contact_adhesion_force {
             check_non_negative("tomas_contact_adhesion_force", v, "N")?;
         }
@@ -517,8 +534,10 @@ mod tests {
 
     #[test]
     fn unknown_key_suggests_the_nearest() {
-        let err = Scene::from_json(r#"{"particle_radius":1e-6,"particle_density":1000,"particle_youngs_modulus":1e9,"particle_poisson_ratio":0.3,"surface_enrgy":0.1}"#)
-            .unwrap_err();
+        let err = Scene::from_json(
+            r#"{"particle_radius":1e-6,"particle_density":1000,"particle_youngs_modulus":1e9,"particle_poisson_ratio":0.3,"surface_enrgy":0.1}"#,
+        )
+        .unwrap_err();
         assert!(err.to_string().contains("did you mean `surface_energy`"), "{err}");
     }
 }

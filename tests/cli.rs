@@ -56,9 +56,22 @@ fn analyze_prints_every_required_key_with_its_unit() {
     assert_eq!(code, 0);
     let v: Value = serde_json::from_str(&out).unwrap();
     for key in [
-        "reduced_radius", "effective_modulus", "f_ce", "k_el", "k_cl", "k_p", "f_y", "alpha_y", "alpha_0",
-        "jkr_sticking_velocity", "yield_velocity", "adhesive_yield_velocity", "sticking_velocity",
-        "cohesion_yield_number", "rayleigh_time_step", "restitution",
+        "reduced_radius",
+        "effective_modulus",
+        "f_ce",
+        "k_el",
+        "k_cl",
+        "k_p",
+        "f_y",
+        "alpha_y",
+        "alpha_0",
+        "jkr_sticking_velocity",
+        "yield_velocity",
+        "adhesive_yield_velocity",
+        "sticking_velocity",
+        "cohesion_yield_number",
+        "rayleigh_time_step",
+        "restitution",
     ] {
         assert!(v.get(key).is_some(), "missing {key}");
         assert!(v["units"].get(key).is_some() || v[key].is_null(), "no unit for {key}");

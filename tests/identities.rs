@@ -14,7 +14,9 @@ use powderfmu::law::{hertz::Hertz, luding::Luding, AnyLaw, Branch, NormalLaw};
 use powderfmu::numeric::tanh_sinh;
 use powderfmu::scene::{ModelKind, PullOffLaw, Scene};
 use powderfmu::theory::adhesion::{luding_adhesion_force, tomas_adhesion_force, tomas_adhesion_force_linear};
-use powderfmu::theory::sticking::{cohesion_yield_number, critical_yield_pressure, jkr_sticking_velocity_closed, sticking_velocities, yield_velocity_closed};
+use powderfmu::theory::sticking::{
+    cohesion_yield_number, critical_yield_pressure, jkr_sticking_velocity_closed, sticking_velocities, yield_velocity_closed,
+};
 use powderfmu::theory::{energy_balance, restitution, work::work_terms};
 use std::f64::consts::PI;
 
@@ -278,7 +280,9 @@ fn closed_form_restitution_equals_the_integral_of_each_linear_law() {
     let s = table4_2(ModelKind::Pasha);
     let eff = Effective::from_scene(&s).unwrap();
     let AnyLaw::Pasha(p) = AnyLaw::from_scene(&s).unwrap() else { unreachable!() };
-    let AnyLaw::PashaSimplified(ps) = AnyLaw::from_scene(&Scene { contact_model: ModelKind::PashaSimplified, ..s.clone() }).unwrap() else { unreachable!() };
+    let AnyLaw::PashaSimplified(ps) = AnyLaw::from_scene(&Scene { contact_model: ModelKind::PashaSimplified, ..s.clone() }).unwrap() else {
+        unreachable!()
+    };
     for v in v_list.iter().chain([12.0, 100.0].iter()) {
         let v = *v;
         for (name, a, b) in [

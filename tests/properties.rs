@@ -21,12 +21,12 @@ struct Case {
 fn case() -> impl Strategy<Value = Case> {
     (
         0usize..ModelKind::ALL.len(),
-        -6.3f64..-4.3,             // log10 radius [m]
-        8.7f64..11.3,              // log10 E [Pa]
-        -3.0f64..-1.3,             // log10 p_y / E*
+        -6.3f64..-4.3,                         // log10 radius [m]
+        8.7f64..11.3,                          // log10 E [Pa]
+        -3.0f64..-1.3,                         // log10 p_y / E*
         prop_oneof![Just(0.0), -3.0f64..-0.3], // log10 Gamma, or no adhesion
-        0.05f64..1.0,              // k_p / k_el
-        0usize..4,                 // which options
+        0.05f64..1.0,                          // k_p / k_el
+        0usize..4,                             // which options
         prop::collection::vec((any::<bool>(), -6.0f64..-1.5), 2..10),
     )
         .prop_map(|(m, lr, le, ly, lg, kp, variant, t)| Case {
@@ -83,7 +83,16 @@ fn forgets_on_separation(m: ModelKind) -> bool {
 /// branch switch is pinned to a width of 1e-14 relative, and the force must agree across each switch
 /// within the slope times that width (plus a square-root allowance for the JKR curves, whose slope is
 /// infinite at detachment). Switches into or out of separation are the documented jumps.
-fn continuous(law: &AnyLaw, h: AnyHistory, a: f64, ea: &Evaluation<AnyHistory>, b: f64, f_ref: f64, scale: f64, depth: u32) -> Result<Evaluation<AnyHistory>, String> {
+fn continuous(
+    law: &AnyLaw,
+    h: AnyHistory,
+    a: f64,
+    ea: &Evaluation<AnyHistory>,
+    b: f64,
+    f_ref: f64,
+    scale: f64,
+    depth: u32,
+) -> Result<Evaluation<AnyHistory>, String> {
     let eb = law.evaluate(b, &h);
     if !(eb.force.is_finite() && eb.stiffness.is_finite()) {
         return Err(format!("non-finite force {} or stiffness {} at {b:e} on {:?}", eb.force, eb.stiffness, eb.branch));

@@ -48,7 +48,11 @@ fn check_row(p: &NanParams, want: &Table3Row, label: &str) {
 fn table3_both_columns_both_ke_methods_within_5_percent() {
     let rows = [
         (true, UnloadingStiffnessLaw::Sqrt, Table3Row { k_el: 283.0, k_h: Some(416.0), alpha_y: 10.4e-9, alpha_0: 7.3e-9, kel_over_kcl: 1.8 }),
-        (true, UnloadingStiffnessLaw::SqrtPlusPlastic, Table3Row { k_el: 418.0, k_h: Some(353.0), alpha_y: 7.5e-9, alpha_0: 4.9e-9, kel_over_kcl: 2.7 }),
+        (
+            true,
+            UnloadingStiffnessLaw::SqrtPlusPlastic,
+            Table3Row { k_el: 418.0, k_h: Some(353.0), alpha_y: 7.5e-9, alpha_0: 4.9e-9, kel_over_kcl: 2.7 },
+        ),
         (false, UnloadingStiffnessLaw::Sqrt, Table3Row { k_el: 6.7e4, k_h: None, alpha_y: 1.35e-9, alpha_0: 0.25e-9, kel_over_kcl: 3.9 }),
         (false, UnloadingStiffnessLaw::SqrtPlusPlastic, Table3Row { k_el: 2.1e5, k_h: None, alpha_y: 0.71e-9, alpha_0: 0.08e-9, kel_over_kcl: 12.6 }),
     ];

@@ -71,7 +71,8 @@ fn full_law_pull_off_matches_eqs_4_10_and_4_11() {
         let f_cp = ke * (ap - alpha_cp);
         assert!(f_cp > law.f_ce, "the energy form is the one in force here");
         assert!(rel(pts.f_cp, f_cp) < 1e-9, "alpha_max {alpha_max}: {} vs {f_cp}", pts.f_cp);
-        assert!(rel(pts.alpha_fp, 13.0 / 9.0 * pts.alpha_cp - 4.0 / 9.0 * ap) < 1e-9); // Eq. A1.5
+        assert!(rel(pts.alpha_fp, 13.0 / 9.0 * pts.alpha_cp - 4.0 / 9.0 * ap) < 1e-9);
+        // Eq. A1.5
     }
 }
 

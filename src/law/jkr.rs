@@ -18,14 +18,34 @@ pub struct JkrCurve {
     pub surface_energy: f64,
     /// b = sqrt(2 pi Gamma / E*) in alpha = a^2/R - b sqrt(a).
     b: f64,
-    /// sqrt(a) at detachment (d alpha/ d a = 0): (b R / 4)^(2/3).
+    /// sqrt(a) at detachment (d alpha/ d a = 0): (b R / 4)^(1/3).
     w_detach: f64,
+    /// Detachment overlap, pull-off radius and overlap, and (2 b R)^(1/3): fixed per curve, kept.
+    alpha_detach: f64,
+    a_pull_off: f64,
+    alpha_pull_off: f64,
+    cbrt_2br: f64,
 }
 
 impl JkrCurve {
     pub fn new(radius: f64, youngs_modulus: f64, surface_energy: f64) -> JkrCurve {
         let b = (2.0 * PI * surface_energy / youngs_modulus).sqrt();
-        JkrCurve { radius, youngs_modulus, surface_energy, b, w_detach: (b * radius / 4.0).cbrt() }
+        let w_detach = (b * radius / 4.0).cbrt();
+        let a_pull_off = (9.0 * PI * surface_energy * radius * radius / (8.0 * youngs_modulus)).cbrt();
+        let mut c = JkrCurve {
+            radius,
+            youngs_modulus,
+            surface_energy,
+            b,
+            w_detach,
+            alpha_detach: 0.0,
+            a_pull_off,
+            alpha_pull_off: 0.0,
+            cbrt_2br: (2.0 * b * radius).cbrt(),
+        };
+        c.alpha_detach = c.overlap(w_detach * w_detach);
+        c.alpha_pull_off = c.overlap(a_pull_off);
+        c
     }
 
     /// Overlap at contact radius a (000 Eq. B3).
@@ -57,7 +77,12 @@ impl JkrCurve {
 
     /// Contact radius at the pull-off force, a_c = (9 pi Gamma R^2 / (8 E*))^(1/3) (004 Eq. 3.57).
     pub fn pull_off_radius(&self) -> f64 {
-        (9.0 * PI * self.surface_energy * self.radius * self.radius / (8.0 * self.youngs_modulus)).cbrt()
+        self.a_pull_off
+    }
+
+    /// Overlap at the pull-off force.
+    pub fn pull_off_overlap(&self) -> f64 {
+        self.alpha_pull_off
     }
 
     /// Contact radius at detachment (the minimum of alpha(a)).
@@ -67,7 +92,7 @@ impl JkrCurve {
 
     /// Overlap at detachment alpha_f (negative with adhesion, 0 without).
     pub fn detach_overlap(&self) -> f64 {
-        self.overlap(self.detach_radius())
+        self.alpha_detach
     }
 
     /// Contact radius on the stable branch (a >= detach radius) for an overlap; below the detachment
@@ -86,7 +111,7 @@ impl JkrCurve {
         // Two starts that both lie right of the root (docs/models.md, JKR); take the tighter.
         let curvature = 12.0 * wf * wf / r;
         let near = wf + (2.0 * (alpha - alpha_f) / curvature).sqrt();
-        let far = (2.0 * r * alpha.abs()).powf(0.25) + (2.0 * self.b * r).cbrt();
+        let far = (2.0 * r * alpha.abs()).sqrt().sqrt() + self.cbrt_2br;
         let mut w = near.min(far);
         for _ in 0..100 {
             let f = w.powi(4) / r - self.b * w - alpha;
@@ -126,7 +151,7 @@ impl Jkr {
 pub(crate) fn on_curve<H>(curve: &JkrCurve, offset: f64, alpha: f64, history: H) -> Evaluation<H> {
     let a = curve.contact_radius(alpha - offset);
     let a_c = curve.pull_off_radius();
-    let alpha_c = offset + curve.overlap(a_c);
+    let alpha_c = offset + curve.pull_off_overlap();
     let adhesive = curve.surface_energy > 0.0 && a < a_c;
     Evaluation {
         force: curve.force(a),

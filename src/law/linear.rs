@@ -31,7 +31,14 @@ impl NormalLaw for Linear {
         if alpha <= 0.0 {
             return Evaluation { force: 0.0, stiffness: 0.0, branch: Branch::Separated, lower: f64::NEG_INFINITY, upper: 0.0, history: () };
         }
-        Evaluation { force: self.stiffness * alpha, stiffness: self.stiffness, branch: Branch::Elastic, lower: 0.0, upper: f64::INFINITY, history: () }
+        Evaluation {
+            force: self.stiffness * alpha,
+            stiffness: self.stiffness,
+            branch: Branch::Elastic,
+            lower: 0.0,
+            upper: f64::INFINITY,
+            history: (),
+        }
     }
 
     fn has_yielded(&self, _h: &()) -> bool {

@@ -3,6 +3,8 @@
 //!
 //! History: `established` (the paper's cs) and `alpha_max`, which starts at `alpha_y`, so the contact
 //! before yield is the same formulas with k_e = k_el, alpha_p = alpha_0, f_cp = f_ce, alpha_c0 = 0.
+//! The history also carries the branch points that follow from alpha_max, computed once when plastic
+//! loading moves alpha_max, so that the elastic and adhesive branches cost a multiply and an add.
 //!
 //! Branches for an established contact (000 Fig. 1):
 //! - `alpha < alpha_fp`: detached (force 0, history kept; re-established at `alpha_c0`, Fig. 2(d));
@@ -29,6 +31,8 @@ pub struct NanHistory {
     pub established: bool,
     /// Largest overlap of plastic loading, at least alpha_y (000 Eq. 10) [m].
     pub alpha_max: f64,
+    /// `Nan::points(alpha_max)`, kept so it is not recomputed at every evaluation.
+    pub points: NanPoints,
 }
 
 /// The quantities that follow from alpha_max (000 Eqs. 11-14, 46, 59).
@@ -78,9 +82,9 @@ impl Nan {
             k_c,
             alpha_p,
             f_cp,
-            alpha_c0: alpha_p - 8.0 / 9.0 * f_cp / k_e,                    // Eq. 12
-            alpha_cp: alpha_p - f_cp / k_e,                                // Eq. 13
-            alpha_fp: alpha_p - f_cp / k_e - 4.0 / 9.0 * f_cp / k_c,       // Eq. 14
+            alpha_c0: alpha_p - 8.0 / 9.0 * f_cp / k_e,              // Eq. 12
+            alpha_cp: alpha_p - f_cp / k_e,                          // Eq. 13
+            alpha_fp: alpha_p - f_cp / k_e - 4.0 / 9.0 * f_cp / k_c, // Eq. 14
         }
     }
 }
@@ -89,18 +93,18 @@ impl NormalLaw for Nan {
     type History = NanHistory;
 
     fn initial_history(&self) -> NanHistory {
-        NanHistory { established: false, alpha_max: self.p.alpha_y }
+        NanHistory { established: false, alpha_max: self.p.alpha_y, points: self.before_yield }
     }
 
     fn evaluate(&self, alpha: f64, h: &NanHistory) -> Evaluation<NanHistory> {
-        let pts = self.points(h.alpha_max);
+        let pts = h.points;
         let separated = |established: bool| Evaluation {
             force: 0.0,
             stiffness: 0.0,
             branch: Branch::Separated,
             lower: f64::NEG_INFINITY,
             upper: pts.alpha_c0,
-            history: NanHistory { established, alpha_max: h.alpha_max },
+            history: NanHistory { established, ..*h },
         };
         if !h.established && alpha < pts.alpha_c0 {
             return separated(false);
@@ -108,7 +112,7 @@ impl NormalLaw for Nan {
         if alpha < pts.alpha_fp {
             return separated(false);
         }
-        let history = NanHistory { established: true, alpha_max: h.alpha_max };
+        let history = NanHistory { established: true, ..*h };
         if alpha <= pts.alpha_cp {
             return Evaluation {
                 force: -pts.f_cp + pts.k_c * (pts.alpha_cp - alpha), // Eq. 19
@@ -136,7 +140,7 @@ impl NormalLaw for Nan {
             branch: Branch::Plastic,
             lower: alpha,
             upper: f64::INFINITY,
-            history: NanHistory { established: true, alpha_max: alpha },
+            history: NanHistory { established: true, alpha_max: alpha, points: self.points_after_yield(alpha) },
         }
     }
 
@@ -150,10 +154,10 @@ impl NormalLaw for Nan {
     }
 
     fn pull_off_force(&self, h: &NanHistory) -> f64 {
-        self.points(h.alpha_max).f_cp
+        h.points.f_cp
     }
 
     fn plastic_overlap(&self, h: &NanHistory) -> f64 {
-        self.points(h.alpha_max).alpha_p
+        h.points.alpha_p
     }
 }

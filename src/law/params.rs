@@ -97,7 +97,9 @@ impl Effective {
     pub fn require_yield_pressure(&self, model: &str) -> Result<f64, ParamError> {
         self.yield_pressure.ok_or_else(|| ParamError::Missing {
             name: "particle_yield_pressure",
-            why: format!("contact_model {model} needs a limiting contact pressure: give particle_yield_pressure, particle_yield_stress or wall_yield_pressure"),
+            why: format!(
+                "contact_model {model} needs a limiting contact pressure: give particle_yield_pressure, particle_yield_stress or wall_yield_pressure"
+            ),
         })
     }
 
@@ -282,7 +284,10 @@ impl NanParams {
                         return Err(ParamError::OutOfRange {
                             name: "surface_energy",
                             value: gamma,
-                            allowed: format!("below {:.4e} J/m^2 for this k_el: a larger Gamma makes k_cl negative (000 Eq. 38)", (0.92 * k_el / 0.3).powi(3) / (e * e * r * r)),
+                            allowed: format!(
+                                "below {:.4e} J/m^2 for this k_el: a larger Gamma makes k_cl negative (000 Eq. 38)",
+                                (0.92 * k_el / 0.3).powi(3) / (e * e * r * r)
+                            ),
                         });
                     }
                     v

@@ -145,13 +145,7 @@ impl Pasha {
 /// The branch logic the full and the simplified Pasha laws share: reversible elastic line of slope k_e
 /// through (alpha_p, 0), the mirrored line of slope -k_e beyond alpha_cp, plastic loading above alpha_max,
 /// re-contact at max(alpha_fp, 0).
-pub(crate) fn pasha_evaluate(
-    alpha: f64,
-    h: &PashaHistory,
-    pts: &PashaPoints,
-    plastic: impl Fn(f64) -> f64,
-    k_p: f64,
-) -> Evaluation<PashaHistory> {
+pub(crate) fn pasha_evaluate(alpha: f64, h: &PashaHistory, pts: &PashaPoints, plastic: impl Fn(f64) -> f64, k_p: f64) -> Evaluation<PashaHistory> {
     let recontact = pts.alpha_fp.max(0.0);
     if (!h.established && alpha < recontact) || alpha < pts.alpha_fp {
         return Evaluation {

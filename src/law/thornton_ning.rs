@@ -43,6 +43,8 @@ pub struct TnHistory {
     pub r_p: f64,
     /// Shift of the unloading curve, 0 before yield [m].
     pub alpha_p: f64,
+    /// The JKR curve of R_p, kept so it is built only when plastic loading changes R_p.
+    pub flat: JkrCurve,
 }
 
 impl ThorntonNing {
@@ -102,11 +104,11 @@ impl NormalLaw for ThorntonNing {
     type History = TnHistory;
 
     fn initial_history(&self) -> TnHistory {
-        TnHistory { established: false, alpha_max: self.alpha_yield_start, r_p: self.curve.radius, alpha_p: 0.0 }
+        TnHistory { established: false, alpha_max: self.alpha_yield_start, r_p: self.curve.radius, alpha_p: 0.0, flat: self.curve }
     }
 
     fn evaluate(&self, alpha: f64, h: &TnHistory) -> Evaluation<TnHistory> {
-        let flat = JkrCurve::new(h.r_p, self.curve.youngs_modulus, self.curve.surface_energy);
+        let flat = h.flat;
         let alpha_c0 = h.alpha_p;
         let alpha_f = h.alpha_p + flat.detach_overlap();
         if (!h.established && alpha < alpha_c0) || alpha < alpha_f {
@@ -128,7 +130,13 @@ impl NormalLaw for ThorntonNing {
                 branch: Branch::Plastic,
                 lower: alpha,
                 upper: f64::INFINITY,
-                history: TnHistory { established: true, alpha_max: alpha, r_p, alpha_p },
+                history: TnHistory {
+                    established: true,
+                    alpha_max: alpha,
+                    r_p,
+                    alpha_p,
+                    flat: JkrCurve::new(r_p, self.curve.youngs_modulus, self.curve.surface_energy),
+                },
             };
         }
         let mut e = on_curve(&flat, h.alpha_p, alpha, TnHistory { established: true, ..*h });
@@ -155,7 +163,7 @@ impl NormalLaw for ThorntonNing {
         if h.alpha_p == 0.0 {
             return 0.0;
         }
-        let flat = JkrCurve::new(h.r_p, self.curve.youngs_modulus, self.curve.surface_energy);
+        let flat = h.flat;
         // f = 0 where F_H = 4 f_c (000 Eq. B9): a^3 = 3 R_p f_c / E*.
         let a0 = (3.0 * h.r_p * flat.pull_off_force() / self.curve.youngs_modulus).cbrt();
         h.alpha_p + flat.overlap(a0)

@@ -85,7 +85,13 @@ impl Tomas {
 
     /// h_min for unloading from alpha_max: c (alpha_max - h)^(3/2) - k_A h = k_1 alpha_max (003 Table 1 *).
     pub fn h_min(&self, alpha_max: f64) -> f64 {
-        let g = |h: f64| self.c * (alpha_max - h).max(0.0).powf(1.5) - self.k_a * h - self.k1 * alpha_max;
+        let g = |h: f64| {
+            self.c * {
+                let d = (alpha_max - h).max(0.0);
+                d * d.sqrt()
+            } - self.k_a * h
+                - self.k1 * alpha_max
+        };
         brent(g, 0.0, alpha_max, 0.0).unwrap_or(0.0)
     }
 
@@ -124,7 +130,7 @@ impl Tomas {
                 }
                 let x = ((alpha - h.h_min) / span).max(0.0);
                 let df = anchor_force - h.f_a;
-                (h.f_a + df * x.powf(1.5), 1.5 * df / span * x.sqrt())
+                (h.f_a + df * x * x.sqrt(), 1.5 * df / span * x.sqrt())
             }
             LensMode::Reloading => {
                 let span = h.alpha_max - anchor_alpha;
@@ -133,7 +139,7 @@ impl Tomas {
                 }
                 let x = ((h.alpha_max - alpha) / span).max(0.0);
                 let df = f_max - anchor_force;
-                (f_max - df * x.powf(1.5), 1.5 * df / span * x.sqrt())
+                (f_max - df * x * x.sqrt(), 1.5 * df / span * x.sqrt())
             }
         }
     }
@@ -216,14 +222,7 @@ impl NormalLaw for Tomas {
             LensMode::Unloading => (Branch::Elastic, h.h_min, alpha),
             LensMode::Reloading => (Branch::Reloading, alpha, h.alpha_max),
         };
-        Evaluation {
-            force,
-            stiffness,
-            branch,
-            lower,
-            upper,
-            history: TomasHistory { mode, anchor_alpha, anchor_force, last_alpha: alpha, ..*h },
-        }
+        Evaluation { force, stiffness, branch, lower, upper, history: TomasHistory { mode, anchor_alpha, anchor_force, last_alpha: alpha, ..*h } }
     }
 
     fn has_yielded(&self, h: &TomasHistory) -> bool {

@@ -71,7 +71,14 @@ impl NormalLaw for WaltonBraun {
         }
         if alpha <= h.alpha_max {
             let k_e = self.unloading_stiffness(h.alpha_max);
-            return Evaluation { force: k_e * (alpha - alpha_0), stiffness: k_e, branch: Branch::Elastic, lower: alpha_0, upper: h.alpha_max, history: *h };
+            return Evaluation {
+                force: k_e * (alpha - alpha_0),
+                stiffness: k_e,
+                branch: Branch::Elastic,
+                lower: alpha_0,
+                upper: h.alpha_max,
+                history: *h,
+            };
         }
         Evaluation {
             force: self.k_p * alpha,
