@@ -5,6 +5,7 @@
 //! `theory` (closed-form results) -> `analysis` (the report of the command-line tool).
 
 pub mod analysis;
+pub mod curves;
 pub mod error;
 pub mod law;
 pub mod numeric;

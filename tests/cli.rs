@@ -148,3 +148,35 @@ fn unreadable_or_malformed_scenes_fail_cleanly() {
     let (code, _, _) = run(&["frobnicate"]);
     assert_ne!(code, 0);
 }
+
+#[test]
+fn restitution_curve_finds_the_analyzed_sticking_velocity() {
+    let path = write_scene("rest.json", &table5(2.45e-6, 30e6));
+    let p = path.to_str().unwrap();
+    let (code, out, err) = run(&["restitution", p, "--velocities", "0.5,1,1.5,2,4,8"]);
+    assert_eq!(code, 0, "{err}");
+    let lines: Vec<&str> = out.lines().collect();
+    assert!(lines[0].starts_with("impact_velocity_m_per_s,rebound_velocity_m_per_s,restitution"));
+    assert_eq!(lines.len(), 1 + 6 + 1);
+    let v_energy: f64 = lines[7].split('=').nth(1).unwrap().trim().parse().unwrap();
+    let (_, json_out, _) = run(&["analyze", p]);
+    let v: Value = serde_json::from_str(&json_out).unwrap();
+    let v_theory = v["sticking_velocity"].as_f64().unwrap();
+    // Two independent routes: the closed form of 000 Eqs. 78-79 and the integral of the law's force.
+    assert!((v_energy / v_theory - 1.0).abs() < 1e-8, "{v_energy} vs {v_theory}");
+}
+
+#[test]
+fn curve_walks_load_unload_and_detachment() {
+    let path = write_scene("curve.json", &table5(2.45e-6, 30e6));
+    let (code, out, err) = run(&["curve", path.to_str().unwrap(), "--path", "5e-8,-2e-8", "--points", "400"]);
+    assert_eq!(code, 0, "{err}");
+    let branches: Vec<&str> = out.lines().skip(1).map(|l| l.split(',').nth(3).unwrap()).collect();
+    assert_eq!(branches.len(), 800);
+    for b in ["Separated", "Plastic", "Elastic", "Adhesive"] {
+        assert!(branches.contains(&b), "no {b} state on the path");
+    }
+    let (code, _, err) = run(&["curve", path.to_str().unwrap(), "--path", "1e-8,abc"]);
+    assert_ne!(code, 0);
+    assert!(err.contains("--path"));
+}

@@ -301,3 +301,21 @@ fn closed_form_restitution_equals_the_integral_of_each_linear_law() {
         assert!(rel(b.restitution, a.restitution) < 1e-9);
     }
 }
+
+#[test]
+fn thornton_ning_plastic_stiffness_is_eq_3_56_and_the_closed_form_integrates_it() {
+    let (r, e, g, p_y) = (2.45e-6, 1.3e9, 0.2, 35.3e6);
+    let tn = ThorntonNing::new(r, e, g, p_y);
+    let a_c = (3.0 * r * 1.5 * PI * g * r / (4.0 * e)).cbrt(); // 004 Eq. 3.57
+    for x in [1.01, 1.5, 3.0, 10.0, 40.0] {
+        let alpha = tn.alpha_y * x;
+        let a = tn.curve.contact_radius(alpha);
+        let s = (a_c / a).powf(1.5);
+        let k_356 = (3.0 * PI * r * p_y - 2.0 * e * tn.a_y * s) / (3.0 - s);
+        let (_, k) = tn.plastic_force(alpha);
+        assert!(rel(k, k_356) < 1e-9, "x {x}: {k} vs Eq. 3.56 {k_356}");
+        // The closed-form force is the integral of that stiffness from the yield point.
+        let integral = tn.f_y + tanh_sinh(|y| tn.plastic_force(y).1, tn.alpha_y, alpha);
+        assert!(rel(tn.plastic_force(alpha).0, integral) < 1e-10);
+    }
+}

@@ -1,0 +1,3 @@
+//! The packaging tool's library: the reproducible archive writer.
+
+pub mod archive;
