@@ -61,10 +61,7 @@ pub fn write_zip<W: Write>(mut entries: Vec<Entry>, out: &mut W) -> io::Result<(
         central.extend_from_slice(&(0o100644u32 << 16).to_le_bytes()); // -rw-r--r--
         central.extend_from_slice(&offset.to_le_bytes());
         central.extend_from_slice(name);
-        offset = offset
-            .checked_add(local.len() as u32)
-            .and_then(|o| o.checked_add(size))
-            .ok_or_else(|| too_big("an archive of 4 GiB or more"))?;
+        offset = offset.checked_add(local.len() as u32).and_then(|o| o.checked_add(size)).ok_or_else(|| too_big("an archive of 4 GiB or more"))?;
     }
     out.write_all(&central)?;
     let mut end = Vec::with_capacity(22);

@@ -21,7 +21,7 @@ impl NormalLaw for Hertz {
 
     fn evaluate(&self, alpha: f64, _h: &()) -> Evaluation<()> {
         if alpha <= 0.0 {
-            return Evaluation { force: 0.0, stiffness: 0.0, branch: Branch::Separated, lower: f64::NEG_INFINITY, upper: 0.0, history: () };
+            return Evaluation::separated(0.0, ());
         }
         let root = (self.radius * alpha).sqrt();
         Evaluation {

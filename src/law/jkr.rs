@@ -172,14 +172,7 @@ impl NormalLaw for Jkr {
 
     fn evaluate(&self, alpha: f64, h: &JkrHistory) -> Evaluation<JkrHistory> {
         if (!h.established && alpha < 0.0) || alpha < self.curve.detach_overlap() {
-            return Evaluation {
-                force: 0.0,
-                stiffness: 0.0,
-                branch: Branch::Separated,
-                lower: f64::NEG_INFINITY,
-                upper: 0.0,
-                history: JkrHistory { established: false },
-            };
+            return Evaluation::separated(0.0, JkrHistory { established: false });
         }
         on_curve(&self.curve, 0.0, alpha, JkrHistory { established: true })
     }

@@ -23,7 +23,7 @@ impl NormalLaw for JkrModified {
 
     fn evaluate(&self, alpha: f64, _h: &()) -> Evaluation<()> {
         if alpha <= 0.0 {
-            return Evaluation { force: 0.0, stiffness: 0.0, branch: Branch::Separated, lower: f64::NEG_INFINITY, upper: 0.0, history: () };
+            return Evaluation::separated(0.0, ());
         }
         let mut e = on_curve(&self.curve, 0.0, alpha, ());
         // For alpha > 0 the JKR contact radius is above a_c: always the elastic branch.

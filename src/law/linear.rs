@@ -29,7 +29,7 @@ impl NormalLaw for Linear {
 
     fn evaluate(&self, alpha: f64, _h: &()) -> Evaluation<()> {
         if alpha <= 0.0 {
-            return Evaluation { force: 0.0, stiffness: 0.0, branch: Branch::Separated, lower: f64::NEG_INFINITY, upper: 0.0, history: () };
+            return Evaluation::separated(0.0, ());
         }
         Evaluation {
             force: self.stiffness * alpha,

@@ -80,14 +80,7 @@ impl NormalLaw for Luding {
 
     fn evaluate(&self, alpha: f64, h: &LudingHistory) -> Evaluation<LudingHistory> {
         if alpha <= 0.0 {
-            return Evaluation {
-                force: 0.0,
-                stiffness: 0.0,
-                branch: Branch::Separated,
-                lower: f64::NEG_INFINITY,
-                upper: 0.0,
-                history: self.initial_history(),
-            };
+            return Evaluation::separated(0.0, self.initial_history());
         }
         let k2 = self.k2(h.delta_peak);
         let spring = k2 * (alpha - h.delta_0);

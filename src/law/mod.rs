@@ -75,6 +75,13 @@ pub struct Evaluation<H> {
     pub history: H,
 }
 
+impl<H> Evaluation<H> {
+    /// Not in contact: no force, no stiffness; contact can form again at `upper`.
+    pub fn separated(upper: f64, history: H) -> Evaluation<H> {
+        Evaluation { force: 0.0, stiffness: 0.0, branch: Branch::Separated, lower: f64::NEG_INFINITY, upper, history }
+    }
+}
+
 /// The interface every normal law offers.
 pub trait NormalLaw {
     /// What the contact remembers: a small `Copy` value.

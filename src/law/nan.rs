@@ -98,14 +98,7 @@ impl NormalLaw for Nan {
 
     fn evaluate(&self, alpha: f64, h: &NanHistory) -> Evaluation<NanHistory> {
         let pts = h.points;
-        let separated = |established: bool| Evaluation {
-            force: 0.0,
-            stiffness: 0.0,
-            branch: Branch::Separated,
-            lower: f64::NEG_INFINITY,
-            upper: pts.alpha_c0,
-            history: NanHistory { established, ..*h },
-        };
+        let separated = |established: bool| Evaluation::separated(pts.alpha_c0, NanHistory { established, ..*h });
         if !h.established && alpha < pts.alpha_c0 {
             return separated(false);
         }

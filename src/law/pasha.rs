@@ -148,14 +148,7 @@ impl Pasha {
 pub(crate) fn pasha_evaluate(alpha: f64, h: &PashaHistory, pts: &PashaPoints, plastic: impl Fn(f64) -> f64, k_p: f64) -> Evaluation<PashaHistory> {
     let recontact = pts.alpha_fp.max(0.0);
     if (!h.established && alpha < recontact) || alpha < pts.alpha_fp {
-        return Evaluation {
-            force: 0.0,
-            stiffness: 0.0,
-            branch: Branch::Separated,
-            lower: f64::NEG_INFINITY,
-            upper: recontact,
-            history: PashaHistory { established: false, alpha_max: h.alpha_max },
-        };
+        return Evaluation::separated(recontact, PashaHistory { established: false, alpha_max: h.alpha_max });
     }
     let history = PashaHistory { established: true, alpha_max: h.alpha_max };
     if alpha <= pts.alpha_cp {

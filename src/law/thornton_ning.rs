@@ -112,14 +112,7 @@ impl NormalLaw for ThorntonNing {
         let alpha_c0 = h.alpha_p;
         let alpha_f = h.alpha_p + flat.detach_overlap();
         if (!h.established && alpha < alpha_c0) || alpha < alpha_f {
-            return Evaluation {
-                force: 0.0,
-                stiffness: 0.0,
-                branch: Branch::Separated,
-                lower: f64::NEG_INFINITY,
-                upper: alpha_c0,
-                history: TnHistory { established: false, ..*h },
-            };
+            return Evaluation::separated(alpha_c0, TnHistory { established: false, ..*h });
         }
         if alpha > h.alpha_max {
             let (force, stiffness) = self.plastic_force(alpha);

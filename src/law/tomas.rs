@@ -176,14 +176,7 @@ impl NormalLaw for Tomas {
         if alpha < h.h_min {
             let s = h.h_min - alpha;
             if s > cutoff {
-                return Evaluation {
-                    force: 0.0,
-                    stiffness: 0.0,
-                    branch: Branch::Separated,
-                    lower: f64::NEG_INFINITY,
-                    upper: -cutoff,
-                    history: self.initial_history(),
-                };
+                return Evaluation::separated(-cutoff, self.initial_history());
             }
             let (force, stiffness) = self.tail(s, h.h_min);
             let history = if h.yielded {

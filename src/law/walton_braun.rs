@@ -67,7 +67,7 @@ impl NormalLaw for WaltonBraun {
     fn evaluate(&self, alpha: f64, h: &WbHistory) -> Evaluation<WbHistory> {
         let alpha_0 = self.alpha_0(h.alpha_max);
         if alpha <= alpha_0 {
-            return Evaluation { force: 0.0, stiffness: 0.0, branch: Branch::Separated, lower: f64::NEG_INFINITY, upper: alpha_0, history: *h };
+            return Evaluation::separated(alpha_0, *h);
         }
         if alpha <= h.alpha_max {
             let k_e = self.unloading_stiffness(h.alpha_max);
