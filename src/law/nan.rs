@@ -98,12 +98,9 @@ impl NormalLaw for Nan {
 
     fn evaluate(&self, alpha: f64, h: &NanHistory) -> Evaluation<NanHistory> {
         let pts = h.points;
-        let separated = |established: bool| Evaluation::separated(pts.alpha_c0, NanHistory { established, ..*h });
-        if !h.established && alpha < pts.alpha_c0 {
-            return separated(false);
-        }
-        if alpha < pts.alpha_fp {
-            return separated(false);
+        // Not yet (re-)established below alpha_c0, or detached below alpha_fp.
+        if (!h.established && alpha < pts.alpha_c0) || alpha < pts.alpha_fp {
+            return Evaluation::separated(pts.alpha_c0, NanHistory { established: false, ..*h });
         }
         let history = NanHistory { established: true, ..*h };
         if alpha <= pts.alpha_cp {
