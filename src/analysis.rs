@@ -92,6 +92,9 @@ pub fn analyze(scene: &Scene, velocity: Option<f64>) -> Result<Value, ParamError
             out.insert("yield_velocity".into(), json!(v.yield_velocity));
             out.insert("adhesive_yield_velocity".into(), json!(v.adhesive_yield_velocity));
             out.insert("sticking_velocity".into(), json!(v.sticking_velocity));
+            if v.sticking_velocity.is_none() {
+                notes.push("sticking_velocity is undefined: 000 Eq. 78 has no root with pull_off_law pasha (Eq. 61 drops f_cp to 0 at yield)".into());
+            }
             out.insert("adhesion_induced_plasticity".into(), json!(p.f_y < p.f_0));
             out.insert("yields_at_sticking".into(), json!(v.yields_at_sticking));
             out.insert("critical_time_step".into(), json!(critical_time_step(eff.mass, p.k_el)));

@@ -36,7 +36,7 @@ pub const KEYS: &[Key] = &[
     Key { name: "surface_energy", unit: "J/m^2", default: "0", doc: "interface energy Gamma (work of adhesion): f_ce = 1.5 pi Gamma R* (000 Eq. 5)" },
     Key { name: "restitution_coefficient", unit: "-", default: "1", doc: "elastic restitution e_0 of the viscous damping, in (0, 1] (000 Eq. 26, 004 Eq. 4.25)" },
     Key { name: "damping_factor_elastic", unit: "-", default: "1", doc: "beta of 000 Eq. 26 before yield" },
-    Key { name: "damping_factor_plastic", unit: "-", default: "0.1", doc: "beta of 000 Eq. 26 after yield (000 Sec. 2.3)" },
+    Key { name: "damping_factor_plastic", unit: "-", default: "0.1 (nan), 1 (other laws)", doc: "beta of 000 Eq. 26 after yield: 0.1 for nan (000 Sec. 2.3); the other laws' papers damp with beta = 1 throughout (004 Eq. 4.25)" },
     Key { name: "friction_coefficient", unit: "-", default: "0.5", doc: "sliding friction mu (000 Eq. 23)" },
     Key { name: "elastic_stiffness", unit: "N/m", default: "pi R* p_y", doc: "k_el, elastic stiffness before yield (nan); constant k_e (pasha, pasha_simplified); unloading k_e (walton_braun). Default 000 Eq. 52" },
     Key { name: "unloading_stiffness_reference", unit: "N/m", default: "none", doc: "k_e0 of a measured unloading line; with unloading_overlap_reference gives k_el by 000 Eqs. 45 and 29 (or 49)" },
@@ -49,7 +49,7 @@ pub const KEYS: &[Key] = &[
     Key { name: "pasha_max_elastic_stiffness", unit: "N/m", default: "none", doc: "k_e_max of 004 Eq. 4.23 (the stiffness at an overlap of R*); required with load_dependent" },
     Key { name: "pasha_pull_off_stiffness", unit: "N/m", default: "0", doc: "k_cp, slope of the linear pull-off locus f_cp = k_cp alpha_cp + f_0p (004 Eq. 4.17; pasha_simplified)" },
     Key { name: "pasha_pull_off_intercept", unit: "N", default: "f_ce", doc: "f_0p of the linear pull-off locus (004 Eq. 4.17; pasha_simplified); at least 8/9 f_ce" },
-    Key { name: "luding_loading_stiffness", unit: "N/m", default: "plastic_stiffness", doc: "k_1, plastic loading stiffness (003 Eq. 4)" },
+    Key { name: "luding_loading_stiffness", unit: "N/m", default: "plastic_stiffness, else pi R* p_y", doc: "k_1, plastic loading stiffness (003 Eq. 4)" },
     Key { name: "luding_max_unloading_stiffness", unit: "N/m", default: "5 k_1", doc: "k_2 hat, the unloading stiffness reached at alpha* (004 Eqs. 3.71, 3.74)" },
     Key { name: "luding_adhesion_stiffness", unit: "N/m", default: "0", doc: "k_c, slope of the adhesion limit -k_c alpha - f_0 (003 Eq. 4)" },
     Key { name: "luding_plasticity_depth", unit: "-", default: "0.05", doc: "phi_f, dimensionless plasticity depth: alpha* = k2/(k2 - k1) phi_f 2 R* (004 Eq. 3.71)" },
@@ -196,7 +196,7 @@ pub struct Scene {
     pub surface_energy: f64,
     pub restitution_coefficient: f64,
     pub damping_factor_elastic: f64,
-    pub damping_factor_plastic: f64,
+    pub damping_factor_plastic: Option<f64>,
     pub friction_coefficient: f64,
     pub elastic_stiffness: Option<f64>,
     pub unloading_stiffness_reference: Option<f64>,
@@ -245,7 +245,7 @@ impl Scene {
             surface_energy: 0.0,
             restitution_coefficient: 1.0,
             damping_factor_elastic: 1.0,
-            damping_factor_plastic: 0.1,
+            damping_factor_plastic: None,
             friction_coefficient: 0.5,
             elastic_stiffness: None,
             unloading_stiffness_reference: None,
@@ -376,7 +376,7 @@ impl Scene {
         set(&mut s.surface_energy, "surface_energy")?;
         set(&mut s.restitution_coefficient, "restitution_coefficient")?;
         set(&mut s.damping_factor_elastic, "damping_factor_elastic")?;
-        set(&mut s.damping_factor_plastic, "damping_factor_plastic")?;
+        s.damping_factor_plastic = num("damping_factor_plastic")?;
         set(&mut s.friction_coefficient, "friction_coefficient")?;
         s.elastic_stiffness = num("elastic_stiffness")?;
         s.unloading_stiffness_reference = num("unloading_stiffness_reference")?;
@@ -428,7 +428,9 @@ impl Scene {
         check_non_negative("surface_energy", self.surface_energy, "J/m^2")?;
         check_open("restitution_coefficient", self.restitution_coefficient, 0.0, 1.0 + f64::EPSILON, "")?;
         check_non_negative("damping_factor_elastic", self.damping_factor_elastic, "")?;
-        check_non_negative("damping_factor_plastic", self.damping_factor_plastic, "")?;
+        if let Some(v) = self.damping_factor_plastic {
+            check_non_negative("damping_factor_plastic", v, "")?;
+        }
         check_non_negative("friction_coefficient", self.friction_coefficient, "")?;
         opt_positive("elastic_stiffness", self.elastic_stiffness, "N/m")?;
         opt_positive("unloading_stiffness_reference", self.unloading_stiffness_reference, "N/m")?;

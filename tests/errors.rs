@@ -92,3 +92,13 @@ fn every_model_builds_from_the_defaults_of_a_plain_scene() {
         AnyLaw::from_scene(&base(m)).unwrap_or_else(|e| panic!("{m:?}: {e}"));
     }
 }
+
+#[test]
+fn a_measured_unloading_line_must_start_after_yield() {
+    let mut s = base(ModelKind::Nan);
+    s.unloading_stiffness_reference = Some(1274.0);
+    s.unloading_overlap_reference = Some(1e-9); // below alpha_y of about 10 nm
+    names(&s, "unloading_overlap_reference");
+    s.unloading_overlap_reference = Some(210.5e-9);
+    assert!(AnyLaw::from_scene(&s).is_ok());
+}

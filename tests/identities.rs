@@ -319,3 +319,35 @@ fn thornton_ning_plastic_stiffness_is_eq_3_56_and_the_closed_form_integrates_it(
         assert!(rel(tn.plastic_force(alpha).0, integral) < 1e-10);
     }
 }
+
+#[test]
+fn thornton_ning_that_yields_on_formation_starts_at_minus_8_9_f_c() {
+    // Adhesion-induced yield: a_y below the formation radius a_0, alpha_y < 0.
+    let tn = ThorntonNing::new(1e-6, 1e9, 0.5, 0.1e6);
+    assert!(tn.alpha_y < 0.0);
+    let f_c = tn.curve.pull_off_force();
+    let h = tn.initial_history();
+    let first = tn.evaluate(1e-15, &h);
+    assert_eq!(first.branch, Branch::Plastic);
+    assert!(rel(-first.force, 8.0 / 9.0 * f_c) < 1e-6, "{} vs {}", -first.force, 8.0 / 9.0 * f_c);
+    // And its plastic stiffness is still Eq. 3.56 integrated: the closed form is its integral from 0.
+    let alpha = 1e-8;
+    let integral = -8.0 / 9.0 * f_c + tanh_sinh(|y| tn.plastic_force(y).1, 0.0, alpha);
+    assert!(rel(tn.plastic_force(alpha).0, integral) < 1e-9);
+}
+
+#[test]
+fn jkr_curves_damp_with_2_e_a_and_give_mindlin_their_contact_radius() {
+    let jkr = Jkr::new(2.45e-6, 1.3e9, 0.2);
+    let h = jkr.evaluate(0.0, &jkr.initial_history()).history;
+    let alpha_f = jkr.curve.detach_overlap();
+    let a_f = jkr.contact_radius(alpha_f, &h).unwrap();
+    assert!(rel(a_f, jkr.curve.detach_radius()) < 1e-9);
+    // At detachment the branch slope is capped huge; the damping stiffness stays the Hertz 2 E* a.
+    let e = jkr.evaluate(alpha_f, &h);
+    assert!(e.stiffness.abs() > 1e3 * 2.0 * 1.3e9 * a_f);
+    assert!(rel(jkr.damping_stiffness(alpha_f, &h, e.stiffness), 2.0 * 1.3e9 * a_f) < 1e-12);
+    let tn = ThorntonNing::new(2.45e-6, 1.3e9, 0.2, 35.3e6);
+    let ht = tn.evaluate(0.0, &tn.initial_history()).history;
+    assert!(rel(tn.contact_radius(0.0, &ht).unwrap(), jkr.contact_radius(0.0, &h).unwrap()) < 1e-12);
+}

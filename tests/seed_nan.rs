@@ -90,7 +90,7 @@ fn table6_sticking_velocities_within_1_percent() {
             let v = sticking_velocities(&law, m);
             // Table 6 prints two significant digits for V_s: 0.49 is 0.4937 (1 % is the rounding).
             assert!(rel(v.jkr_sticking_velocity, v_s[i]) < 0.011, "R {r}: V_s {} vs {}", v.jkr_sticking_velocity, v_s[i]);
-            assert!(rel(v.sticking_velocity, row[i]) < 0.01, "R {r} p_y {p_y}: V_ys {} vs {}", v.sticking_velocity, row[i]);
+            assert!(rel(v.sticking_velocity.unwrap(), row[i]) < 0.01, "R {r} p_y {p_y}: V_ys {} vs {}", v.sticking_velocity.unwrap(), row[i]);
             assert!(v.yields_at_sticking);
         }
     }
@@ -112,7 +112,7 @@ fn sticking_velocity_satisfies_eq78_and_eq79_at_the_solution() {
     // Eq. 78: W_4 = W_5 + W_6.
     assert!(rel(w.w4, w.w5 + w.w6) < 1e-10);
     // Eq. 79: m V_ys^2 / 2 = -W_1 + W_2 + W_3 + W_4.
-    assert!(rel(0.5 * m * v.sticking_velocity.powi(2), -w.w1 + w.w2 + w.w3 + w.w4) < 1e-10);
+    assert!(rel(0.5 * m * v.sticking_velocity.unwrap().powi(2), -w.w1 + w.w2 + w.w3 + w.w4) < 1e-10);
 }
 
 #[test]
@@ -140,18 +140,30 @@ fn fig9_sticking_velocity_falls_with_yield_pressure_and_meets_v_s_at_eq77() {
         let p_y = 10e6 * (p_crit / 10e6).powf(k as f64 / 40.0);
         let (law, m) = nan_at(r, p_y);
         let v = sticking_velocities(&law, m);
-        assert!(v.sticking_velocity < last, "V_ys must fall with p_y (p_y {p_y:e})");
-        assert!(v.sticking_velocity > v.jkr_sticking_velocity);
-        last = v.sticking_velocity;
+        assert!(v.sticking_velocity.unwrap() < last, "V_ys must fall with p_y (p_y {p_y:e})");
+        assert!(v.sticking_velocity.unwrap() > v.jkr_sticking_velocity);
+        last = v.sticking_velocity.unwrap();
     }
     // Just below the criterion V_ys has come down to V_s; above it V_ys = V_s and V_y >= V_s.
     let (law, m) = nan_at(r, p_crit * (1.0 - 1e-9));
     let v = sticking_velocities(&law, m);
-    assert!(rel(v.sticking_velocity, v.jkr_sticking_velocity) < 1e-4, "{} vs {}", v.sticking_velocity, v.jkr_sticking_velocity);
+    assert!(rel(v.sticking_velocity.unwrap(), v.jkr_sticking_velocity) < 1e-4, "{} vs {}", v.sticking_velocity.unwrap(), v.jkr_sticking_velocity);
     for p_y in [p_crit * 1.001, p_crit * 2.0, p_crit * 10.0] {
         let (law, m) = nan_at(r, p_y);
         let v = sticking_velocities(&law, m);
-        assert_eq!(v.sticking_velocity, v.jkr_sticking_velocity);
+        assert_eq!(v.sticking_velocity.unwrap(), v.jkr_sticking_velocity);
         assert!(v.adhesive_yield_velocity.unwrap() >= v.jkr_sticking_velocity * (1.0 - 1e-6));
     }
+}
+
+#[test]
+fn eq_61_pull_off_has_no_sticking_velocity_and_says_so() {
+    let mut s = table5(ModelKind::Nan, 2.45e-6, 30e6);
+    s.pull_off_law = powderfmu::scene::PullOffLaw::Pasha;
+    let eff = Effective::from_scene(&s).unwrap();
+    let law = Nan::new(NanParams::from_scene(&s, &eff).unwrap());
+    assert!(sticking_velocities(&law, eff.mass).sticking_velocity.is_none());
+    let report = powderfmu::analysis::analyze(&s, None).unwrap();
+    assert!(report["sticking_velocity"].is_null());
+    assert!(report["notes"].to_string().contains("Eq. 61"));
 }

@@ -146,3 +146,17 @@ fn thornton_ning_on_table_4_1_detaches_near_1_6_m_per_s_like_the_linear_laws() {
     let e = |v: f64| energy_balance::impact(&law, eff.mass, v, eff.radius).unwrap().restitution;
     assert!(e(v_s * 1.2) < e(v_s * 3.0));
 }
+
+#[test]
+fn load_dependent_ke_is_continuous_at_yield() {
+    let mut s = table4_2(ModelKind::Pasha);
+    s.pasha_stiffness_law = PashaStiffnessLaw::LoadDependent;
+    s.pasha_max_elastic_stiffness = Some(13000.0);
+    let eff = Effective::from_scene(&s).unwrap();
+    let law = Pasha::from_scene(&s, &eff).unwrap();
+    let before = law.points(law.alpha_0);
+    let after = law.points(law.alpha_0 * (1.0 + 1e-9));
+    assert!(rel(after.k_e, before.k_e) < 1e-6, "{} vs {}", after.k_e, before.k_e);
+    assert!((after.alpha_cp - before.alpha_cp).abs() < 1e-6 * law.alpha_0);
+    assert!(rel(law.k_e0, law.stiffness.at(law.alpha_0)) < 1e-12);
+}

@@ -1,9 +1,13 @@
 //! Viscous normal and tangential damping (`000` Eqs. 24-26, `004` Eq. 4.25).
 //!
-//! f_nd = 2 gamma sqrt(m* k_n) V_n with gamma = -beta ln e_0 / sqrt(pi^2 + ln^2 e_0); beta = 1 before
-//! yield and a smaller beta (default 0.1) after yield (000 Sec. 2.3). 004 Eq. 4.25 is the same with
-//! beta = 1. k_n is the stiffness of the branch the contact is on; on the adhesive branches (negative
-//! slope) its magnitude is used, as 000 Sec. 2.2 names k_c there.
+//! f_nd = 2 gamma sqrt(m* k_n) V_n with gamma = -beta ln e_0 / sqrt(pi^2 + ln^2 e_0). For the Nan law
+//! beta = 1 before yield and a smaller beta (default 0.1) after yield (000 Sec. 2.3). 004 Eq. 4.25 is the
+//! same with beta = 1 throughout, and that is the default of every other law (Pasha's and Luding's
+//! contacts count as yielded from first contact, so a 0.1 would all but switch their damping off).
+//! k_n is the law's damping stiffness (`NormalLaw::damping_stiffness`): the branch stiffness, its
+//! magnitude on the adhesive branches (000 Sec. 2.2 names k_c there), and 2 E* a for the JKR curves.
+
+use crate::scene::{ModelKind, Scene};
 
 /// gamma of 000 Eq. 26.
 pub fn gamma(restitution: f64, beta: f64) -> f64 {
@@ -38,6 +42,17 @@ pub struct NormalDamping {
 }
 
 impl NormalDamping {
+    /// The damping of a scene: beta after yield defaults to 0.1 for nan and 1 for the other laws.
+    pub fn from_scene(s: &Scene, mass: f64) -> NormalDamping {
+        let default_plastic = if s.contact_model == ModelKind::Nan { 0.1 } else { s.damping_factor_elastic };
+        NormalDamping {
+            restitution: s.restitution_coefficient,
+            beta_elastic: s.damping_factor_elastic,
+            beta_plastic: s.damping_factor_plastic.unwrap_or(default_plastic),
+            mass,
+        }
+    }
+
     /// Damping force [N], positive repulsive, for an approach rate d alpha/dt [m/s].
     pub fn force(&self, stiffness: f64, yielded: bool, approach_rate: f64) -> f64 {
         let beta = if yielded { self.beta_plastic } else { self.beta_elastic };
@@ -48,6 +63,16 @@ impl NormalDamping {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn plastic_beta_defaults_to_0_1_for_nan_only() {
+        let mut s = Scene::new(ModelKind::Nan, 1e-6, 1000.0, 1e9, 0.3);
+        assert_eq!(NormalDamping::from_scene(&s, 1.0).beta_plastic, 0.1);
+        s.contact_model = ModelKind::Pasha;
+        assert_eq!(NormalDamping::from_scene(&s, 1.0).beta_plastic, 1.0);
+        s.damping_factor_plastic = Some(0.3);
+        assert_eq!(NormalDamping::from_scene(&s, 1.0).beta_plastic, 0.3);
+    }
 
     #[test]
     fn pasha_eq_4_25_is_nan_eq_24_with_beta_one() {

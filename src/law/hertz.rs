@@ -49,4 +49,8 @@ impl NormalLaw for Hertz {
     fn plastic_overlap(&self, _h: &()) -> f64 {
         0.0
     }
+
+    fn contact_radius(&self, alpha: f64, _h: &()) -> Option<f64> {
+        Some((self.radius * alpha.max(0.0)).sqrt())
+    }
 }

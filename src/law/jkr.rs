@@ -193,4 +193,13 @@ impl NormalLaw for Jkr {
     fn plastic_overlap(&self, _h: &JkrHistory) -> f64 {
         0.0
     }
+
+    fn contact_radius(&self, alpha: f64, h: &JkrHistory) -> Option<f64> {
+        (h.established && alpha >= self.curve.detach_overlap() || alpha >= 0.0).then(|| self.curve.contact_radius(alpha))
+    }
+
+    /// 2 E* a: the Hertz stiffness at the JKR contact radius (the JKR slope is infinite at detachment).
+    fn damping_stiffness(&self, alpha: f64, h: &JkrHistory, _branch_stiffness: f64) -> f64 {
+        2.0 * self.curve.youngs_modulus * self.contact_radius(alpha, h).unwrap_or(0.0)
+    }
 }

@@ -50,4 +50,13 @@ impl NormalLaw for JkrModified {
     fn plastic_overlap(&self, _h: &()) -> f64 {
         0.0
     }
+
+    fn contact_radius(&self, alpha: f64, _h: &()) -> Option<f64> {
+        (alpha > 0.0).then(|| self.curve.contact_radius(alpha))
+    }
+
+    /// 2 E* a: the Hertz stiffness at the JKR contact radius (the JKR slope is infinite at detachment).
+    fn damping_stiffness(&self, alpha: f64, h: &(), _branch_stiffness: f64) -> f64 {
+        2.0 * self.curve.youngs_modulus * self.contact_radius(alpha, h).unwrap_or(0.0)
+    }
 }

@@ -41,9 +41,9 @@ pub struct LudingHistory {
 
 impl Luding {
     pub fn from_scene(s: &Scene, eff: &Effective) -> Result<Luding, ParamError> {
-        let k1 = match (s.luding_loading_stiffness, s.plastic_stiffness, s.elastic_stiffness) {
-            (Some(k), _, _) | (None, Some(k), _) | (None, None, Some(k)) => k,
-            _ => k_el_default(eff.radius, eff.require_yield_pressure("luding")?),
+        let k1 = match (s.luding_loading_stiffness, s.plastic_stiffness) {
+            (Some(k), _) | (None, Some(k)) => k,
+            _ => k_el_default(eff.radius, eff.require_yield_pressure("luding (no luding_loading_stiffness given)")?),
         };
         let k2_hat = s.luding_max_unloading_stiffness.unwrap_or(5.0 * k1);
         if k2_hat <= k1 {

@@ -105,6 +105,19 @@ pub trait NormalLaw {
 
     /// The permanent (plastic) overlap of this history [m]: where the unloading branch meets zero force.
     fn plastic_overlap(&self, history: &Self::History) -> f64;
+
+    /// The contact radius at this overlap, for the laws that define one (Hertz and the JKR curves) [m].
+    /// Mindlin's tangential stiffness 8 G* a uses it.
+    fn contact_radius(&self, _alpha: f64, _history: &Self::History) -> Option<f64> {
+        None
+    }
+
+    /// The stiffness k_n of the viscous damping 2 gamma sqrt(m* k_n) (000 Eqs. 24-25) [N/m]: by default the
+    /// magnitude of the branch stiffness. The JKR curves use 2 E* a, because their branch stiffness is
+    /// infinite at detachment.
+    fn damping_stiffness(&self, _alpha: f64, _history: &Self::History, branch_stiffness: f64) -> f64 {
+        branch_stiffness.abs()
+    }
 }
 
 /// Any of the laws, chosen at run time from a scene. Dispatch is one `match`.
@@ -242,5 +255,13 @@ impl NormalLaw for AnyLaw {
 
     fn plastic_overlap(&self, history: &AnyHistory) -> f64 {
         dispatch!(self, history, l, h => l.plastic_overlap(h), plain, 0.0)
+    }
+
+    fn contact_radius(&self, alpha: f64, history: &AnyHistory) -> Option<f64> {
+        dispatch!(self, history, l, h => l.contact_radius(alpha, h), plain, None)
+    }
+
+    fn damping_stiffness(&self, alpha: f64, history: &AnyHistory, branch_stiffness: f64) -> f64 {
+        dispatch!(self, history, l, h => l.damping_stiffness(alpha, h, branch_stiffness), plain, branch_stiffness.abs())
     }
 }

@@ -206,6 +206,14 @@ pub fn k_el_from_unloading_line(
         }
         let next = alpha_y(r, e, p_y, k_el, f_ce);
         if (next - ay).abs() <= 1e-14 * next {
+            if alpha_max0 < next {
+                return Err(ParamError::Inconsistent {
+                    name: "unloading_overlap_reference",
+                    why: format!(
+                        "alpha_max0 = {alpha_max0:e} m lies below the yield overlap alpha_y = {next:e} m: the unloading line of 000 Eq. 43 must start after yield"
+                    ),
+                });
+            }
             return Ok(kel_of(next));
         }
         ay = next;

@@ -16,7 +16,8 @@
 //! take f_cp = max(f_ce, Eq. 4.10), which also keeps the law continuous in its history at yield
 //! (docs/models.md).
 //!
-//! k_e is constant, or load-dependent by Eq. 4.23 (then k_e before yield is k_e(0) = k_p).
+//! k_e is constant, or load-dependent by Eq. 4.23 (then k_e before yield is k_e(alpha_0), solved with
+//! alpha_0 = 8/9 f_ce / k_e, so k_e is continuous at yield).
 
 use super::params::Effective;
 use super::{Branch, Evaluation, NormalLaw};
@@ -117,7 +118,17 @@ impl Pasha {
 
     pub fn new(radius: f64, surface_energy: f64, stiffness: PashaStiffness) -> Pasha {
         let f_ce = 1.5 * PI * surface_energy * radius;
-        let k_e0 = stiffness.at(0.0);
+        // Before yield the elastic line ends at alpha_0 = 8/9 f_ce / k_e0; with Eq. 4.23 k_e depends on
+        // alpha_max, so k_e0 = k_e(alpha_0) is solved by fixed point (it contracts: k_e varies little over
+        // alpha_0 << R*), which keeps k_e continuous at yield. For constant k_e this is k_e itself.
+        let mut k_e0 = stiffness.at(0.0);
+        for _ in 0..100 {
+            let next = stiffness.at(8.0 / 9.0 * f_ce / k_e0);
+            if (next - k_e0).abs() <= 1e-15 * next {
+                break;
+            }
+            k_e0 = next;
+        }
         Pasha { radius, surface_energy, f_ce, stiffness, k_p: stiffness.k_p, k_e0, alpha_0: 8.0 / 9.0 * f_ce / k_e0 }
     }
 

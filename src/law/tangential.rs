@@ -1,14 +1,17 @@
-//! Tangential force: an incremental spring with a Coulomb limit shifted by the law's adhesion.
+//! Tangential force: an incremental spring (dF_t = -k_t d delta_t, 004 Eqs. 3.11-3.13) with a Coulomb limit
+//! shifted by the law's adhesion. Incremental, so a change of k_t with the normal branch changes the
+//! slope of the tangential response, never its value.
 //!
 //! Stiffness models:
 //! - `Ratio`: k_t = 4 G*/E* |k_n| with k_n the normal branch stiffness (000 Eq. 22; the linear laws,
 //!   004 Eq. 4.26 and 003 Sec. 3.4);
-//! - `Mindlin`: k_t = 8 G* sqrt(R* alpha) (Mindlin's no-slip solution, 004 Eq. 3.25; Hertz, JKR,
-//!   Thornton-Ning);
+//! - `Mindlin`: k_t = 8 G* a with a the law's contact radius (Mindlin's no-slip solution, 004 Eq. 3.25,
+//!   where a = sqrt(R* alpha) for Hertz; for JKR and Thornton-Ning the JKR contact radius, as the
+//!   tangential models built on JKR use it, 004 Secs. 3.4.3.2-3.4.4.2);
 //! - `Tomas`: k_t = 4 G* r_K with r_K = [3 R* (F_N + F_H) / (2 E*_Tomas)]^(1/3) (003 Eqs. 8-9).
 //! The sliding limit is mu max(N, 0) where N is the law's `sliding_normal_force` (000 Eq. 23,
-//! 004 Eqs. 4.27-4.28, 3.49, 3.75, 003 Eq. 10). When sliding, the spring is rescaled onto the limit and
-//! no tangential damping acts (000 Sec. 2.2).
+//! 004 Eqs. 4.27-4.28, 3.49, 3.75, 003 Eq. 10). When sliding, the force is scaled back onto the limit
+//! and no tangential damping acts (000 Sec. 2.2).
 
 use crate::scene::ModelKind;
 
@@ -31,11 +34,14 @@ impl TangentialStiffness {
         }
     }
 
-    /// k_t [N/m] for a normal state: overlap, branch stiffness and the load F_N + F_H (Tomas).
-    pub fn at(&self, alpha: f64, normal_stiffness: f64, adhesive_load: f64) -> f64 {
+    /// k_t [N/m] for a normal state: overlap, branch stiffness, the load F_N + F_H (Tomas) and the law's
+    /// contact radius where it has one (`NormalLaw::contact_radius`).
+    pub fn at(&self, alpha: f64, normal_stiffness: f64, adhesive_load: f64, contact_radius: Option<f64>) -> f64 {
         match *self {
             TangentialStiffness::Ratio { ratio } => ratio * normal_stiffness.abs(),
-            TangentialStiffness::Mindlin { shear_modulus, radius } => 8.0 * shear_modulus * (radius * alpha.max(0.0)).sqrt(),
+            TangentialStiffness::Mindlin { shear_modulus, radius } => {
+                8.0 * shear_modulus * contact_radius.unwrap_or_else(|| (radius * alpha.max(0.0)).sqrt())
+            }
             TangentialStiffness::Tomas { shear_modulus, radius, youngs_modulus } => {
                 let r_k = (3.0 * radius * adhesive_load.max(0.0) / (4.0 * youngs_modulus)).cbrt();
                 4.0 * shear_modulus * r_k
@@ -44,32 +50,30 @@ impl TangentialStiffness {
     }
 }
 
-/// The elastic tangential displacement of one contact (the spring's state).
+/// The tangential spring of one contact: its current force.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct TangentialSpring {
-    /// Elastic tangential displacement [m].
-    pub xi: [f64; 3],
+    /// Tangential force [N].
+    pub force: [f64; 3],
 }
 
 impl TangentialSpring {
-    /// Adds a tangential displacement increment and returns the tangential force [N] with the spring
-    /// projected back onto the Coulomb limit `mu max(normal, 0)` when it slides; `true` when sliding.
+    /// Adds a tangential displacement increment with the current stiffness (dF = -k_t d delta) and returns
+    /// the force [N], projected back onto the Coulomb limit `mu max(normal, 0)`; `true` when it slides.
     pub fn step(&mut self, increment: [f64; 3], k_t: f64, mu: f64, sliding_normal_force: f64) -> ([f64; 3], bool) {
         for i in 0..3 {
-            self.xi[i] += increment[i];
+            self.force[i] -= k_t * increment[i];
         }
         let limit = mu * sliding_normal_force.max(0.0);
-        let trial = [-k_t * self.xi[0], -k_t * self.xi[1], -k_t * self.xi[2]];
-        let norm = (trial[0] * trial[0] + trial[1] * trial[1] + trial[2] * trial[2]).sqrt();
-        if norm <= limit || norm == 0.0 {
-            return (trial, false);
+        let norm = (self.force[0].powi(2) + self.force[1].powi(2) + self.force[2].powi(2)).sqrt();
+        if norm <= limit {
+            return (self.force, false);
         }
-        let scale = limit / norm;
-        let force = [trial[0] * scale, trial[1] * scale, trial[2] * scale];
-        for i in 0..3 {
-            self.xi[i] *= scale;
+        let scale = if norm > 0.0 { limit / norm } else { 0.0 };
+        for f in &mut self.force {
+            *f *= scale;
         }
-        (force, true)
+        (self.force, true)
     }
 }
 
@@ -103,6 +107,25 @@ mod tests {
     #[test]
     fn ratio_is_000_eq_22() {
         let t = TangentialStiffness::for_model(ModelKind::Nan, 1.0, 2.5, 1e-6);
-        assert_eq!(t.at(1e-9, -300.0, 0.0), 4.0 * 1.0 / 2.5 * 300.0);
+        assert_eq!(t.at(1e-9, -300.0, 0.0, None), 4.0 * 1.0 / 2.5 * 300.0);
+    }
+
+    #[test]
+    fn a_change_of_stiffness_changes_the_slope_not_the_force() {
+        let mut s = TangentialSpring::default();
+        let (f1, _) = s.step([1e-9, 0.0, 0.0], 1000.0, 0.5, 1.0);
+        // The normal branch changes and k_t drops to a tenth: no jump, the next increment is softer.
+        let (f2, _) = s.step([0.0, 0.0, 0.0], 100.0, 0.5, 1.0);
+        assert_eq!(f1, f2);
+        let (f3, _) = s.step([1e-9, 0.0, 0.0], 100.0, 0.5, 1.0);
+        assert!((f3[0] - f2[0] + 1e-7).abs() < 1e-20);
+    }
+
+    #[test]
+    fn mindlin_uses_the_law_contact_radius_where_given() {
+        let t = TangentialStiffness::for_model(ModelKind::Jkr, 2.0, 5.0, 1e-6);
+        // Hertz radius sqrt(R alpha) without one; the JKR radius (nonzero at alpha <= 0) with one.
+        assert_eq!(t.at(1e-10, 0.0, 0.0, None), 8.0 * 2.0 * (1e-6f64 * 1e-10).sqrt());
+        assert_eq!(t.at(-1e-10, 0.0, 0.0, Some(3e-8)), 8.0 * 2.0 * 3e-8);
     }
 }

@@ -6,7 +6,9 @@
 //!   p_y = 2 E* a_y / (pi R*) - sqrt(2 Gamma E* / (pi a_y)).
 //! - Plastic loading with the tangent stiffness of Eq. 3.56, with a the JKR contact radius at the current
 //!   overlap (Eq. 3.42). Integrated in closed form (docs/models.md derives it):
-//!   f_p(alpha) = f_y + pi R* p_y (alpha - alpha_y) - 2 pi Gamma R* (sqrt(a / a_y) - 1).
+//!   f_p(alpha) = f_y + pi R* p_y (alpha - alpha_y) - 2 pi Gamma R* (sqrt(a / a_y) - 1);
+//!   when a_y is below the radius a_0 at which the contact forms (alpha_y < 0), the same integral starts
+//!   at the formation point (0, -8/9 f_ce, a_0).
 //! - Unloading and reloading below alpha_max: the JKR curve of the flattened radius
 //!   R_p = R* F*_max / (F_max + sqrt(4 f_ce F*_max)) (Eq. 3.58), F*_max = 4 E* a_max^3 / (3 R*), shifted by
 //!   alpha_p so that it passes through (alpha_max, F_max). Pull-off f_cp = 1.5 pi Gamma R_p (Eq. 3.59);
@@ -29,9 +31,12 @@ pub struct ThorntonNing {
     /// Force and overlap at yield [N], [m].
     pub f_y: f64,
     pub alpha_y: f64,
-    /// The overlap beyond which first loading is plastic: alpha_y, or the detachment overlap when the
-    /// contact yields as soon as it forms (adhesion-induced yield) [m].
+    /// The overlap beyond which first loading is plastic: alpha_y, or 0 when the contact yields as soon
+    /// as it forms (adhesion-induced yield, alpha_y < 0) [m].
     pub alpha_yield_start: f64,
+    /// Where the plastic curve starts: (alpha, f, sqrt(a)) at yield, or at formation (0, -8/9 f_ce, a_0)
+    /// when the contact forms yielded.
+    anchor: (f64, f64, f64),
 }
 
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -57,8 +62,12 @@ impl ThorntonNing {
         let curve = JkrCurve::new(radius, youngs_modulus, surface_energy);
         let a_y = yield_radius(radius, youngs_modulus, surface_energy, yield_pressure);
         let (f_y, alpha_y) = (curve.force(a_y), curve.overlap(a_y));
-        let alpha_yield_start = if a_y >= curve.detach_radius() { alpha_y } else { curve.detach_overlap() };
-        ThorntonNing { curve, yield_pressure, a_y, f_y, alpha_y, alpha_yield_start }
+        // The contact forms at alpha = 0 with a_0 = (2 pi Gamma R*^2 / E*)^(1/3) (000 Eq. B5). If a_y < a_0 it
+        // is already yielded then, and plastic loading starts from the formation point.
+        let a_0 = curve.contact_radius(0.0);
+        let (alpha_yield_start, anchor) =
+            if alpha_y >= 0.0 || a_y >= a_0 { (alpha_y, (alpha_y, f_y, a_y.sqrt())) } else { (0.0, (0.0, curve.force(a_0), a_0.sqrt())) };
+        ThorntonNing { curve, yield_pressure, a_y, f_y, alpha_y, alpha_yield_start, anchor }
     }
 
     /// Plastic loading force and its stiffness at an overlap (closed form of Eq. 3.56).
@@ -67,7 +76,8 @@ impl ThorntonNing {
         let gamma = self.curve.surface_energy;
         let a = self.curve.contact_radius(alpha);
         let k_flat = PI * r * self.yield_pressure;
-        let f = self.f_y + k_flat * (alpha - self.alpha_y) - 2.0 * PI * gamma * r * ((a / self.a_y).sqrt() - 1.0);
+        let (alpha_0, f_0, sqrt_a0) = self.anchor;
+        let f = f_0 + k_flat * (alpha - alpha_0) - 2.0 * PI * gamma * r * (a.sqrt() - sqrt_a0) / self.a_y.sqrt();
         let dalpha_da = (2.0 * a / r - 0.5 * (2.0 * PI * gamma / self.curve.youngs_modulus / a).sqrt()).max(2e-6 * a / r);
         let k = k_flat - PI * gamma * r / (a * self.a_y).sqrt() / dalpha_da;
         (f, k)
@@ -160,5 +170,18 @@ impl NormalLaw for ThorntonNing {
         // f = 0 where F_H = 4 f_c (000 Eq. B9): a^3 = 3 R_p f_c / E*.
         let a0 = (3.0 * h.r_p * flat.pull_off_force() / self.curve.youngs_modulus).cbrt();
         h.alpha_p + flat.overlap(a0)
+    }
+
+    fn contact_radius(&self, alpha: f64, h: &TnHistory) -> Option<f64> {
+        if alpha > h.alpha_max {
+            Some(self.curve.contact_radius(alpha))
+        } else {
+            (alpha >= h.alpha_p + h.flat.detach_overlap()).then(|| h.flat.contact_radius(alpha - h.alpha_p))
+        }
+    }
+
+    /// 2 E* a: the Hertz stiffness at the JKR contact radius (the JKR slope is infinite at detachment).
+    fn damping_stiffness(&self, alpha: f64, h: &TnHistory, _branch_stiffness: f64) -> f64 {
+        2.0 * self.curve.youngs_modulus * self.contact_radius(alpha, h).unwrap_or(0.0)
     }
 }

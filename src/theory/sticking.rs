@@ -16,8 +16,9 @@ pub struct StickingVelocities {
     /// V_y = sqrt((f_y^2 - f_0^2) / (m* k_el)) (Eq. 75); `None` when f_y < f_0 (adhesion-induced
     /// plasticity: every contact that forms yields) [m/s].
     pub adhesive_yield_velocity: Option<f64>,
-    /// V_ys (Eqs. 77-79): the plastic adhesive sticking velocity [m/s].
-    pub sticking_velocity: f64,
+    /// V_ys (Eqs. 77-79): the plastic adhesive sticking velocity [m/s]. `None` where Eq. 78 has no root:
+    /// with the pull-off force of Eq. 61, which drops from f_ce to 0 at yield (000 Sec. 3.4).
+    pub sticking_velocity: Option<f64>,
     /// f_max at an impact of V_ys [N].
     pub max_force_at_sticking: f64,
     /// Whether the contact yields at an impact of V_ys (V_y < V_s, Eq. 77).
@@ -49,22 +50,25 @@ pub fn sticking_velocities(law: &Nan, mass: f64) -> StickingVelocities {
             jkr_sticking_velocity: v_s,
             yield_velocity: v_y0,
             adhesive_yield_velocity,
-            sticking_velocity: v_s,
+            sticking_velocity: Some(v_s),
             max_force_at_sticking: (p.k_el * (mass * v_s * v_s + 2.0 * w.w1)).sqrt(),
             yields_at_sticking: false,
         };
     }
     let mut hi = 2.0 * p.f_y.max(p.f_ce);
-    while residual(hi) < 0.0 && hi.is_finite() {
+    let mut doublings = 0;
+    while residual(hi) < 0.0 && doublings < 200 {
         hi *= 2.0;
+        doublings += 1;
     }
-    let f_max = brent(residual, p.f_y, hi, 0.0).unwrap_or(f64::NAN);
+    // Brent also "converges" onto a jump of the residual; only a true root counts.
+    let f_max = brent(residual, p.f_y, hi, 0.0).filter(|f| residual(*f).abs() <= 1e-9 * f.abs()).unwrap_or(f64::NAN);
     let vys2 = vy2 + (f_max * f_max - p.f_y * p.f_y) / (p.k_p * mass);
     StickingVelocities {
         jkr_sticking_velocity: v_s,
         yield_velocity: v_y0,
         adhesive_yield_velocity,
-        sticking_velocity: vys2.max(0.0).sqrt(),
+        sticking_velocity: (!f_max.is_nan()).then(|| vys2.max(0.0).sqrt()),
         max_force_at_sticking: f_max,
         yields_at_sticking: true,
     }
