@@ -113,6 +113,7 @@ impl JkrCurve {
         let near = wf + (2.0 * (alpha - alpha_f) / curvature).sqrt();
         let far = (2.0 * r * alpha.abs()).sqrt().sqrt() + self.cbrt_2br;
         let mut w = near.min(far);
+        let mut last_step = f64::INFINITY;
         for _ in 0..100 {
             let f = w.powi(4) / r - self.b * w - alpha;
             let df = 4.0 * w.powi(3) / r - self.b;
@@ -120,8 +121,14 @@ impl JkrCurve {
                 break;
             }
             let step = f / df;
+            // From the right every step is positive and shrinking; a step that is not means the root is
+            // reached to rounding (near detachment the root is nearly double and rounding dominates).
+            if !(step > 0.0) || step >= last_step {
+                break;
+            }
             w -= step;
-            if step.abs() <= 4.0 * f64::EPSILON * w {
+            last_step = step;
+            if step <= 4.0 * f64::EPSILON * w {
                 break;
             }
         }
