@@ -1,5 +1,5 @@
 //! Small numerical tools shared by the laws and the closed-form theory: a bracketed root finder
-//! and Gauss-Legendre quadrature. No allocation, no panics.
+//! and tanh-sinh quadrature. No allocation, no panics.
 
 /// Brent's method on `[a, b]` where `f(a)` and `f(b)` have opposite signs (or one is zero).
 /// Returns `None` if the bracket is not valid or the inputs are not finite.
@@ -81,33 +81,6 @@ pub fn brent<F: FnMut(f64) -> f64>(mut f: F, a: f64, b: f64, xtol: f64) -> Optio
     Some(b)
 }
 
-/// Nodes and weights of the 8-point Gauss-Legendre rule on [-1, 1] (exact for degree 15).
-const GL8: [(f64, f64); 8] = [
-    (-0.960_289_856_497_536_3, 0.101_228_536_290_376_26),
-    (-0.796_666_477_413_626_7, 0.222_381_034_453_374_47),
-    (-0.525_532_409_916_329_0, 0.313_706_645_877_887_3),
-    (-0.183_434_642_495_649_8, 0.362_683_783_378_362_0),
-    (0.183_434_642_495_649_8, 0.362_683_783_378_362_0),
-    (0.525_532_409_916_329_0, 0.313_706_645_877_887_3),
-    (0.796_666_477_413_626_7, 0.222_381_034_453_374_47),
-    (0.960_289_856_497_536_3, 0.101_228_536_290_376_26),
-];
-
-/// Composite 8-point Gauss-Legendre integral of a smooth `f` over `[a, b]` with `pieces` panels.
-pub fn gauss_legendre<F: FnMut(f64) -> f64>(mut f: F, a: f64, b: f64, pieces: usize) -> f64 {
-    let n = pieces.max(1);
-    let h = (b - a) / n as f64;
-    let mut sum = 0.0;
-    for i in 0..n {
-        let lo = a + h * i as f64;
-        let mid = lo + 0.5 * h;
-        for &(x, w) in &GL8 {
-            sum += w * f(mid + 0.5 * h * x);
-        }
-    }
-    0.5 * h * sum
-}
-
 /// Tanh-sinh (double exponential) quadrature of `f` over `[a, b]`. Accurate to near machine precision
 /// for integrands that are smooth inside but have square-root behaviour at an end, as the JKR curve has
 /// at detachment. About 100 evaluations; `f` is never evaluated at the end points themselves.
@@ -159,12 +132,5 @@ mod tests {
         assert!((v - exact).abs() < 1e-13, "{v} {exact}");
         let back = tanh_sinh(|x| (x - 1.0).sqrt(), 2.0, 1.0);
         assert!((back + 2.0 / 3.0).abs() < 1e-13);
-    }
-
-    #[test]
-    fn gauss_legendre_is_exact_for_degree_15() {
-        let v = gauss_legendre(|x| x.powi(15) + x.powi(4), 0.0, 2.0, 1);
-        let exact = 2f64.powi(16) / 16.0 + 2f64.powi(5) / 5.0;
-        assert!((v - exact).abs() < 1e-10 * exact);
     }
 }

@@ -93,12 +93,18 @@ fn full_law_rebound_matches_eq_4_16() {
     }
 }
 
+/// Table 4.2 with k_e by 004 Eq. 4.23 and k_e_max = 13000 N/m (004 Sec. 4.1.5).
+fn load_dependent(model: ModelKind) -> powderfmu::Scene {
+    let mut s = table4_2(model);
+    s.pasha_stiffness_law = PashaStiffnessLaw::LoadDependent;
+    s.pasha_max_elastic_stiffness = Some(13000.0);
+    s
+}
+
 #[test]
 fn load_dependent_ke_makes_restitution_fall_at_high_velocity() {
     // 004 Sec. 4.1.5 and Fig. 4.26: with k_e by Eq. 4.23 (k_e_max = 13000 N/m) restitution rises, then falls.
-    let mut s = table4_2(ModelKind::PashaSimplified);
-    s.pasha_stiffness_law = PashaStiffnessLaw::LoadDependent;
-    s.pasha_max_elastic_stiffness = Some(13000.0);
+    let s = load_dependent(ModelKind::PashaSimplified);
     let eff = Effective::from_scene(&s).unwrap();
     let law = PashaSimplified::from_scene(&s, &eff).unwrap();
     let e = |v: f64| restitution::pasha_simplified(&law, eff.mass, v).restitution;
@@ -149,9 +155,7 @@ fn thornton_ning_on_table_4_1_detaches_near_1_6_m_per_s_like_the_linear_laws() {
 
 #[test]
 fn load_dependent_ke_is_continuous_at_yield() {
-    let mut s = table4_2(ModelKind::Pasha);
-    s.pasha_stiffness_law = PashaStiffnessLaw::LoadDependent;
-    s.pasha_max_elastic_stiffness = Some(13000.0);
+    let s = load_dependent(ModelKind::Pasha);
     let eff = Effective::from_scene(&s).unwrap();
     let law = Pasha::from_scene(&s, &eff).unwrap();
     let before = law.points(law.alpha_0);

@@ -44,11 +44,10 @@ pub struct TnHistory {
     pub established: bool,
     /// Largest overlap of plastic loading (starts at the yield overlap) [m].
     pub alpha_max: f64,
-    /// Radius of the unloading curve, R* before yield [m].
-    pub r_p: f64,
     /// Shift of the unloading curve, 0 before yield [m].
     pub alpha_p: f64,
-    /// The JKR curve of R_p, kept so it is built only when plastic loading changes R_p.
+    /// The unloading curve: the JKR curve of R_p (R* before yield), built only when plastic loading
+    /// moves alpha_max.
     pub flat: JkrCurve,
 }
 
@@ -72,6 +71,12 @@ impl ThorntonNing {
 
     /// Plastic loading force and its stiffness at an overlap (closed form of Eq. 3.56).
     pub fn plastic_force(&self, alpha: f64) -> (f64, f64) {
+        let (f, k, _) = self.plastic_at(alpha);
+        (f, k)
+    }
+
+    /// Force, stiffness and JKR contact radius on the plastic loading curve (one contact-radius solve).
+    fn plastic_at(&self, alpha: f64) -> (f64, f64, f64) {
         let r = self.curve.radius;
         let gamma = self.curve.surface_energy;
         let a = self.curve.contact_radius(alpha);
@@ -80,19 +85,23 @@ impl ThorntonNing {
         let f = f_0 + k_flat * (alpha - alpha_0) - 2.0 * PI * gamma * r * (a.sqrt() - sqrt_a0) / self.a_y.sqrt();
         let dalpha_da = (2.0 * a / r - 0.5 * (2.0 * PI * gamma / self.curve.youngs_modulus / a).sqrt()).max(2e-6 * a / r);
         let k = k_flat - PI * gamma * r / (a * self.a_y).sqrt() / dalpha_da;
-        (f, k)
+        (f, k, a)
     }
 
     /// The unloading curve after plastic loading to alpha_max: (R_p, alpha_p) of Eq. 3.58.
     pub fn unloading_curve(&self, alpha_max: f64) -> (f64, f64) {
-        let r = self.curve.radius;
-        let e = self.curve.youngs_modulus;
-        let a_max = self.curve.contact_radius(alpha_max);
+        let (f_max, _, a_max) = self.plastic_at(alpha_max);
+        let (flat, alpha_p) = self.flattened(alpha_max, f_max, a_max);
+        (flat.radius, alpha_p)
+    }
+
+    /// The JKR curve of R_p and its shift alpha_p for a peak (alpha_max, F_max) at contact radius a_max.
+    fn flattened(&self, alpha_max: f64, f_max: f64, a_max: f64) -> (JkrCurve, f64) {
+        let (r, e) = (self.curve.radius, self.curve.youngs_modulus);
         let f_star = 4.0 * e * a_max.powi(3) / (3.0 * r);
-        let (f_max, _) = self.plastic_force(alpha_max);
         let r_p = r * f_star / (f_max + (4.0 * self.curve.pull_off_force() * f_star).sqrt());
         let flat = JkrCurve::new(r_p, e, self.curve.surface_energy);
-        (r_p, alpha_max - flat.overlap(a_max))
+        (flat, alpha_max - flat.overlap(a_max))
     }
 }
 
@@ -114,7 +123,7 @@ impl NormalLaw for ThorntonNing {
     type History = TnHistory;
 
     fn initial_history(&self) -> TnHistory {
-        TnHistory { established: false, alpha_max: self.alpha_yield_start, r_p: self.curve.radius, alpha_p: 0.0, flat: self.curve }
+        TnHistory { established: false, alpha_max: self.alpha_yield_start, alpha_p: 0.0, flat: self.curve }
     }
 
     fn evaluate(&self, alpha: f64, h: &TnHistory) -> Evaluation<TnHistory> {
@@ -125,21 +134,15 @@ impl NormalLaw for ThorntonNing {
             return Evaluation::separated(alpha_c0, TnHistory { established: false, ..*h });
         }
         if alpha > h.alpha_max {
-            let (force, stiffness) = self.plastic_force(alpha);
-            let (r_p, alpha_p) = self.unloading_curve(alpha);
+            let (force, stiffness, a) = self.plastic_at(alpha);
+            let (flat, alpha_p) = self.flattened(alpha, force, a);
             return Evaluation {
                 force,
                 stiffness,
                 branch: Branch::Plastic,
                 lower: alpha,
                 upper: f64::INFINITY,
-                history: TnHistory {
-                    established: true,
-                    alpha_max: alpha,
-                    r_p,
-                    alpha_p,
-                    flat: JkrCurve::new(r_p, self.curve.youngs_modulus, self.curve.surface_energy),
-                },
+                history: TnHistory { established: true, alpha_max: alpha, alpha_p, flat },
             };
         }
         let mut e = on_curve(&flat, h.alpha_p, alpha, TnHistory { established: true, ..*h });
@@ -153,12 +156,12 @@ impl NormalLaw for ThorntonNing {
 
     /// Thornton & Yin's criterion with the flattened radius: mu (F_n + 2 f_cp) (004 Eqs. 3.49, 3.59).
     fn sliding_normal_force(&self, force: f64, _alpha: f64, h: &TnHistory) -> f64 {
-        force + 3.0 * PI * self.curve.surface_energy * h.r_p
+        force + 3.0 * PI * self.curve.surface_energy * h.flat.radius
     }
 
     /// f_cp = 1.5 pi Gamma R_p (004 Eq. 3.59).
     fn pull_off_force(&self, h: &TnHistory) -> f64 {
-        1.5 * PI * self.curve.surface_energy * h.r_p
+        1.5 * PI * self.curve.surface_energy * h.flat.radius
     }
 
     /// Where the unloading curve crosses zero force: alpha_p plus the JKR zero-force overlap of R_p.
@@ -168,7 +171,7 @@ impl NormalLaw for ThorntonNing {
         }
         let flat = h.flat;
         // f = 0 where F_H = 4 f_c (000 Eq. B9): a^3 = 3 R_p f_c / E*.
-        let a0 = (3.0 * h.r_p * flat.pull_off_force() / self.curve.youngs_modulus).cbrt();
+        let a0 = (3.0 * flat.radius * flat.pull_off_force() / self.curve.youngs_modulus).cbrt();
         h.alpha_p + flat.overlap(a0)
     }
 
