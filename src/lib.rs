@@ -7,10 +7,13 @@
 pub mod analysis;
 pub mod curves;
 pub mod error;
+pub mod fmi2;
+pub mod impact;
 pub mod law;
 pub mod numeric;
 pub mod scene;
 pub mod theory;
+pub mod units;
 
 pub use error::ParamError;
 pub use law::{AnyHistory, AnyLaw, Branch, Evaluation, NormalLaw};

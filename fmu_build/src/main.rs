@@ -1,11 +1,142 @@
-//! `fmu_build`: packages the powderfmu cdylib, each unit's modelDescription.xml, resources and
-//! documentation into `target/fmu/<Unit>.fmu`. The FMI units themselves are not part of the crate yet
-//! (see README.md); what is here is the reproducible archive writer the packaging will use.
+//! `fmu_build`: builds the powderfmu cdylib (profile `fmu-release`: release without debug info) and writes
+//! `target/fmu/<Unit>.fmu` for every unit: `modelDescription.xml`, `binaries/linux64/<Unit>.so`,
+//! `documentation/` (the unit's page, the model equations, an index) and `resources/` (the default
+//! scene). Archives are reproducible: sorted entries, fixed timestamps.
+//!
+//! Usage: `cargo run -p fmu_build [-- --out DIR] [--skip-build] [--update-interface]`.
+//! `--update-interface` rewrites the checked-in `modelDescription/*.xml` and docs tables instead.
 
-use std::process::ExitCode;
+use fmu_build::archive::{write_zip, Entry};
+use fmu_build::interface;
+use powderfmu::units::{self, model_description, UnitInfo};
+use std::path::{Path, PathBuf};
+use std::process::{Command, ExitCode};
 
 fn main() -> ExitCode {
-    eprintln!("fmu_build: the crate defines no FMI unit yet, so there is nothing to package.");
-    eprintln!("fmu_build: the reproducible archive writer (fmu_build/src/archive.rs) is ready and tested.");
-    ExitCode::from(2)
+    match run() {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("fmu_build: error: {e}");
+            ExitCode::from(1)
+        }
+    }
+}
+
+struct Options {
+    out: PathBuf,
+    skip_build: bool,
+    update_interface: bool,
+}
+
+fn options() -> Result<Options, String> {
+    let root = interface::root();
+    let target = std::env::var_os("CARGO_TARGET_DIR").map(PathBuf::from).unwrap_or_else(|| root.join("target"));
+    let mut o = Options { out: target.join("fmu"), skip_build: false, update_interface: false };
+    let mut args = std::env::args().skip(1);
+    while let Some(a) = args.next() {
+        match a.as_str() {
+            "--out" => o.out = PathBuf::from(args.next().ok_or("--out needs a directory")?),
+            "--skip-build" => o.skip_build = true,
+            "--update-interface" => o.update_interface = true,
+            "-h" | "--help" => {
+                println!("usage: fmu_build [--out DIR] [--skip-build] [--update-interface]");
+                println!("  builds the cdylib (cargo profile `fmu-release`) and writes DIR/<Unit>.fmu (default target/fmu)");
+                println!("  --update-interface  rewrite modelDescription/<Unit>.xml and the docs variable tables");
+                std::process::exit(0);
+            }
+            other => return Err(format!("unknown argument `{other}` (see --help)")),
+        }
+    }
+    Ok(o)
+}
+
+fn run() -> Result<(), String> {
+    let o = options()?;
+    if o.update_interface {
+        for unit in units::all() {
+            for path in interface::update(unit)? {
+                println!("fmu_build: updated {}", path.display());
+            }
+        }
+        println!("fmu_build: interface files are up to date");
+        return Ok(());
+    }
+    let root = interface::root();
+    let target = std::env::var_os("CARGO_TARGET_DIR").map(PathBuf::from).unwrap_or_else(|| root.join("target"));
+    if !o.skip_build {
+        println!("fmu_build: building the cdylib (cargo build --profile fmu-release --lib -p powderfmu)");
+        let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
+        let status = Command::new(cargo)
+            .args(["build", "--profile", "fmu-release", "--lib", "-p", "powderfmu"])
+            .current_dir(&root)
+            .status()
+            .map_err(|e| format!("cannot run cargo: {e}"))?;
+        if !status.success() {
+            return Err(format!("cargo build failed ({status})"));
+        }
+    }
+    let library = target.join("fmu-release").join("libpowderfmu.so");
+    let binary =
+        std::fs::read(&library).map_err(|e| format!("cannot read the built library {}: {e} (build without --skip-build)", library.display()))?;
+    std::fs::create_dir_all(&o.out).map_err(|e| format!("cannot create {}: {e}", o.out.display()))?;
+    for unit in units::all() {
+        let checked_in = std::fs::read_to_string(interface::model_description_path(unit)).unwrap_or_default();
+        if checked_in != unit.model_description() {
+            eprintln!(
+                "fmu_build: warning: modelDescription/{}.xml differs from the variable table; run `cargo run -p fmu_build -- --update-interface` and commit",
+                unit.model_identifier
+            );
+        }
+        let path = o.out.join(format!("{}.fmu", unit.model_identifier));
+        let entries = entries(unit, &binary, &root)?;
+        let mut bytes = Vec::new();
+        write_zip(entries, &mut bytes).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+        interface::write_atomic(&path, &bytes)?;
+        println!("fmu_build: wrote {} ({:.1} MiB, GUID {})", path.display(), bytes.len() as f64 / 1048576.0, unit.guid());
+    }
+    Ok(())
+}
+
+fn read(root: &Path, rel: &str) -> Result<Vec<u8>, String> {
+    std::fs::read(root.join(rel)).map_err(|e| format!("cannot read {rel}: {e}"))
+}
+
+fn entries(unit: &UnitInfo, binary: &[u8], root: &Path) -> Result<Vec<Entry>, String> {
+    let id = unit.model_identifier;
+    let page = format!("docs/units/{id}.md");
+    Ok(vec![
+        Entry { name: "modelDescription.xml".into(), data: unit.model_description().into_bytes() },
+        Entry { name: format!("binaries/linux64/{id}.so"), data: binary.to_vec() },
+        Entry { name: "documentation/index.html".into(), data: index_html(unit).into_bytes() },
+        Entry { name: format!("documentation/{id}.md"), data: read(root, &page)? },
+        Entry { name: "documentation/models.md".into(), data: read(root, "docs/models.md")? },
+        Entry { name: "resources/default_scene.json".into(), data: units::scene_params::DEFAULT_SCENE.as_bytes().to_vec() },
+    ])
+}
+
+/// A self-contained documentation page: what the unit is, where the equations are, every variable.
+fn index_html(unit: &UnitInfo) -> String {
+    let esc = model_description::escape;
+    let mut rows = String::new();
+    for v in &unit.variables {
+        let start = v.start.as_ref().map(|s| s.xml_text()).unwrap_or_else(|| "calculated".into());
+        rows.push_str(&format!(
+            "<tr><td><code>{}</code></td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
+            esc(&v.name),
+            v.causality.xml_name(),
+            v.var_type.xml_name(),
+            if v.unit.is_empty() { "-" } else { v.unit },
+            esc(&start),
+            esc(&v.description)
+        ));
+    }
+    format!(
+        "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>{id}</title></head><body>\n<h1>{id}</h1>\n<p>{desc}</p>\n\
+<p>The unit's page is <a href=\"{id}.md\">{id}.md</a>; the contact laws, their equations with seed references and every modelling \
+choice are in <a href=\"models.md\">models.md</a>. powderfmu {ver}.</p>\n<table border=\"1\">\n<tr><th>name</th><th>causality</th><th>type</th>\
+<th>unit</th><th>start</th><th>description</th></tr>\n{rows}</table>\n</body></html>\n",
+        id = unit.model_identifier,
+        desc = esc(unit.description),
+        ver = env!("CARGO_PKG_VERSION"),
+    )
 }

@@ -10,7 +10,7 @@ use super::{Branch, Evaluation, NormalLaw};
 use std::f64::consts::PI;
 
 /// The JKR curve of one radius of curvature: all the geometry Thornton-Ning and the JKR laws share.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct JkrCurve {
     /// Radius of curvature (R*, or R_p after plastic flattening) [m].
     pub radius: f64,
@@ -143,7 +143,7 @@ pub struct Jkr {
     pub curve: JkrCurve,
 }
 
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct JkrHistory {
     pub established: bool,
 }

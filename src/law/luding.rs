@@ -30,7 +30,7 @@ pub struct Luding {
     pub alpha_star: f64,
 }
 
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct LudingHistory {
     pub established: bool,
     /// Largest overlap reached; sets k_2 (Eq. 3.74) [m].

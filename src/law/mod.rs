@@ -24,7 +24,7 @@ use crate::scene::{ModelKind, Scene};
 use params::Effective;
 
 /// The branch of a force-overlap diagram the contact is on.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
 pub enum Branch {
     /// Not in contact, no force.
     Separated,
@@ -60,7 +60,7 @@ impl Branch {
 }
 
 /// The answer of a law at one overlap.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Evaluation<H> {
     /// Normal force f [N], positive repulsive.
     pub force: f64,
@@ -137,7 +137,7 @@ pub enum AnyLaw {
 }
 
 /// The history of any law.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum AnyHistory {
     Nan(nan::NanHistory),
     Pasha(pasha::PashaHistory),

@@ -25,7 +25,7 @@ pub struct Nan {
 }
 
 /// What the contact remembers.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct NanHistory {
     /// The paper's cs: the contact is established (000 Eq. 20).
     pub established: bool,
@@ -36,7 +36,7 @@ pub struct NanHistory {
 }
 
 /// The quantities that follow from alpha_max (000 Eqs. 11-14, 46, 59).
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct NanPoints {
     pub k_e: f64,
     pub k_c: f64,

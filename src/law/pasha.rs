@@ -93,7 +93,7 @@ impl PashaStiffness {
 }
 
 /// What a Pasha contact remembers (both the full and the simplified law).
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct PashaHistory {
     pub established: bool,
     /// Largest overlap of plastic loading [m].

@@ -39,7 +39,7 @@ pub struct ThorntonNing {
     anchor: (f64, f64, f64),
 }
 
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct TnHistory {
     pub established: bool,
     /// Largest overlap of plastic loading (starts at the yield overlap) [m].

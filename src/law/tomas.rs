@@ -44,13 +44,13 @@ pub struct Tomas {
 }
 
 /// Which lens curve the contact is on after yield.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum LensMode {
     Unloading,
     Reloading,
 }
 
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct TomasHistory {
     pub yielded: bool,
     /// Largest overlap (at least alpha_y) [m].

@@ -19,7 +19,7 @@ pub struct WaltonBraun {
     pub slope: f64,
 }
 
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct WbHistory {
     /// Largest overlap [m].
     pub alpha_max: f64,

@@ -1,0 +1,712 @@
+//! The 44 exported `fmi2*` functions. Each one: checks its pointers, finds its instance among the live
+//! ones (a freed or foreign pointer is refused, not followed), checks the calling sequence, and runs inside
+//! the one `catch_unwind` boundary (`call`), so no panic crosses into the host. Failures are logged through
+//! the host's logger with a message naming the function and the argument.
+
+#![allow(non_snake_case, non_upper_case_globals, clippy::missing_safety_doc)]
+
+use super::instance::{allowed, error, Call, Failure, Instance, Kind, Logger, Mode};
+use super::types::*;
+use super::uri::file_uri_to_path;
+use crate::units::variables::{Value, VarType};
+use crate::units::{self, LOG_CATEGORIES};
+use std::collections::BTreeSet;
+use std::ffi::{CStr, CString};
+use std::os::raw::c_char;
+use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::sync::Mutex;
+
+/// Addresses of the live instances and saved states: a pointer not in these sets is never dereferenced.
+static INSTANCES: Mutex<BTreeSet<usize>> = Mutex::new(BTreeSet::new());
+static STATES: Mutex<BTreeSet<usize>> = Mutex::new(BTreeSet::new());
+
+/// Arrays longer than this are refused (a garbage length must not become a huge allocation).
+const MAX_ARRAY: usize = 1 << 24;
+
+fn live(set: &Mutex<BTreeSet<usize>>, p: usize) -> bool {
+    set.lock().map(|s| s.contains(&p)).unwrap_or(false)
+}
+
+fn register(set: &Mutex<BTreeSet<usize>>, p: usize) {
+    if let Ok(mut s) = set.lock() {
+        s.insert(p);
+    }
+}
+
+fn unregister(set: &Mutex<BTreeSet<usize>>, p: usize) -> bool {
+    set.lock().map(|mut s| s.remove(&p)).unwrap_or(false)
+}
+
+/// A saved FMU state: the bytes of `snapshot`.
+struct SavedState {
+    bytes: Vec<u8>,
+}
+
+/// Runs `f` on the instance behind `c` if `c` is live and the mode allows `function`.
+fn call(c: fmi2Component, function: &'static str, modes: u32, f: impl FnOnce(&mut Instance) -> Call) -> fmi2Status {
+    if c.is_null() || !live(&INSTANCES, c as usize) {
+        return fmi2Error;
+    }
+    // SAFETY: `c` was made by fmi2Instantiate from a Box<Instance> and has not been freed (it is live).
+    let inst = unsafe { &mut *(c as *mut Instance) };
+    let result = catch_unwind(AssertUnwindSafe(|| {
+        if inst.mode == Mode::Fatal && modes != u32::MAX {
+            return error(format!("{function}: the instance is in the Fatal state after an earlier internal error; free it"));
+        }
+        if modes != u32::MAX {
+            inst.check_mode(function, modes)?;
+        }
+        if inst.logger.enabled("logAll") {
+            inst.log(fmi2OK, "logAll", function);
+        }
+        f(inst)
+    }));
+    match result {
+        Ok(Ok(())) => fmi2OK,
+        Ok(Err(Failure { status, message })) => {
+            let category = if status == fmi2Fatal { "logStatusFatal" } else { "logStatusError" };
+            inst.log(status, category, &message);
+            if status == fmi2Fatal {
+                inst.mode = Mode::Fatal;
+            }
+            status
+        }
+        Err(panic) => {
+            let what = panic.downcast_ref::<&str>().map(|s| s.to_string()).or_else(|| panic.downcast_ref::<String>().cloned()).unwrap_or_default();
+            inst.mode = Mode::Fatal;
+            inst.log(fmi2Fatal, "logStatusFatal", &format!("{function}: internal error ({what}); the instance cannot continue"));
+            fmi2Fatal
+        }
+    }
+}
+
+/// A C array as a slice; NULL is allowed only for an empty array.
+unsafe fn slice<'a, T>(p: *const T, n: usize, function: &str, name: &str) -> Call<&'a [T]> {
+    if n == 0 {
+        return Ok(&[]);
+    }
+    if p.is_null() {
+        return error(format!("{function}: argument `{name}` is NULL but its length is {n}"));
+    }
+    if n > MAX_ARRAY {
+        return error(format!("{function}: length {n} of `{name}` is larger than any array of this unit"));
+    }
+    Ok(std::slice::from_raw_parts(p, n))
+}
+
+unsafe fn slice_mut<'a, T>(p: *mut T, n: usize, function: &str, name: &str) -> Call<&'a mut [T]> {
+    if n == 0 {
+        return Ok(&mut []);
+    }
+    if p.is_null() {
+        return error(format!("{function}: argument `{name}` is NULL but its length is {n}"));
+    }
+    if n > MAX_ARRAY {
+        return error(format!("{function}: length {n} of `{name}` is larger than any array of this unit"));
+    }
+    Ok(std::slice::from_raw_parts_mut(p, n))
+}
+
+unsafe fn c_str(p: fmi2String, function: &str, name: &str) -> Call<String> {
+    if p.is_null() {
+        return error(format!("{function}: argument `{name}` is NULL"));
+    }
+    CStr::from_ptr(p)
+        .to_str()
+        .map(str::to_owned)
+        .map_err(|_| Failure { status: fmi2Error, message: format!("{function}: argument `{name}` is not UTF-8") })
+}
+
+fn out<T>(p: *mut T, function: &str, name: &str) -> Call<*mut T> {
+    if p.is_null() {
+        error(format!("{function}: output argument `{name}` is NULL"))
+    } else {
+        Ok(p)
+    }
+}
+
+// ---------------------------------------------------------------------------------------------------
+// Inquire version numbers, logging
+
+#[no_mangle]
+pub extern "C" fn fmi2GetTypesPlatform() -> *const c_char {
+    c"default".as_ptr()
+}
+
+#[no_mangle]
+pub extern "C" fn fmi2GetVersion() -> *const c_char {
+    c"2.0".as_ptr()
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi2SetDebugLogging(
+    c: fmi2Component,
+    loggingOn: fmi2Boolean,
+    nCategories: usize,
+    categories: *const fmi2String,
+) -> fmi2Status {
+    call(c, "fmi2SetDebugLogging", allowed::ANY_LIVE, |inst| {
+        let names = slice(categories, nCategories, "fmi2SetDebugLogging", "categories")?;
+        let on = loggingOn != fmi2False;
+        let mut indices = Vec::new();
+        for (i, &p) in names.iter().enumerate() {
+            let name = c_str(p, "fmi2SetDebugLogging", &format!("categories[{i}]"))?;
+            match LOG_CATEGORIES.iter().position(|(n, _)| *n == name) {
+                Some(k) => indices.push(k),
+                None => {
+                    let known: Vec<&str> = LOG_CATEGORIES.iter().map(|(n, _)| *n).collect();
+                    return error(format!("fmi2SetDebugLogging: unknown log category \"{name}\"; known: {}", known.join(", ")));
+                }
+            }
+        }
+        inst.logger.logging_on = on || (!indices.is_empty() && inst.logger.logging_on);
+        if indices.is_empty() {
+            inst.logger.categories.fill(on);
+            inst.logger.logging_on = on;
+        } else {
+            for k in indices {
+                inst.logger.categories[k] = on;
+            }
+            inst.logger.logging_on = inst.logger.categories.iter().any(|&x| x);
+        }
+        Ok(())
+    })
+}
+
+// ---------------------------------------------------------------------------------------------------
+// Creation and destruction
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi2Instantiate(
+    instanceName: fmi2String,
+    fmuType: fmi2Type,
+    fmuGUID: fmi2String,
+    fmuResourceLocation: fmi2String,
+    functions: *const fmi2CallbackFunctions,
+    _visible: fmi2Boolean,
+    loggingOn: fmi2Boolean,
+) -> fmi2Component {
+    if functions.is_null() {
+        return std::ptr::null_mut();
+    }
+    let result = catch_unwind(AssertUnwindSafe(|| {
+        let cb = *functions;
+        let logger = Logger::new(cb.logger, cb.componentEnvironment, loggingOn != fmi2False);
+        let fail = |name: &str, msg: String| {
+            let n = CString::new(name.replace('\0', " ")).unwrap_or_default();
+            logger.log(&n, fmi2Error, "logStatusError", &msg);
+            std::ptr::null_mut()
+        };
+        let name = match c_str(instanceName, "fmi2Instantiate", "instanceName") {
+            Ok(n) if !n.is_empty() => n,
+            Ok(_) => return fail("", "fmi2Instantiate: instanceName is empty".into()),
+            Err(e) => return fail("", e.message),
+        };
+        let kind = match fmuType {
+            fmi2ModelExchange => Kind::ModelExchange,
+            fmi2CoSimulation => Kind::CoSimulation,
+            other => return fail(&name, format!("fmi2Instantiate: fmuType = {other} is neither fmi2ModelExchange (0) nor fmi2CoSimulation (1)")),
+        };
+        let guid = match c_str(fmuGUID, "fmi2Instantiate", "fmuGUID") {
+            Ok(g) => g,
+            Err(e) => return fail(&name, e.message),
+        };
+        let Some(unit) = units::all().iter().find(|u| u.guid() == guid) else {
+            let known: Vec<String> = units::all().iter().map(|u| format!("{} {}", u.model_identifier, u.guid())).collect();
+            return fail(
+                &name,
+                format!(
+                    "fmi2Instantiate: fmuGUID {guid} matches no unit of this binary ({}); modelDescription.xml and the binary do not belong together",
+                    known.join(", ")
+                ),
+            );
+        };
+        if !fmuResourceLocation.is_null() {
+            let uri = match c_str(fmuResourceLocation, "fmi2Instantiate", "fmuResourceLocation") {
+                Ok(u) => u,
+                Err(e) => return fail(&name, e.message),
+            };
+            match file_uri_to_path(&uri) {
+                Ok(path) if path.is_dir() => {}
+                Ok(path) => {
+                    return fail(&name, format!("fmi2Instantiate: fmuResourceLocation {uri} names {}, which is not a directory", path.display()))
+                }
+                Err(e) => return fail(&name, format!("fmi2Instantiate: {e}")),
+            }
+        }
+        let inst = Box::new(Instance::new(&name, unit, kind, logger));
+        let p = Box::into_raw(inst);
+        register(&INSTANCES, p as usize);
+        p as fmi2Component
+    }));
+    result.unwrap_or(std::ptr::null_mut())
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi2FreeInstance(c: fmi2Component) {
+    if c.is_null() || !unregister(&INSTANCES, c as usize) {
+        return;
+    }
+    let _ = catch_unwind(AssertUnwindSafe(|| {
+        // SAFETY: `c` was live (just unregistered) and came from Box::into_raw in fmi2Instantiate.
+        drop(Box::from_raw(c as *mut Instance));
+    }));
+}
+
+// ---------------------------------------------------------------------------------------------------
+// Initialization, termination, reset
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi2SetupExperiment(
+    c: fmi2Component,
+    _toleranceDefined: fmi2Boolean,
+    _tolerance: fmi2Real,
+    startTime: fmi2Real,
+    stopTimeDefined: fmi2Boolean,
+    stopTime: fmi2Real,
+) -> fmi2Status {
+    call(c, "fmi2SetupExperiment", allowed::SETUP_EXPERIMENT, |inst| {
+        inst.setup_experiment(startTime, (stopTimeDefined != fmi2False).then_some(stopTime))
+    })
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi2EnterInitializationMode(c: fmi2Component) -> fmi2Status {
+    call(c, "fmi2EnterInitializationMode", allowed::ENTER_INITIALIZATION, |inst| {
+        inst.mode = Mode::InitializationMode;
+        Ok(())
+    })
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi2ExitInitializationMode(c: fmi2Component) -> fmi2Status {
+    call(c, "fmi2ExitInitializationMode", allowed::EXIT_INITIALIZATION, |inst| inst.exit_initialization_mode())
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi2Terminate(c: fmi2Component) -> fmi2Status {
+    call(c, "fmi2Terminate", allowed::TERMINATE, |inst| {
+        inst.mode = Mode::Terminated;
+        Ok(())
+    })
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi2Reset(c: fmi2Component) -> fmi2Status {
+    call(c, "fmi2Reset", allowed::ANY_LIVE, |inst| {
+        inst.reset();
+        Ok(())
+    })
+}
+
+// ---------------------------------------------------------------------------------------------------
+// Getting and setting variable values
+
+fn get_into<T>(
+    c: fmi2Component,
+    function: &'static str,
+    vr: *const fmi2ValueReference,
+    nvr: usize,
+    value: *mut T,
+    var_type: VarType,
+    convert: impl Fn(&Value, &mut Instance) -> T,
+) -> fmi2Status {
+    call(c, function, allowed::GET, |inst| {
+        // SAFETY: the host promises arrays of length nvr; NULL and huge lengths are refused first.
+        let vrs = unsafe { slice(vr, nvr, function, "vr")? };
+        let dst = unsafe { slice_mut(value, nvr, function, "value")? };
+        let got = inst.get(function, vrs, var_type)?;
+        for (d, v) in dst.iter_mut().zip(&got) {
+            *d = convert(v, inst);
+        }
+        Ok(())
+    })
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi2GetReal(c: fmi2Component, vr: *const fmi2ValueReference, nvr: usize, value: *mut fmi2Real) -> fmi2Status {
+    get_into(c, "fmi2GetReal", vr, nvr, value, VarType::Real, |v, _| v.as_real())
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi2GetInteger(c: fmi2Component, vr: *const fmi2ValueReference, nvr: usize, value: *mut fmi2Integer) -> fmi2Status {
+    get_into(c, "fmi2GetInteger", vr, nvr, value, VarType::Integer, |v, _| if let Value::Integer(i) = v { *i } else { 0 })
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi2GetBoolean(c: fmi2Component, vr: *const fmi2ValueReference, nvr: usize, value: *mut fmi2Boolean) -> fmi2Status {
+    get_into(c, "fmi2GetBoolean", vr, nvr, value, VarType::Boolean, |v, _| if let Value::Boolean(true) = v { fmi2True } else { fmi2False })
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi2GetString(c: fmi2Component, vr: *const fmi2ValueReference, nvr: usize, value: *mut fmi2String) -> fmi2Status {
+    call(c, "fmi2GetString", allowed::GET, |inst| {
+        let vrs = slice(vr, nvr, "fmi2GetString", "vr")?;
+        let dst = slice_mut(value, nvr, "fmi2GetString", "value")?;
+        let got = inst.get("fmi2GetString", vrs, VarType::String)?;
+        inst.strings = got
+            .iter()
+            .map(|v| if let Value::String(s) = v { CString::new(s.replace('\0', " ")).unwrap_or_default() } else { CString::default() })
+            .collect();
+        for (d, s) in dst.iter_mut().zip(&inst.strings) {
+            *d = s.as_ptr();
+        }
+        Ok(())
+    })
+}
+
+fn set_from<T: Copy>(
+    c: fmi2Component,
+    function: &'static str,
+    modes: u32,
+    vr: *const fmi2ValueReference,
+    nvr: usize,
+    value: *const T,
+    var_type: VarType,
+    convert: impl Fn(T) -> Value,
+) -> fmi2Status {
+    call(c, function, modes, |inst| {
+        // SAFETY: as in get_into.
+        let vrs = unsafe { slice(vr, nvr, function, "vr")? };
+        let src = unsafe { slice(value, nvr, function, "value")? };
+        inst.set(function, vrs, src.iter().map(|&x| convert(x)).collect(), var_type)
+    })
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi2SetReal(c: fmi2Component, vr: *const fmi2ValueReference, nvr: usize, value: *const fmi2Real) -> fmi2Status {
+    set_from(c, "fmi2SetReal", allowed::SET_REAL, vr, nvr, value, VarType::Real, Value::Real)
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi2SetInteger(c: fmi2Component, vr: *const fmi2ValueReference, nvr: usize, value: *const fmi2Integer) -> fmi2Status {
+    set_from(c, "fmi2SetInteger", allowed::SET_OTHER, vr, nvr, value, VarType::Integer, Value::Integer)
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi2SetBoolean(c: fmi2Component, vr: *const fmi2ValueReference, nvr: usize, value: *const fmi2Boolean) -> fmi2Status {
+    set_from(c, "fmi2SetBoolean", allowed::SET_OTHER, vr, nvr, value, VarType::Boolean, |b| Value::Boolean(b != fmi2False))
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi2SetString(c: fmi2Component, vr: *const fmi2ValueReference, nvr: usize, value: *const fmi2String) -> fmi2Status {
+    call(c, "fmi2SetString", allowed::SET_OTHER, |inst| {
+        let vrs = slice(vr, nvr, "fmi2SetString", "vr")?;
+        let src = slice(value, nvr, "fmi2SetString", "value")?;
+        let mut strings = Vec::with_capacity(nvr);
+        for (i, &p) in src.iter().enumerate() {
+            strings.push(Value::String(c_str(p, "fmi2SetString", &format!("value[{i}]"))?));
+        }
+        inst.set("fmi2SetString", vrs, strings, VarType::String)
+    })
+}
+
+// ---------------------------------------------------------------------------------------------------
+// FMU state: get, set, free, serialize
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi2GetFMUstate(c: fmi2Component, FMUstate: *mut fmi2FMUstate) -> fmi2Status {
+    call(c, "fmi2GetFMUstate", allowed::ANY_LIVE, |inst| {
+        let p = out(FMUstate, "fmi2GetFMUstate", "FMUstate")?;
+        let bytes = inst.save();
+        let existing = *p;
+        if !existing.is_null() && live(&STATES, existing as usize) {
+            // SAFETY: a live state pointer came from Box::into_raw of a SavedState.
+            (*(existing as *mut SavedState)).bytes = bytes;
+        } else {
+            let s = Box::into_raw(Box::new(SavedState { bytes }));
+            register(&STATES, s as usize);
+            *p = s as fmi2FMUstate;
+        }
+        Ok(())
+    })
+}
+
+fn saved<'a>(state: fmi2FMUstate, function: &str) -> Call<&'a SavedState> {
+    if state.is_null() {
+        return error(format!("{function}: argument `FMUstate` is NULL"));
+    }
+    if !live(&STATES, state as usize) {
+        return error(format!("{function}: `FMUstate` is not a live state of this library (freed, or made by another FMU)"));
+    }
+    // SAFETY: live state pointers come from Box::into_raw of a SavedState and are not yet freed.
+    Ok(unsafe { &*(state as *const SavedState) })
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi2SetFMUstate(c: fmi2Component, FMUstate: fmi2FMUstate) -> fmi2Status {
+    call(c, "fmi2SetFMUstate", allowed::ANY_LIVE, |inst| {
+        let bytes = saved(FMUstate, "fmi2SetFMUstate")?.bytes.clone();
+        inst.restore(&bytes)
+    })
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi2FreeFMUstate(c: fmi2Component, FMUstate: *mut fmi2FMUstate) -> fmi2Status {
+    call(c, "fmi2FreeFMUstate", allowed::ANY_LIVE, |_| {
+        let p = out(FMUstate, "fmi2FreeFMUstate", "FMUstate")?;
+        let s = *p;
+        if s.is_null() {
+            return Ok(());
+        }
+        if !unregister(&STATES, s as usize) {
+            return error("fmi2FreeFMUstate: `*FMUstate` is not a live state of this library (already freed?)");
+        }
+        // SAFETY: just unregistered; it came from Box::into_raw of a SavedState.
+        drop(Box::from_raw(s as *mut SavedState));
+        *p = std::ptr::null_mut();
+        Ok(())
+    })
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi2SerializedFMUstateSize(c: fmi2Component, FMUstate: fmi2FMUstate, size: *mut usize) -> fmi2Status {
+    call(c, "fmi2SerializedFMUstateSize", allowed::ANY_LIVE, |_| {
+        let p = out(size, "fmi2SerializedFMUstateSize", "size")?;
+        *p = saved(FMUstate, "fmi2SerializedFMUstateSize")?.bytes.len();
+        Ok(())
+    })
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi2SerializeFMUstate(c: fmi2Component, FMUstate: fmi2FMUstate, serializedState: *mut fmi2Byte, size: usize) -> fmi2Status {
+    call(c, "fmi2SerializeFMUstate", allowed::ANY_LIVE, |_| {
+        let bytes = &saved(FMUstate, "fmi2SerializeFMUstate")?.bytes;
+        if size < bytes.len() {
+            return error(format!(
+                "fmi2SerializeFMUstate: size = {size} is smaller than the state ({} bytes, see fmi2SerializedFMUstateSize)",
+                bytes.len()
+            ));
+        }
+        let dst = slice_mut(serializedState as *mut u8, bytes.len(), "fmi2SerializeFMUstate", "serializedState")?;
+        dst.copy_from_slice(bytes);
+        Ok(())
+    })
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi2DeSerializeFMUstate(
+    c: fmi2Component,
+    serializedState: *const fmi2Byte,
+    size: usize,
+    FMUstate: *mut fmi2FMUstate,
+) -> fmi2Status {
+    call(c, "fmi2DeSerializeFMUstate", allowed::ANY_LIVE, |inst| {
+        let p = out(FMUstate, "fmi2DeSerializeFMUstate", "FMUstate")?;
+        let src = slice(serializedState as *const u8, size, "fmi2DeSerializeFMUstate", "serializedState")?;
+        if let Err(m) = super::snapshot::read(inst.unit, src) {
+            return error(format!("fmi2DeSerializeFMUstate: {m}"));
+        }
+        let s = Box::into_raw(Box::new(SavedState { bytes: src.to_vec() }));
+        register(&STATES, s as usize);
+        *p = s as fmi2FMUstate;
+        Ok(())
+    })
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi2GetDirectionalDerivative(
+    c: fmi2Component,
+    _vUnknown_ref: *const fmi2ValueReference,
+    _nUnknown: usize,
+    _vKnown_ref: *const fmi2ValueReference,
+    _nKnown: usize,
+    _dvKnown: *const fmi2Real,
+    _dvUnknown: *mut fmi2Real,
+) -> fmi2Status {
+    call(c, "fmi2GetDirectionalDerivative", allowed::ANY_LIVE, |_| {
+        error("fmi2GetDirectionalDerivative is not supported (providesDirectionalDerivative is false)")
+    })
+}
+
+// ---------------------------------------------------------------------------------------------------
+// Model Exchange
+
+fn me(c: fmi2Component, function: &'static str, modes: u32, f: impl FnOnce(&mut Instance) -> Call) -> fmi2Status {
+    call(c, function, modes, |inst| {
+        inst.check_kind(function, Kind::ModelExchange)?;
+        f(inst)
+    })
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi2EnterEventMode(c: fmi2Component) -> fmi2Status {
+    me(c, "fmi2EnterEventMode", allowed::ENTER_EVENT_MODE, |inst| {
+        inst.mode = Mode::EventMode;
+        Ok(())
+    })
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi2NewDiscreteStates(c: fmi2Component, fmi2eventInfo: *mut fmi2EventInfo) -> fmi2Status {
+    me(c, "fmi2NewDiscreteStates", allowed::NEW_DISCRETE_STATES, |inst| {
+        let p = out(fmi2eventInfo, "fmi2NewDiscreteStates", "fmi2eventInfo")?;
+        inst.accept();
+        *p = fmi2EventInfo::default();
+        Ok(())
+    })
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi2EnterContinuousTimeMode(c: fmi2Component) -> fmi2Status {
+    me(c, "fmi2EnterContinuousTimeMode", allowed::ENTER_CONTINUOUS_TIME, |inst| {
+        inst.mode = Mode::ContinuousTimeMode;
+        Ok(())
+    })
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi2CompletedIntegratorStep(
+    c: fmi2Component,
+    _noSetFMUStatePriorToCurrentPoint: fmi2Boolean,
+    enterEventMode: *mut fmi2Boolean,
+    terminateSimulation: *mut fmi2Boolean,
+) -> fmi2Status {
+    me(c, "fmi2CompletedIntegratorStep", allowed::COMPLETED_INTEGRATOR_STEP, |inst| {
+        let e = out(enterEventMode, "fmi2CompletedIntegratorStep", "enterEventMode")?;
+        let t = out(terminateSimulation, "fmi2CompletedIntegratorStep", "terminateSimulation")?;
+        inst.accept();
+        *e = fmi2False;
+        *t = fmi2False;
+        Ok(())
+    })
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi2SetTime(c: fmi2Component, time: fmi2Real) -> fmi2Status {
+    me(c, "fmi2SetTime", allowed::SET_TIME, |inst| inst.set_time(time))
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi2SetContinuousStates(c: fmi2Component, x: *const fmi2Real, nx: usize) -> fmi2Status {
+    me(c, "fmi2SetContinuousStates", allowed::SET_CONTINUOUS_STATES, |inst| {
+        let x = slice(x, nx, "fmi2SetContinuousStates", "x")?;
+        inst.set_continuous_states(x)
+    })
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi2GetDerivatives(c: fmi2Component, derivatives: *mut fmi2Real, nx: usize) -> fmi2Status {
+    me(c, "fmi2GetDerivatives", allowed::GET_DERIVATIVES, |inst| {
+        let dx = slice_mut(derivatives, nx, "fmi2GetDerivatives", "derivatives")?;
+        inst.get_derivatives(dx)
+    })
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi2GetEventIndicators(c: fmi2Component, eventIndicators: *mut fmi2Real, ni: usize) -> fmi2Status {
+    me(c, "fmi2GetEventIndicators", allowed::GET_DERIVATIVES, |inst| {
+        let z = slice_mut(eventIndicators, ni, "fmi2GetEventIndicators", "eventIndicators")?;
+        inst.get_event_indicators(z)
+    })
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi2GetContinuousStates(c: fmi2Component, x: *mut fmi2Real, nx: usize) -> fmi2Status {
+    me(c, "fmi2GetContinuousStates", allowed::GET_DERIVATIVES, |inst| {
+        let x = slice_mut(x, nx, "fmi2GetContinuousStates", "x")?;
+        inst.get_continuous_states(x)
+    })
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi2GetNominalsOfContinuousStates(c: fmi2Component, x_nominal: *mut fmi2Real, nx: usize) -> fmi2Status {
+    me(c, "fmi2GetNominalsOfContinuousStates", allowed::GET_NOMINALS, |inst| {
+        let x = slice_mut(x_nominal, nx, "fmi2GetNominalsOfContinuousStates", "x_nominal")?;
+        inst.get_nominals(x)
+    })
+}
+
+// ---------------------------------------------------------------------------------------------------
+// Co-Simulation
+
+fn cs(c: fmi2Component, function: &'static str, modes: u32, f: impl FnOnce(&mut Instance) -> Call) -> fmi2Status {
+    call(c, function, modes, |inst| {
+        inst.check_kind(function, Kind::CoSimulation)?;
+        f(inst)
+    })
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi2SetRealInputDerivatives(
+    c: fmi2Component,
+    _vr: *const fmi2ValueReference,
+    _nvr: usize,
+    _order: *const fmi2Integer,
+    _value: *const fmi2Real,
+) -> fmi2Status {
+    cs(c, "fmi2SetRealInputDerivatives", allowed::ANY_LIVE, |_| {
+        error("fmi2SetRealInputDerivatives is not supported (canInterpolateInputs is false; the wall moves with wall_velocity within a step)")
+    })
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi2GetRealOutputDerivatives(
+    c: fmi2Component,
+    _vr: *const fmi2ValueReference,
+    _nvr: usize,
+    _order: *const fmi2Integer,
+    _value: *mut fmi2Real,
+) -> fmi2Status {
+    cs(c, "fmi2GetRealOutputDerivatives", allowed::ANY_LIVE, |_| {
+        error("fmi2GetRealOutputDerivatives is not supported (maxOutputDerivativeOrder is 0)")
+    })
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi2DoStep(
+    c: fmi2Component,
+    currentCommunicationPoint: fmi2Real,
+    communicationStepSize: fmi2Real,
+    _noSetFMUStatePriorToCurrentPoint: fmi2Boolean,
+) -> fmi2Status {
+    cs(c, "fmi2DoStep", allowed::DO_STEP, |inst| inst.do_step(currentCommunicationPoint, communicationStepSize))
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi2CancelStep(c: fmi2Component) -> fmi2Status {
+    cs(c, "fmi2CancelStep", allowed::ANY_LIVE, |_| error("fmi2CancelStep: fmi2DoStep is synchronous, there is never a step to cancel"))
+}
+
+fn status_kind_error(function: &str, s: fmi2StatusKind) -> Call {
+    error(format!("{function}: status kind {s} is not available (fmi2DoStep never returns fmi2Pending or fmi2Discard)"))
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi2GetStatus(c: fmi2Component, s: fmi2StatusKind, _value: *mut fmi2Status) -> fmi2Status {
+    cs(c, "fmi2GetStatus", allowed::CS_STATUS, |_| status_kind_error("fmi2GetStatus", s))
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi2GetRealStatus(c: fmi2Component, s: fmi2StatusKind, value: *mut fmi2Real) -> fmi2Status {
+    cs(c, "fmi2GetRealStatus", allowed::CS_STATUS, |inst| {
+        let p = out(value, "fmi2GetRealStatus", "value")?;
+        if s != fmi2LastSuccessfulTime {
+            return status_kind_error("fmi2GetRealStatus", s);
+        }
+        *p = inst.time;
+        Ok(())
+    })
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi2GetIntegerStatus(c: fmi2Component, s: fmi2StatusKind, _value: *mut fmi2Integer) -> fmi2Status {
+    cs(c, "fmi2GetIntegerStatus", allowed::CS_STATUS, |_| status_kind_error("fmi2GetIntegerStatus", s))
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi2GetBooleanStatus(c: fmi2Component, s: fmi2StatusKind, value: *mut fmi2Boolean) -> fmi2Status {
+    cs(c, "fmi2GetBooleanStatus", allowed::CS_STATUS, |_| {
+        let p = out(value, "fmi2GetBooleanStatus", "value")?;
+        if s != fmi2Terminated {
+            return status_kind_error("fmi2GetBooleanStatus", s);
+        }
+        *p = fmi2False;
+        Ok(())
+    })
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi2GetStringStatus(c: fmi2Component, s: fmi2StatusKind, _value: *mut fmi2String) -> fmi2Status {
+    cs(c, "fmi2GetStringStatus", allowed::CS_STATUS, |_| status_kind_error("fmi2GetStringStatus", s))
+}

@@ -1,0 +1,450 @@
+//! One FMU instance behind the C ABI: the calling-sequence state machine (FMI 2.0 Sec. 3.2.3 and 4.2.4),
+//! the variable values indexed by value reference, logging, and the calls into the unit's `Model`. All
+//! of it is safe Rust; `exports` turns C pointers into slices before calling here.
+
+use super::snapshot;
+use super::types::*;
+use crate::units::variables::{Causality, Value, VarType, Variability};
+use crate::units::{Model, UnitInfo, LOG_CATEGORIES};
+use std::ffi::CString;
+
+/// The states of the FMI 2.0 calling sequence.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Mode {
+    Instantiated,
+    InitializationMode,
+    EventMode,
+    ContinuousTimeMode,
+    StepComplete,
+    Terminated,
+    Error,
+    Fatal,
+}
+
+impl Mode {
+    pub fn bit(self) -> u32 {
+        1 << (self as u32)
+    }
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Mode::Instantiated => "Instantiated",
+            Mode::InitializationMode => "Initialization Mode",
+            Mode::EventMode => "Event Mode",
+            Mode::ContinuousTimeMode => "Continuous-Time Mode",
+            Mode::StepComplete => "Step Complete",
+            Mode::Terminated => "Terminated",
+            Mode::Error => "Error",
+            Mode::Fatal => "Fatal",
+        }
+    }
+
+    pub const ALL: [Mode; 8] = [
+        Mode::Instantiated,
+        Mode::InitializationMode,
+        Mode::EventMode,
+        Mode::ContinuousTimeMode,
+        Mode::StepComplete,
+        Mode::Terminated,
+        Mode::Error,
+        Mode::Fatal,
+    ];
+}
+
+/// Sets of modes in which a function may be called.
+pub mod allowed {
+    use super::Mode::*;
+    const fn m(modes: &[super::Mode]) -> u32 {
+        let mut bits = 0;
+        let mut i = 0;
+        while i < modes.len() {
+            bits |= 1 << (modes[i] as u32);
+            i += 1;
+        }
+        bits
+    }
+    pub const ANY_LIVE: u32 = m(&[Instantiated, InitializationMode, EventMode, ContinuousTimeMode, StepComplete, Terminated, Error]);
+    pub const SETUP_EXPERIMENT: u32 = m(&[Instantiated]);
+    pub const ENTER_INITIALIZATION: u32 = m(&[Instantiated]);
+    pub const EXIT_INITIALIZATION: u32 = m(&[InitializationMode]);
+    pub const TERMINATE: u32 = m(&[EventMode, ContinuousTimeMode, StepComplete]);
+    pub const GET: u32 = m(&[InitializationMode, EventMode, ContinuousTimeMode, StepComplete, Terminated, Error]);
+    pub const SET_REAL: u32 = m(&[Instantiated, InitializationMode, EventMode, ContinuousTimeMode, StepComplete]);
+    pub const SET_OTHER: u32 = m(&[Instantiated, InitializationMode, EventMode, StepComplete]);
+    pub const ENTER_EVENT_MODE: u32 = m(&[EventMode, ContinuousTimeMode]);
+    pub const NEW_DISCRETE_STATES: u32 = m(&[EventMode]);
+    pub const ENTER_CONTINUOUS_TIME: u32 = m(&[EventMode]);
+    pub const COMPLETED_INTEGRATOR_STEP: u32 = m(&[ContinuousTimeMode]);
+    pub const SET_TIME: u32 = m(&[EventMode, ContinuousTimeMode]);
+    pub const SET_CONTINUOUS_STATES: u32 = m(&[ContinuousTimeMode]);
+    pub const GET_DERIVATIVES: u32 = m(&[InitializationMode, EventMode, ContinuousTimeMode, Terminated, Error]);
+    pub const GET_NOMINALS: u32 = m(&[Instantiated, InitializationMode, EventMode, ContinuousTimeMode, Terminated, Error]);
+    pub const DO_STEP: u32 = m(&[StepComplete]);
+    pub const CS_STATUS: u32 = m(&[StepComplete, Terminated]);
+}
+
+/// Which interface the instance was made for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Kind {
+    ModelExchange,
+    CoSimulation,
+}
+
+/// A failed call: the status to return and the message to log.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Failure {
+    pub status: fmi2Status,
+    pub message: String,
+}
+
+pub type Call<T = ()> = Result<T, Failure>;
+
+pub fn error<T>(message: impl Into<String>) -> Call<T> {
+    Err(Failure { status: fmi2Error, message: message.into() })
+}
+
+/// The host's logger and which categories are switched on.
+pub struct Logger {
+    pub callback: fmi2CallbackLogger,
+    pub environment: fmi2ComponentEnvironment,
+    pub logging_on: bool,
+    pub categories: Vec<bool>,
+}
+
+// The environment pointer is the host's; we only hand it back to the host's logger.
+unsafe impl Send for Logger {}
+
+impl Logger {
+    pub fn new(callback: fmi2CallbackLogger, environment: fmi2ComponentEnvironment, logging_on: bool) -> Logger {
+        Logger { callback, environment, logging_on, categories: vec![true; LOG_CATEGORIES.len()] }
+    }
+
+    /// Errors, warnings and fatal messages are always passed on; the debug categories only with logging on.
+    pub fn enabled(&self, category: &str) -> bool {
+        let always = matches!(category, "logStatusError" | "logStatusWarning" | "logStatusFatal");
+        let index = LOG_CATEGORIES.iter().position(|(name, _)| *name == category);
+        let on = index.is_some_and(|i| self.categories[i]);
+        if always {
+            on || !self.logging_on
+        } else {
+            self.logging_on && on
+        }
+    }
+
+    pub fn log(&self, instance_name: &CString, status: fmi2Status, category: &str, message: &str) {
+        let Some(callback) = self.callback else { return };
+        if !self.enabled(category) {
+            return;
+        }
+        // The host formats the message with printf: a literal % must be doubled.
+        let text = CString::new(message.replace('%', "%%").replace('\0', " ")).unwrap_or_default();
+        let category = CString::new(category).unwrap_or_default();
+        // SAFETY: the host gave this callback for exactly these arguments; the strings outlive the call.
+        unsafe { callback(self.environment, instance_name.as_ptr(), status, category.as_ptr(), text.as_ptr()) };
+    }
+}
+
+pub struct Instance {
+    pub name: CString,
+    pub unit: &'static UnitInfo,
+    pub kind: Kind,
+    pub mode: Mode,
+    pub values: Vec<Value>,
+    pub model: Box<dyn Model>,
+    pub time: f64,
+    pub start_time: f64,
+    pub stop_time: Option<f64>,
+    pub logger: Logger,
+    /// The strings handed out by the last fmi2GetString (valid until the next call, FMI 2.0 Sec. 2.1.7).
+    pub strings: Vec<CString>,
+    /// Whether the model's state reflects the current parameters (false after a parameter changes
+    /// before the end of initialization).
+    model_ready: bool,
+}
+
+impl Instance {
+    pub fn new(name: &str, unit: &'static UnitInfo, kind: Kind, logger: Logger) -> Instance {
+        Instance {
+            name: CString::new(name.replace('\0', " ")).unwrap_or_default(),
+            unit,
+            kind,
+            mode: Mode::Instantiated,
+            values: unit.start_values(),
+            model: (unit.new_model)(unit),
+            time: 0.0,
+            start_time: 0.0,
+            stop_time: None,
+            logger,
+            strings: Vec::new(),
+            model_ready: false,
+        }
+    }
+
+    pub fn log(&self, status: fmi2Status, category: &str, message: &str) {
+        self.logger.log(&self.name, status, category, message);
+    }
+
+    /// The calling-sequence check of one function.
+    pub fn check_mode(&self, function: &str, allowed: u32) -> Call {
+        if allowed & self.mode.bit() != 0 {
+            return Ok(());
+        }
+        let modes: Vec<&str> = Mode::ALL.iter().filter(|m| allowed & m.bit() != 0).map(|m| m.name()).collect();
+        error(format!("{function} must not be called in {}; allowed in: {}", self.mode.name(), modes.join(", ")))
+    }
+
+    pub fn check_kind(&self, function: &str, kind: Kind) -> Call {
+        if self.kind == kind {
+            return Ok(());
+        }
+        let what = if kind == Kind::ModelExchange { "Model Exchange" } else { "Co-Simulation" };
+        error(format!("{function} is a {what} function, but this instance was instantiated for the other interface"))
+    }
+
+    pub fn reset(&mut self) {
+        self.mode = Mode::Instantiated;
+        self.values = self.unit.start_values();
+        self.model = (self.unit.new_model)(self.unit);
+        self.time = 0.0;
+        self.start_time = 0.0;
+        self.stop_time = None;
+        self.model_ready = false;
+    }
+
+    pub fn setup_experiment(&mut self, start: f64, stop: Option<f64>) -> Call {
+        if !start.is_finite() {
+            return error(format!("fmi2SetupExperiment: startTime = {start} is not finite"));
+        }
+        if let Some(stop) = stop {
+            if !(stop >= start) {
+                return error(format!("fmi2SetupExperiment: stopTime = {stop:e} s must not be less than startTime = {start:e} s"));
+            }
+        }
+        self.start_time = start;
+        self.time = start;
+        self.stop_time = stop;
+        Ok(())
+    }
+
+    /// Builds the model's initial state from the current values.
+    fn initialize_model(&mut self, function: &str) -> Call {
+        match self.model.initialize(&self.values, self.time) {
+            Ok(()) => {
+                self.model_ready = true;
+                self.model.compute(&mut self.values);
+                Ok(())
+            }
+            Err(message) => {
+                self.model_ready = false;
+                error(format!("{function}: {message}"))
+            }
+        }
+    }
+
+    pub fn exit_initialization_mode(&mut self) -> Call {
+        self.initialize_model("fmi2ExitInitializationMode")?;
+        self.mode = if self.kind == Kind::ModelExchange { Mode::EventMode } else { Mode::StepComplete };
+        Ok(())
+    }
+
+    /// Brings the outputs up to date before a get.
+    fn refresh(&mut self, function: &str) -> Call {
+        if self.mode == Mode::InitializationMode && !self.model_ready {
+            self.initialize_model(function)?;
+        }
+        if self.model_ready {
+            self.model.compute(&mut self.values);
+        }
+        Ok(())
+    }
+
+    /// Checks value references and types of a get or set.
+    fn check_refs(&self, function: &str, vrs: &[fmi2ValueReference], var_type: VarType) -> Call {
+        let n = self.unit.variables.len();
+        for &vr in vrs {
+            let Some(v) = self.unit.variables.get(vr as usize) else {
+                return error(format!("{function}: value reference {vr} does not exist (this unit has 0..{})", n - 1));
+            };
+            if v.var_type != var_type {
+                return error(format!(
+                    "{function}: value reference {vr} is `{}`, a {} variable, not {}",
+                    v.name,
+                    v.var_type.xml_name(),
+                    var_type.xml_name()
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    pub fn get(&mut self, function: &str, vrs: &[fmi2ValueReference], var_type: VarType) -> Call<Vec<Value>> {
+        self.check_refs(function, vrs, var_type)?;
+        self.refresh(function)?;
+        Ok(vrs.iter().map(|&vr| self.values[vr as usize].clone()).collect())
+    }
+
+    /// Sets values after checking every one of them: a call either sets all or none.
+    pub fn set(&mut self, function: &str, vrs: &[fmi2ValueReference], new: Vec<Value>, var_type: VarType) -> Call {
+        self.check_refs(function, vrs, var_type)?;
+        for (&vr, value) in vrs.iter().zip(&new) {
+            let v = &self.unit.variables[vr as usize];
+            let settable = match (v.causality, self.mode) {
+                (Causality::Input, _) => true,
+                (Causality::Parameter, Mode::Instantiated | Mode::InitializationMode) => true,
+                (Causality::Parameter, _) => {
+                    return error(format!(
+                        "{function}: parameter `{}` is fixed; it can only be set before fmi2ExitInitializationMode (now in {})",
+                        v.name,
+                        self.mode.name()
+                    ))
+                }
+                _ => false,
+            };
+            if !settable {
+                return error(format!("{function}: `{}` is a calculated {} and cannot be set", v.name, v.causality.xml_name()));
+            }
+            if self.mode == Mode::ContinuousTimeMode && v.variability != Variability::Continuous {
+                return error(format!("{function}: `{}` can only be set in Event Mode", v.name));
+            }
+            if let Value::Real(x) = value {
+                if !x.is_finite() {
+                    return error(format!("{function}: `{}` = {x} is not a finite number", v.name));
+                }
+                if let Some(min) = v.min {
+                    if *x < min {
+                        return error(format!("{function}: `{}` = {x:e} is below its minimum {min:e}", v.name));
+                    }
+                }
+                if let Some(max) = v.max {
+                    if *x > max {
+                        return error(format!("{function}: `{}` = {x:e} is above its maximum {max:e}", v.name));
+                    }
+                }
+            }
+        }
+        if matches!(self.mode, Mode::Instantiated | Mode::InitializationMode) {
+            // The initial state depends on every parameter and input: build it again when asked.
+            self.model_ready = false;
+        }
+        for (&vr, value) in vrs.iter().zip(new) {
+            self.values[vr as usize] = value;
+        }
+        Ok(())
+    }
+
+    pub fn set_time(&mut self, t: f64) -> Call {
+        if !t.is_finite() {
+            return error(format!("fmi2SetTime: time = {t} is not finite"));
+        }
+        self.time = t;
+        self.model.set_time(t);
+        Ok(())
+    }
+
+    fn check_len(&self, function: &str, what: &str, n: usize, expected: usize) -> Call {
+        if n == expected {
+            Ok(())
+        } else {
+            error(format!("{function}: {what} = {n}, but this unit has {expected}"))
+        }
+    }
+
+    pub fn set_continuous_states(&mut self, x: &[f64]) -> Call {
+        self.check_len("fmi2SetContinuousStates", "nx", x.len(), self.unit.n_states)?;
+        if let Some(i) = x.iter().position(|v| !v.is_finite()) {
+            return error(format!("fmi2SetContinuousStates: x[{i}] = {} is not finite", x[i]));
+        }
+        self.model.set_states(x);
+        Ok(())
+    }
+
+    pub fn get_continuous_states(&mut self, x: &mut [f64]) -> Call {
+        self.check_len("fmi2GetContinuousStates", "nx", x.len(), self.unit.n_states)?;
+        self.refresh("fmi2GetContinuousStates")?;
+        self.model.get_states(x);
+        Ok(())
+    }
+
+    pub fn get_derivatives(&mut self, dx: &mut [f64]) -> Call {
+        self.check_len("fmi2GetDerivatives", "nx", dx.len(), self.unit.n_states)?;
+        self.refresh("fmi2GetDerivatives")?;
+        self.model.derivatives(&self.values, dx);
+        Ok(())
+    }
+
+    pub fn get_event_indicators(&mut self, z: &mut [f64]) -> Call {
+        self.check_len("fmi2GetEventIndicators", "ni", z.len(), self.unit.n_event_indicators)?;
+        self.refresh("fmi2GetEventIndicators")?;
+        self.model.event_indicators(&self.values, z);
+        Ok(())
+    }
+
+    pub fn get_nominals(&mut self, x: &mut [f64]) -> Call {
+        self.check_len("fmi2GetNominalsOfContinuousStates", "nx", x.len(), self.unit.n_states)?;
+        if self.model_ready {
+            self.model.nominals(x);
+        } else {
+            x.fill(1.0);
+        }
+        Ok(())
+    }
+
+    /// Event iteration or a completed integrator step: the history accepts the current state.
+    pub fn accept(&mut self) {
+        if let Some(message) = self.model.accept(&self.values) {
+            self.log(fmi2OK, "logEvents", &message);
+        }
+    }
+
+    pub fn do_step(&mut self, t: f64, h: f64) -> Call {
+        if !t.is_finite() || !h.is_finite() {
+            return error(format!("fmi2DoStep: currentCommunicationPoint = {t} and communicationStepSize = {h} must be finite"));
+        }
+        if h <= 0.0 {
+            return error(format!("fmi2DoStep: communicationStepSize = {h:e} s must be positive"));
+        }
+        if (t - self.time).abs() > 1e-10 * h.max(t.abs()) {
+            return error(format!(
+                "fmi2DoStep: currentCommunicationPoint = {t:e} s is not the unit's time {:e} s (steps must follow each other; use fmi2SetFMUstate to go back)",
+                self.time
+            ));
+        }
+        match self.model.do_step(&self.values, t, h) {
+            Ok(()) => {
+                self.time = t + h;
+                Ok(())
+            }
+            Err(message) => error(format!("fmi2DoStep from t = {t:e} s by {h:e} s failed, the state is unchanged: {message}")),
+        }
+    }
+
+    pub fn save(&self) -> Vec<u8> {
+        snapshot::write(self)
+    }
+
+    pub fn restore(&mut self, bytes: &[u8]) -> Call {
+        let s = snapshot::read(self.unit, bytes).map_err(|m| Failure { status: fmi2Error, message: format!("FMU state rejected: {m}") })?;
+        let kind = if s.kind == 0 { Kind::ModelExchange } else { Kind::CoSimulation };
+        if kind != self.kind {
+            return error("FMU state rejected: it was saved by an instance of the other interface (Model Exchange vs Co-Simulation)");
+        }
+        let mode = Mode::ALL.get(s.mode as usize).copied().filter(|m| !matches!(m, Mode::Error | Mode::Fatal));
+        let Some(mode) = mode else { return error("FMU state rejected: it records an invalid mode") };
+        // Model first: if it refuses, nothing of this instance has changed.
+        let mut model = (self.unit.new_model)(self.unit);
+        model.restore(&s.values, &s.model).map_err(|m| Failure { status: fmi2Error, message: format!("FMU state rejected: {m}") })?;
+        model.set_time(s.time);
+        self.model = model;
+        self.values = s.values;
+        self.mode = mode;
+        self.time = s.time;
+        self.start_time = s.start_time;
+        self.stop_time = s.stop_time;
+        self.model_ready = s.model_ready;
+        Ok(())
+    }
+
+    pub fn model_ready(&self) -> bool {
+        self.model_ready
+    }
+}

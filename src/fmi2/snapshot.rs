@@ -1,0 +1,166 @@
+//! The byte format of a saved FMU state (fmi2GetFMUstate, fmi2SerializeFMUstate): versioned, without
+//! pointers, little-endian, closed by a checksum, so a state saved in one process restores in another.
+//!
+//! Layout: magic `PFMUSTAT`, format version (u32), model identifier and GUID (length-prefixed UTF-8),
+//! interface kind (u8), mode (u8), time, start time (f64), stop time (u8 flag + f64), model ready (u8),
+//! the variable values (u32 count, then per value a type tag and its payload), the model's own bytes
+//! (u32 length + bytes), and an FNV-1a 64 checksum of everything before it.
+
+use super::instance::{Instance, Kind};
+use crate::units::variables::{Value, VarType};
+use crate::units::UnitInfo;
+
+const MAGIC: &[u8; 8] = b"PFMUSTAT";
+pub const VERSION: u32 = 1;
+
+/// What a saved state holds.
+pub struct Saved {
+    pub kind: u8,
+    pub mode: u8,
+    pub time: f64,
+    pub start_time: f64,
+    pub stop_time: Option<f64>,
+    pub model_ready: bool,
+    pub values: Vec<Value>,
+    pub model: Vec<u8>,
+}
+
+pub fn write(inst: &Instance) -> Vec<u8> {
+    let mut b = Vec::with_capacity(4096);
+    b.extend_from_slice(MAGIC);
+    b.extend_from_slice(&VERSION.to_le_bytes());
+    put_str(&mut b, inst.unit.model_identifier);
+    put_str(&mut b, &inst.unit.guid());
+    b.push(if inst.kind == Kind::ModelExchange { 0 } else { 1 });
+    b.push(inst.mode as u8);
+    b.extend_from_slice(&inst.time.to_le_bytes());
+    b.extend_from_slice(&inst.start_time.to_le_bytes());
+    b.push(u8::from(inst.stop_time.is_some()));
+    b.extend_from_slice(&inst.stop_time.unwrap_or(0.0).to_le_bytes());
+    b.push(u8::from(inst.model_ready()));
+    b.extend_from_slice(&(inst.values.len() as u32).to_le_bytes());
+    for v in &inst.values {
+        match v {
+            Value::Real(x) => {
+                b.push(0);
+                b.extend_from_slice(&x.to_le_bytes());
+            }
+            Value::Integer(i) => {
+                b.push(1);
+                b.extend_from_slice(&i.to_le_bytes());
+            }
+            Value::Boolean(x) => {
+                b.push(2);
+                b.push(u8::from(*x));
+            }
+            Value::String(s) => {
+                b.push(3);
+                put_str(&mut b, s);
+            }
+        }
+    }
+    let model = inst.model.save();
+    b.extend_from_slice(&(model.len() as u32).to_le_bytes());
+    b.extend_from_slice(&model);
+    let sum = fnv1a(&b);
+    b.extend_from_slice(&sum.to_le_bytes());
+    b
+}
+
+fn put_str(b: &mut Vec<u8>, s: &str) {
+    b.extend_from_slice(&(s.len() as u32).to_le_bytes());
+    b.extend_from_slice(s.as_bytes());
+}
+
+fn fnv1a(bytes: &[u8]) -> u64 {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    for x in bytes {
+        h ^= u64::from(*x);
+        h = h.wrapping_mul(0x0000_0100_0000_01b3);
+    }
+    h
+}
+
+/// A bounds-checked reader: every read says what it wanted when the bytes run out.
+struct Reader<'a> {
+    bytes: &'a [u8],
+    at: usize,
+}
+
+impl<'a> Reader<'a> {
+    fn take(&mut self, n: usize, what: &str) -> Result<&'a [u8], String> {
+        let end = self.at.checked_add(n).filter(|&e| e <= self.bytes.len());
+        match end {
+            Some(end) => {
+                let s = &self.bytes[self.at..end];
+                self.at = end;
+                Ok(s)
+            }
+            None => Err(format!("truncated: {what} needs {n} bytes at offset {}, only {} left", self.at, self.bytes.len() - self.at)),
+        }
+    }
+    fn u8(&mut self, what: &str) -> Result<u8, String> {
+        Ok(self.take(1, what)?[0])
+    }
+    fn u32(&mut self, what: &str) -> Result<u32, String> {
+        Ok(u32::from_le_bytes(self.take(4, what)?.try_into().expect("4 bytes")))
+    }
+    fn f64(&mut self, what: &str) -> Result<f64, String> {
+        Ok(f64::from_le_bytes(self.take(8, what)?.try_into().expect("8 bytes")))
+    }
+    fn string(&mut self, what: &str) -> Result<String, String> {
+        let n = self.u32(what)? as usize;
+        let raw = self.take(n, what)?;
+        String::from_utf8(raw.to_vec()).map_err(|_| format!("{what} is not UTF-8"))
+    }
+}
+
+/// Reads a saved state for `unit`, refusing anything that is not exactly what `write` makes for it.
+pub fn read(unit: &UnitInfo, bytes: &[u8]) -> Result<Saved, String> {
+    if bytes.len() < MAGIC.len() + 4 + 8 || &bytes[..8] != MAGIC {
+        return Err("not a powderfmu FMU state (wrong magic bytes or too short)".into());
+    }
+    let (body, sum) = bytes.split_at(bytes.len() - 8);
+    let mut r = Reader { bytes: body, at: 8 };
+    let version = r.u32("format version")?;
+    if version != VERSION {
+        return Err(format!("format version {version}; this FMU reads version {VERSION}"));
+    }
+    if fnv1a(body) != u64::from_le_bytes(sum.try_into().expect("8 bytes")) {
+        return Err("checksum mismatch: the bytes are corrupted".into());
+    }
+    let id = r.string("model identifier")?;
+    let guid = r.string("GUID")?;
+    if id != unit.model_identifier || guid != unit.guid() {
+        return Err(format!("saved by {id} {guid}, not by this unit {} {}", unit.model_identifier, unit.guid()));
+    }
+    let kind = r.u8("interface kind")?;
+    let mode = r.u8("mode")?;
+    let time = r.f64("time")?;
+    let start_time = r.f64("start time")?;
+    let has_stop = r.u8("stop time flag")? != 0;
+    let stop = r.f64("stop time")?;
+    let model_ready = r.u8("model flag")? != 0;
+    let n = r.u32("value count")? as usize;
+    if n != unit.variables.len() {
+        return Err(format!("{n} values, but this unit has {} variables", unit.variables.len()));
+    }
+    let mut values = Vec::with_capacity(n);
+    for v in &unit.variables {
+        let tag = r.u8("value type")?;
+        let value = match (tag, v.var_type) {
+            (0, VarType::Real) => Value::Real(r.f64(&v.name)?),
+            (1, VarType::Integer) => Value::Integer(i32::from_le_bytes(r.take(4, &v.name)?.try_into().expect("4 bytes"))),
+            (2, VarType::Boolean) => Value::Boolean(r.u8(&v.name)? != 0),
+            (3, VarType::String) => Value::String(r.string(&v.name)?),
+            _ => return Err(format!("value of `{}` has type tag {tag}, not {}", v.name, v.var_type.xml_name())),
+        };
+        values.push(value);
+    }
+    let m = r.u32("model state length")? as usize;
+    let model = r.take(m, "model state")?.to_vec();
+    if r.at != body.len() {
+        return Err(format!("{} bytes left over after the model state", body.len() - r.at));
+    }
+    Ok(Saved { kind, mode, time, start_time, stop_time: has_stop.then_some(stop), model_ready, values, model })
+}

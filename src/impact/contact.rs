@@ -1,0 +1,165 @@
+//! One contact followed in time: the law, its damping, and the history accepted so far. Both units and
+//! every integrator share this bookkeeping:
+//!
+//! - Trial evaluations (Runge-Kutta stages, CVode's right-hand sides) use the accepted history and never
+//!   change it.
+//! - `accept` moves the history to the current overlap: at events and at accepted steps only.
+//! - The branch interval of the accepted state gives two event indicators, positive inside the branch.
+//!   A bound that moves with the overlap (plastic loading, where alpha_max follows alpha) is watched through
+//!   the sign of the overlap rate instead, so the turning point, where the history must be taken, is an
+//!   event too. Indicators carry a small hysteresis (DESIGN 6), and an accepted state at a branch point is
+//!   nudged in the direction of motion, so the branch just entered is the one the motion goes into.
+
+use crate::law::damping::NormalDamping;
+use crate::law::{AnyHistory, AnyLaw, Branch, Evaluation, NormalLaw};
+use crate::numeric::tanh_sinh;
+
+/// Indicator hysteresis, in units of the nominal overlap (or nominal rate).
+pub const HYSTERESIS: f64 = 1e-10;
+/// The nudge into the branch the motion enters, in units of the nominal overlap.
+pub const NUDGE: f64 = 1e-9;
+
+#[derive(Debug, Clone)]
+pub struct Contact {
+    pub law: AnyLaw,
+    pub damping: NormalDamping,
+    /// Overlap scale of indicators and tolerances [m].
+    pub alpha_nominal: f64,
+    /// Overlap-rate scale of the rate indicators [m/s].
+    pub rate_nominal: f64,
+    pub history: AnyHistory,
+    /// The evaluation at the accepted state (its branch and interval).
+    pub accepted: Evaluation<AnyHistory>,
+    /// The overlap at which `accepted` was evaluated [m].
+    pub accepted_alpha: f64,
+    /// Largest overlap reached [m] (NEG_INFINITY before any).
+    pub max_overlap: f64,
+}
+
+/// Force of one trial evaluation.
+#[derive(Debug, Clone, Copy)]
+pub struct ContactForce {
+    /// Elastic-plastic-adhesive force of the law [N].
+    pub law: f64,
+    /// Viscous damping force [N].
+    pub damping: f64,
+    pub branch: Branch,
+}
+
+impl ContactForce {
+    pub fn total(&self) -> f64 {
+        self.law + self.damping
+    }
+}
+
+impl Contact {
+    pub fn new(law: AnyLaw, damping: NormalDamping, alpha_nominal: f64, rate_nominal: f64) -> Contact {
+        let history = law.initial_history();
+        // A placeholder until the unit accepts its initial state.
+        let accepted = Evaluation::separated(f64::INFINITY, history);
+        Contact { law, damping, alpha_nominal, rate_nominal, history, accepted, accepted_alpha: f64::NAN, max_overlap: f64::NEG_INFINITY }
+    }
+
+    /// Force at overlap `alpha` and overlap rate `rate` with the accepted history (a trial: nothing kept).
+    pub fn force(&self, alpha: f64, rate: f64) -> ContactForce {
+        let e = self.law.evaluate(alpha, &self.history);
+        let damping = if e.branch.in_contact() {
+            let k = self.law.damping_stiffness(alpha, &e.history, e.stiffness);
+            self.damping.force(k, self.law.has_yielded(&e.history), rate)
+        } else {
+            0.0
+        };
+        ContactForce { law: e.force, damping, branch: e.branch }
+    }
+
+    /// The branch at `alpha`: the trial branch, except at the accepted point itself, where it is the branch
+    /// the motion goes into (plastic loading rather than the elastic end of the line just accepted).
+    pub fn branch_at(&self, alpha: f64, rate: f64) -> Branch {
+        if (alpha - self.accepted_alpha).abs() <= 2.0 * NUDGE * self.alpha_nominal {
+            self.accepted.branch
+        } else {
+            self.force(alpha, rate).branch
+        }
+    }
+
+    /// Takes the state at `alpha`, moving with `rate`, into the history. Returns the branch before and after.
+    pub fn accept(&mut self, alpha: f64, rate: f64) -> (Branch, Branch) {
+        let before = self.accepted.branch;
+        // First the history at alpha itself (a turning point of plastic loading keeps its alpha_max), then
+        // the branch the motion goes into.
+        let here = self.law.evaluate(alpha, &self.history);
+        let step = NUDGE * self.alpha_nominal * direction(rate);
+        let into = if step == 0.0 { here } else { self.law.evaluate(alpha + step, &here.history) };
+        let into_point = alpha + step;
+        self.history = into.history;
+        self.accepted = into;
+        self.accepted_alpha = into_point;
+        if alpha > self.max_overlap {
+            self.max_overlap = alpha;
+        }
+        (before, into.branch)
+    }
+
+    /// The two event indicators at `alpha`, `rate`: positive while the accepted branch holds.
+    pub fn indicators(&self, alpha: f64, rate: f64) -> [f64; 2] {
+        let e = &self.accepted;
+        let lower = if e.lower == self.accepted_alpha {
+            rate / self.rate_nominal + HYSTERESIS
+        } else if e.lower.is_finite() {
+            (alpha - e.lower) / self.alpha_nominal + HYSTERESIS
+        } else {
+            1.0
+        };
+        let upper = if e.upper == self.accepted_alpha {
+            -rate / self.rate_nominal + HYSTERESIS
+        } else if e.upper.is_finite() {
+            (e.upper - alpha) / self.alpha_nominal + HYSTERESIS
+        } else {
+            1.0
+        };
+        [lower, upper]
+    }
+
+    /// Follows a straight overlap path from the accepted overlap to `to`, accepting the history at every
+    /// branch point on the way; returns the work of the law's force along it, the integral of f d alpha [J].
+    /// A monotone path cannot turn, so stopping at each branch point is the exact history.
+    pub fn follow(&mut self, to: f64) -> f64 {
+        let mut at = self.accepted_alpha;
+        if !at.is_finite() {
+            self.accept(to, 0.0);
+            return 0.0;
+        }
+        let dir = direction(to - at);
+        if dir == 0.0 {
+            return 0.0;
+        }
+        let mut work = 0.0;
+        for _ in 0..10_000 {
+            let e = self.accepted;
+            let bound = if dir > 0.0 { e.upper } else { e.lower };
+            let moving = bound == self.accepted_alpha;
+            let end = if moving || !bound.is_finite() || (bound - to) * dir >= 0.0 { to } else { bound };
+            if (end - at) * dir > 0.0 {
+                let h = self.history;
+                work += tanh_sinh(|x| self.law.evaluate(x, &h).force, at, end);
+            }
+            self.accept(end, dir);
+            at = end;
+            if end == to {
+                break;
+            }
+        }
+        work
+    }
+}
+
+/// +1, -1 or 0: the sign of a rate, for the nudge.
+fn direction(rate: f64) -> f64 {
+    if rate > 0.0 {
+        1.0
+    } else if rate < 0.0 {
+        -1.0
+    } else {
+        0.0
+    }
+}

@@ -1,0 +1,246 @@
+//! ContactElement: one contact law as a force element with direct feed-through. The inputs are the
+//! wall's approach toward the sphere and its rate; the overlap is wall_displacement - initial_gap. The
+//! masses live elsewhere in the system model (the damping uses the scene's m*).
+//!
+//! The history follows the overlap inputs as a sequence of straight paths: at every accepted point (ME:
+//! events and completed integrator steps; CS: each fmi2DoStep, with the inputs of its start), the history
+//! walks from the last accepted overlap to the current one and stops at each branch point on the way.
+//! ME has one continuous state, the contact work (its derivative is force times wall_velocity).
+
+use super::scene_params;
+use super::variables::{Role, Value, VarType, Variable};
+use super::{Model, UnitInfo};
+use crate::impact::Contact;
+use crate::law::damping::NormalDamping;
+use crate::law::params::Effective;
+use crate::law::{AnyHistory, AnyLaw, Evaluation, NormalLaw};
+use serde::{Deserialize, Serialize};
+
+pub const MODEL_IDENTIFIER: &str = "ContactElement";
+
+fn own_variables() -> Vec<Variable> {
+    vec![
+        Variable::input("wall_displacement", "m", "approach of the wall toward the sphere (overlap = wall_displacement - initial_gap)"),
+        Variable::input("wall_velocity", "m/s", "rate of the approach (for the viscous damping and the contact work)"),
+        Variable::output("force", VarType::Real, "N", "normal contact force (law plus damping), positive repulsive"),
+        Variable::output("overlap", VarType::Real, "m", "overlap alpha = wall_displacement - initial_gap, positive in compression").with_nominal(1e-9),
+        Variable::output(
+            "contact_state",
+            VarType::Integer,
+            "",
+            "branch of the law: 0 not in contact, 1 elastic, 2 plastic loading, 3 adhesive (beyond pull-off), 4 reloading (tomas), 5 attracted without contact (tomas)",
+        ),
+        Variable::output("max_overlap", VarType::Real, "m", "largest overlap reached so far (0 before contact)").with_nominal(1e-9),
+        Variable::output("plastic_overlap", VarType::Real, "m", "overlap at which the current unloading branch meets zero force (alpha_p)")
+            .with_nominal(1e-9),
+        Variable::output("pull_off_force", VarType::Real, "N", "largest tensile force the contact can take with its current history (f_cp)"),
+        Variable::output(
+            "dissipated_energy",
+            VarType::Real,
+            "J",
+            "work done on the contact, the integral of force d(overlap); after separation, the energy the contact dissipated",
+        )
+        .with_role(Role::State(0)),
+        Variable::local("der(dissipated_energy)", "W", "power of the contact force, force times wall_velocity", Role::Derivative(0)),
+        Variable::parameter("initial_gap", Value::Real(0.0), "m", "wall_displacement at which the surfaces touch"),
+    ]
+}
+
+pub fn info() -> UnitInfo {
+    let mut variables = own_variables();
+    variables.extend(scene_params::variables());
+    UnitInfo {
+        model_identifier: MODEL_IDENTIFIER,
+        description: "One elasto-plastic adhesive normal contact as a force element (powderfmu)",
+        variables,
+        n_states: 1,
+        n_event_indicators: 2,
+        stop_time: 1.0,
+        step_size: 1e-3,
+        new_model: |u| Box::new(ContactElement::new(u)),
+    }
+}
+
+#[derive(Debug, Clone, Copy)]
+struct Refs {
+    wall_displacement: usize,
+    wall_velocity: usize,
+    force: usize,
+    overlap: usize,
+    contact_state: usize,
+    max_overlap: usize,
+    plastic_overlap: usize,
+    pull_off_force: usize,
+    dissipated_energy: usize,
+    der_energy: usize,
+    initial_gap: usize,
+}
+
+pub struct ContactElement {
+    refs: Refs,
+    variables: Vec<Variable>,
+    contact: Option<Contact>,
+    gap: f64,
+    work: f64,
+}
+
+#[derive(Serialize, Deserialize)]
+struct Snapshot {
+    work: f64,
+    history: AnyHistory,
+    accepted: Evaluation<AnyHistory>,
+    accepted_alpha: f64,
+    max_overlap: f64,
+}
+
+impl ContactElement {
+    fn new(u: &UnitInfo) -> ContactElement {
+        let r = |n: &str| u.vr_of(n);
+        ContactElement {
+            refs: Refs {
+                wall_displacement: r("wall_displacement"),
+                wall_velocity: r("wall_velocity"),
+                force: r("force"),
+                overlap: r("overlap"),
+                contact_state: r("contact_state"),
+                max_overlap: r("max_overlap"),
+                plastic_overlap: r("plastic_overlap"),
+                pull_off_force: r("pull_off_force"),
+                dissipated_energy: r("dissipated_energy"),
+                der_energy: r("der(dissipated_energy)"),
+                initial_gap: r("initial_gap"),
+            },
+            variables: u.variables.clone(),
+            contact: None,
+            gap: 0.0,
+            work: 0.0,
+        }
+    }
+
+    fn build(&self, values: &[Value]) -> Result<(Contact, f64), String> {
+        let scene = scene_params::scene(&self.variables, values).map_err(|e| e.to_string())?;
+        let law = AnyLaw::from_scene(&scene).map_err(|e| e.to_string())?;
+        let eff = Effective::from_scene(&scene).map_err(|e| e.to_string())?;
+        let damping = NormalDamping::from_scene(&scene, eff.mass);
+        let gap = values[self.refs.initial_gap].as_real();
+        if !gap.is_finite() {
+            return Err(format!("parameter `initial_gap` = {gap} m is not a finite number"));
+        }
+        let rate_nominal = values[self.refs.wall_velocity].as_real().abs().max(1e-3);
+        Ok((Contact::new(law, damping, 1e-3 * eff.radius, rate_nominal), gap))
+    }
+
+    /// Overlap and rate of the current inputs.
+    fn inputs(&self, values: &[Value]) -> (f64, f64) {
+        (values[self.refs.wall_displacement].as_real() - self.gap, values[self.refs.wall_velocity].as_real())
+    }
+}
+
+impl Model for ContactElement {
+    fn initialize(&mut self, values: &[Value], _t0: f64) -> Result<(), String> {
+        let (mut contact, gap) = self.build(values)?;
+        self.gap = gap;
+        let (alpha, rate) = self.inputs(values);
+        if !alpha.is_finite() || !rate.is_finite() {
+            return Err(format!("inputs `wall_displacement` = {alpha} m and `wall_velocity` = {rate} m/s must be finite"));
+        }
+        contact.accept(alpha, rate);
+        self.contact = Some(contact);
+        self.work = 0.0;
+        Ok(())
+    }
+
+    fn compute(&mut self, values: &mut [Value]) {
+        let (alpha, rate) = self.inputs(values);
+        let Some(c) = &self.contact else { return };
+        let r = self.refs;
+        let f = c.force(alpha, rate);
+        values[r.force] = Value::Real(f.total());
+        values[r.overlap] = Value::Real(alpha);
+        values[r.contact_state] = Value::Integer(c.branch_at(alpha, rate).contact_state());
+        values[r.max_overlap] = Value::Real(c.max_overlap.max(alpha).max(0.0));
+        values[r.plastic_overlap] = Value::Real(c.law.plastic_overlap(&c.history));
+        values[r.pull_off_force] = Value::Real(c.law.pull_off_force(&c.history));
+        values[r.dissipated_energy] = Value::Real(self.work);
+        values[r.der_energy] = Value::Real(f.total() * rate);
+    }
+
+    fn set_time(&mut self, _t: f64) {}
+
+    fn get_states(&self, x: &mut [f64]) {
+        x[0] = self.work;
+    }
+
+    fn set_states(&mut self, x: &[f64]) {
+        self.work = x[0];
+    }
+
+    fn derivatives(&mut self, values: &[Value], dx: &mut [f64]) {
+        let (alpha, rate) = self.inputs(values);
+        dx[0] = self.contact.as_ref().map_or(0.0, |c| c.force(alpha, rate).total() * rate);
+    }
+
+    fn event_indicators(&mut self, values: &[Value], z: &mut [f64]) {
+        let (alpha, rate) = self.inputs(values);
+        if let Some(c) = &self.contact {
+            z.copy_from_slice(&c.indicators(alpha, rate));
+        }
+    }
+
+    fn nominals(&self, x: &mut [f64]) {
+        x[0] = self.contact.as_ref().map_or(1.0, |c| {
+            let f = c.law.pull_off_force(&c.history).abs().max(1e-12);
+            f * c.alpha_nominal
+        });
+    }
+
+    fn accept(&mut self, values: &[Value]) -> Option<String> {
+        let (alpha, rate) = self.inputs(values);
+        let c = self.contact.as_mut()?;
+        let before = c.accepted.branch;
+        c.follow(alpha);
+        c.accept(alpha, rate);
+        let after = c.accepted.branch;
+        (before != after).then(|| format!("branch {before:?} -> {after:?} at overlap {alpha:e} m"))
+    }
+
+    /// The inputs are held over the step: the history walks to the overlap of the step's start and the
+    /// work of the law's force along that walk, plus the damping force times the walk, is added.
+    fn do_step(&mut self, values: &[Value], _t: f64, _h: f64) -> Result<(), String> {
+        let (alpha, rate) = self.inputs(values);
+        let c = self.contact.as_mut().ok_or("the unit is not initialized")?;
+        let from = c.accepted_alpha;
+        let law_work = c.follow(alpha);
+        let damping = c.force(alpha, rate).damping;
+        c.accept(alpha, rate);
+        self.work += law_work + damping * (alpha - from);
+        Ok(())
+    }
+
+    fn save(&self) -> Vec<u8> {
+        let Some(c) = &self.contact else { return Vec::new() };
+        let snap =
+            Snapshot { work: self.work, history: c.history, accepted: c.accepted, accepted_alpha: c.accepted_alpha, max_overlap: c.max_overlap };
+        bincode::serialize(&snap).unwrap_or_default()
+    }
+
+    fn restore(&mut self, values: &[Value], bytes: &[u8]) -> Result<(), String> {
+        if bytes.is_empty() {
+            self.contact = None;
+            return Ok(());
+        }
+        let snap: Snapshot = super::decode(bytes)?;
+        let (mut c, gap) = self.build(values)?;
+        if std::mem::discriminant(&snap.history) != std::mem::discriminant(&c.law.initial_history()) {
+            return Err("the saved state belongs to another contact_model than the parameters".into());
+        }
+        c.history = snap.history;
+        c.accepted = snap.accepted;
+        c.accepted_alpha = snap.accepted_alpha;
+        c.max_overlap = snap.max_overlap;
+        self.contact = Some(c);
+        self.gap = gap;
+        self.work = snap.work;
+        Ok(())
+    }
+}

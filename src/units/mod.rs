@@ -1,0 +1,119 @@
+//! The FMUs: each unit is a variable table plus a `Model` that drives the dynamics (DESIGN 2). The FMI
+//! glue in `crate::fmi2` knows only this module's `UnitInfo` and `Model` trait, never the physics.
+
+pub mod contact_element;
+pub mod model_description;
+pub mod particle_wall_impact;
+pub mod scene_params;
+pub mod variables;
+
+use std::sync::OnceLock;
+use variables::Value;
+
+/// The log categories of every unit (FMI 2.0 Sec. 2.2.4), name and meaning.
+pub const LOG_CATEGORIES: &[(&str, &str)] = &[
+    ("logEvents", "Branch switches of the contact law and other events"),
+    ("logStatusWarning", "Calls that returned fmi2Warning"),
+    ("logStatusError", "Calls that returned fmi2Error: bad input or a call out of sequence"),
+    ("logStatusFatal", "Calls that returned fmi2Fatal"),
+    ("logAll", "Every call"),
+];
+
+/// What a unit does, as the FMI glue sees it. Values are indexed by value reference (the position in
+/// the variable table); the glue has checked types, causality and the calling sequence before a call.
+pub trait Model: Send {
+    /// Reads the parameters and inputs and sets the initial state at `t0` (fmi2ExitInitializationMode).
+    /// An error names the parameter and its allowed range.
+    fn initialize(&mut self, values: &[Value], t0: f64) -> Result<(), String>;
+    /// Writes the outputs and locals for the current time, state and inputs into `values`.
+    fn compute(&mut self, values: &mut [Value]);
+    /// ME: the solver's time.
+    fn set_time(&mut self, t: f64);
+    fn get_states(&self, x: &mut [f64]);
+    fn set_states(&mut self, x: &[f64]);
+    fn derivatives(&mut self, values: &[Value], dx: &mut [f64]);
+    fn event_indicators(&mut self, values: &[Value], z: &mut [f64]);
+    fn nominals(&self, x: &mut [f64]);
+    /// ME: an event or a completed integrator step: the contact's history accepts the current state.
+    /// Returns a message for the logEvents category when the branch changed.
+    fn accept(&mut self, values: &[Value]) -> Option<String>;
+    /// CS: advance from `t` by `h` with the current inputs.
+    fn do_step(&mut self, values: &[Value], t: f64, h: f64) -> Result<(), String>;
+    /// The dynamic state (not the parameters) as bytes; `restore` reads it back.
+    fn save(&self) -> Vec<u8>;
+    fn restore(&mut self, values: &[Value], bytes: &[u8]) -> Result<(), String>;
+}
+
+/// One unit: identifier, variables, sizes and a constructor of its model.
+pub struct UnitInfo {
+    pub model_identifier: &'static str,
+    pub description: &'static str,
+    pub variables: Vec<variables::Variable>,
+    pub n_states: usize,
+    pub n_event_indicators: usize,
+    /// DefaultExperiment of the XML [s].
+    pub stop_time: f64,
+    pub step_size: f64,
+    pub new_model: fn(&UnitInfo) -> Box<dyn Model>,
+}
+
+impl UnitInfo {
+    /// The value reference (table position) of a variable.
+    pub fn vr(&self, name: &str) -> Option<usize> {
+        self.variables.iter().position(|v| v.name == name)
+    }
+
+    /// Value reference of a variable the unit itself defines (a missing one is a bug in the table).
+    pub fn vr_of(&self, name: &str) -> usize {
+        self.vr(name).unwrap_or_else(|| panic!("unit {} has no variable {name}", self.model_identifier))
+    }
+
+    /// The GUID: a hash of the model description without it, so it changes exactly when the interface does.
+    pub fn guid(&self) -> String {
+        let text = model_description::xml(self, "");
+        let a = fnv1a64(text.as_bytes(), 0xcbf2_9ce4_8422_2325);
+        let b = fnv1a64(text.as_bytes(), 0x6c62_272e_07bb_0142);
+        format!("{{{:08x}-{:04x}-{:04x}-{:04x}-{:012x}}}", a >> 32, (a >> 16) & 0xffff, a & 0xffff, b >> 48, b & 0xffff_ffff_ffff)
+    }
+
+    pub fn model_description(&self) -> String {
+        model_description::xml(self, &self.guid())
+    }
+
+    /// Every variable at its start value.
+    pub fn start_values(&self) -> Vec<Value> {
+        self.variables.iter().map(|v| v.initial_value()).collect()
+    }
+}
+
+fn fnv1a64(bytes: &[u8], seed: u64) -> u64 {
+    let mut h = seed;
+    for b in bytes {
+        h ^= u64::from(*b);
+        h = h.wrapping_mul(0x0000_0100_0000_01b3);
+    }
+    h
+}
+
+/// Every unit of the crate, built once.
+pub fn all() -> &'static [UnitInfo] {
+    static UNITS: OnceLock<Vec<UnitInfo>> = OnceLock::new();
+    UNITS.get_or_init(|| vec![particle_wall_impact::info(), contact_element::info()])
+}
+
+/// The unit with this model identifier.
+pub fn by_identifier(id: &str) -> Option<&'static UnitInfo> {
+    all().iter().find(|u| u.model_identifier == id)
+}
+
+/// Reads a model snapshot written by `bincode::serialize`, refusing anything larger than 1 MiB or with
+/// bytes left over.
+pub(crate) fn decode<T: serde::de::DeserializeOwned>(bytes: &[u8]) -> Result<T, String> {
+    use bincode::Options;
+    bincode::DefaultOptions::new()
+        .with_fixint_encoding()
+        .with_limit(1 << 20)
+        .reject_trailing_bytes()
+        .deserialize(bytes)
+        .map_err(|e| format!("the saved model state cannot be read: {e}"))
+}

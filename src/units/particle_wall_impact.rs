@@ -1,0 +1,352 @@
+//! ParticleWallImpact: a sphere moving along the normal of a wall whose displacement and velocity are
+//! inputs. The wall plane is at z = wall_displacement, the sphere centre at z = sphere_position, so the
+//! overlap is particle_radius - (sphere_position - wall_displacement). Model Exchange: continuous states
+//! are the height of the sphere's lowest point (sphere_position - particle_radius, so that CVode's
+//! tolerances act on overlap-sized numbers), the velocity and the contact work; two event indicators follow
+//! the branch interval of the law. Co-Simulation: `impact::Sphere::advance`.
+
+use super::scene_params;
+use super::variables::{Causality, Role, Value, VarType, Variable};
+use super::{Model, UnitInfo};
+use crate::impact::{Contact, Sphere, State, Wall};
+use crate::law::damping::NormalDamping;
+use crate::law::params::Effective;
+use crate::law::{AnyHistory, AnyLaw, Evaluation, NormalLaw};
+use crate::scene::Partner;
+use serde::{Deserialize, Serialize};
+
+pub const MODEL_IDENTIFIER: &str = "ParticleWallImpact";
+
+/// The unit's own variables (the scene keys follow them).
+fn own_variables() -> Vec<Variable> {
+    vec![
+        Variable::input("wall_displacement", "m", "position of the wall plane along the normal (z of the wall)"),
+        Variable::input("wall_velocity", "m/s", "velocity of the wall along the normal (positive toward the sphere's side)"),
+        Variable::output("force", VarType::Real, "N", "normal contact force on the sphere (law plus damping), positive pushes it away from the wall"),
+        Variable::output("overlap", VarType::Real, "m", "overlap alpha = particle_radius - (sphere_position - wall_displacement), positive in compression").with_nominal(1e-9),
+        Variable::output(
+            "contact_state",
+            VarType::Integer,
+            "",
+            "branch of the law: 0 not in contact, 1 elastic, 2 plastic loading, 3 adhesive (beyond pull-off), 4 reloading (tomas), 5 attracted without contact (tomas)",
+        ),
+        Variable::output("sphere_position", VarType::Real, "m", "height of the sphere centre"),
+        Variable::output("sphere_velocity", VarType::Real, "m/s", "velocity of the sphere, positive away from the wall").with_role(Role::State(1)),
+        Variable::output("max_overlap", VarType::Real, "m", "largest overlap reached so far (0 before contact)").with_nominal(1e-9),
+        Variable::output("plastic_overlap", VarType::Real, "m", "overlap at which the current unloading branch meets zero force (alpha_p)")
+            .with_nominal(1e-9),
+        Variable::output("pull_off_force", VarType::Real, "N", "largest tensile force the contact can take with its current history (f_cp)"),
+        Variable::output(
+            "dissipated_energy",
+            VarType::Real,
+            "J",
+            "work done on the contact, the integral of force d(overlap); after the sphere has left the wall, the energy the contact dissipated",
+        )
+        .with_role(Role::State(2)),
+        Variable::local("sphere_bottom", "m", "height of the sphere's lowest point, sphere_position - particle_radius (ME state)", Role::State(0)).with_nominal(1e-9),
+        Variable::local("der(sphere_bottom)", "m/s", "velocity of the sphere's lowest point", Role::Derivative(0)),
+        Variable::local("der(sphere_velocity)", "m/s2", "acceleration of the sphere", Role::Derivative(1)),
+        Variable::local("der(dissipated_energy)", "W", "power of the contact force on the overlap rate", Role::Derivative(2)),
+        Variable::parameter("initial_gap", Value::Real(1e-8), "m", "gap between the sphere surface and the wall at the start").with_range(Some(0.0), None),
+        Variable::parameter("initial_velocity", Value::Real(1.0), "m/s", "approach speed of the sphere at the start, positive toward the wall"),
+        Variable::parameter("gravity", Value::Real(0.0), "m/s2", "gravitational acceleration toward the wall"),
+        Variable::parameter("tolerance", Value::Real(1e-10), "", "relative tolerance of the Co-Simulation integrator, in [1e-14, 1e-2]")
+            .with_range(Some(1e-14), Some(1e-2)),
+    ]
+}
+
+pub fn info() -> UnitInfo {
+    let mut variables = own_variables();
+    variables.extend(scene_params::variables());
+    debug_assert!(variables.iter().all(|v| v.causality != Causality::Independent));
+    UnitInfo {
+        model_identifier: MODEL_IDENTIFIER,
+        description: "A sphere against a moving wall with an elasto-plastic adhesive contact law (powderfmu)",
+        variables,
+        n_states: 3,
+        n_event_indicators: 2,
+        stop_time: 2e-7,
+        step_size: 1e-9,
+        new_model: |u| Box::new(ParticleWallImpact::new(u)),
+    }
+}
+
+/// Value references of the variables the model reads and writes.
+#[derive(Debug, Clone, Copy)]
+struct Refs {
+    wall_displacement: usize,
+    wall_velocity: usize,
+    force: usize,
+    overlap: usize,
+    contact_state: usize,
+    sphere_position: usize,
+    sphere_velocity: usize,
+    max_overlap: usize,
+    plastic_overlap: usize,
+    pull_off_force: usize,
+    dissipated_energy: usize,
+    sphere_bottom: usize,
+    der_bottom: usize,
+    der_velocity: usize,
+    der_energy: usize,
+    initial_gap: usize,
+    initial_velocity: usize,
+    gravity: usize,
+    tolerance: usize,
+}
+
+pub struct ParticleWallImpact {
+    refs: Refs,
+    variables: Vec<Variable>,
+    radius: f64,
+    sphere: Option<Sphere>,
+    y: State,
+    t: f64,
+    /// CS: the wall input the last step started from and where the step left the wall.
+    cs_wall: Option<(f64, f64)>,
+}
+
+/// The dynamic state, for fmi2GetFMUstate and serialization.
+#[derive(Serialize, Deserialize)]
+struct Snapshot {
+    y: State,
+    t: f64,
+    history: AnyHistory,
+    accepted: Evaluation<AnyHistory>,
+    accepted_alpha: f64,
+    max_overlap: f64,
+    last_step: f64,
+    cs_wall: Option<(f64, f64)>,
+}
+
+fn real(values: &[Value], vr: usize) -> f64 {
+    values[vr].as_real()
+}
+
+impl ParticleWallImpact {
+    fn new(u: &UnitInfo) -> ParticleWallImpact {
+        let r = |n: &str| u.vr_of(n);
+        ParticleWallImpact {
+            refs: Refs {
+                wall_displacement: r("wall_displacement"),
+                wall_velocity: r("wall_velocity"),
+                force: r("force"),
+                overlap: r("overlap"),
+                contact_state: r("contact_state"),
+                sphere_position: r("sphere_position"),
+                sphere_velocity: r("sphere_velocity"),
+                max_overlap: r("max_overlap"),
+                plastic_overlap: r("plastic_overlap"),
+                pull_off_force: r("pull_off_force"),
+                dissipated_energy: r("dissipated_energy"),
+                sphere_bottom: r("sphere_bottom"),
+                der_bottom: r("der(sphere_bottom)"),
+                der_velocity: r("der(sphere_velocity)"),
+                der_energy: r("der(dissipated_energy)"),
+                initial_gap: r("initial_gap"),
+                initial_velocity: r("initial_velocity"),
+                gravity: r("gravity"),
+                tolerance: r("tolerance"),
+            },
+            variables: u.variables.clone(),
+            radius: 0.0,
+            sphere: None,
+            y: [0.0; 3],
+            t: 0.0,
+            cs_wall: None,
+        }
+    }
+
+    /// The sphere of the current parameters (law, damping, mass, tolerances); the state is not touched.
+    fn build(&self, values: &[Value]) -> Result<(Sphere, f64), String> {
+        let scene = scene_params::scene(&self.variables, values).map_err(|e| e.to_string())?;
+        if scene.contact_partner != Partner::Wall {
+            return Err("parameter `contact_partner` = \"particle\" is not allowed in ParticleWallImpact: the sphere hits a wall; use \"wall\" (two identical particles: use ContactElement)".into());
+        }
+        let law = AnyLaw::from_scene(&scene).map_err(|e| e.to_string())?;
+        let eff = Effective::from_scene(&scene).map_err(|e| e.to_string())?;
+        let damping = NormalDamping::from_scene(&scene, eff.mass);
+        let refs = self.refs;
+        let v0 = finite(values, refs.initial_velocity, "initial_velocity", "m/s")?;
+        let g = finite(values, refs.gravity, "gravity", "m/s2")?;
+        let tol = finite(values, refs.tolerance, "tolerance", "")?;
+        if !(1e-14..=1e-2).contains(&tol) {
+            return Err(format!("parameter `tolerance` = {tol:e} is out of range: allowed [1e-14, 1e-2]"));
+        }
+        let wd = finite(values, refs.wall_velocity, "wall_velocity", "m/s")?;
+        let alpha_nominal = 1e-3 * scene.particle_radius;
+        let rate_nominal = v0.abs().max(wd.abs()).max(1e-3);
+        let contact = Contact::new(law, damping, alpha_nominal, rate_nominal);
+        Ok((Sphere { mass: eff.mass, gravity: g, contact, tolerance: tol, last_step: 0.0, steps: 0, events: 0 }, scene.particle_radius))
+    }
+
+    fn wall(&self, values: &[Value]) -> Wall {
+        Wall { t0: self.t, position: real(values, self.refs.wall_displacement), velocity: real(values, self.refs.wall_velocity) }
+    }
+}
+
+/// A finite real parameter or input, or an error naming it.
+fn finite(values: &[Value], vr: usize, name: &str, unit: &str) -> Result<f64, String> {
+    let x = real(values, vr);
+    if x.is_finite() {
+        Ok(x)
+    } else {
+        Err(format!("`{name}` = {x} {unit} is not a finite number"))
+    }
+}
+
+impl Model for ParticleWallImpact {
+    fn initialize(&mut self, values: &[Value], t0: f64) -> Result<(), String> {
+        let (mut sphere, radius) = self.build(values)?;
+        let gap = finite(values, self.refs.initial_gap, "initial_gap", "m")?;
+        if gap < 0.0 {
+            return Err(format!("parameter `initial_gap` = {gap:e} m is out of range: allowed >= 0 (the sphere starts out of contact)"));
+        }
+        let w = finite(values, self.refs.wall_displacement, "wall_displacement", "m")?;
+        let v0 = real(values, self.refs.initial_velocity);
+        self.t = t0;
+        self.y = [w + gap, -v0, 0.0];
+        self.radius = radius;
+        self.cs_wall = None;
+        let wall = Wall { t0, position: w, velocity: real(values, self.refs.wall_velocity) };
+        sphere.accept(&wall, t0, &self.y);
+        sphere.contact.max_overlap = f64::NEG_INFINITY;
+        self.sphere = Some(sphere);
+        Ok(())
+    }
+
+    fn compute(&mut self, values: &mut [Value]) {
+        let Some(sphere) = &self.sphere else { return };
+        let r = self.refs;
+        let mut wall = self.wall(values);
+        if let Some((input_used, wall_end)) = self.cs_wall {
+            if wall.position == input_used {
+                wall.position = wall_end;
+            }
+        }
+        let (alpha, rate) = sphere.overlap(&wall, self.t, &self.y);
+        let f = sphere.contact.force(alpha, rate);
+        let c = &sphere.contact;
+        let dy = sphere.derivatives(&wall, self.t, &self.y);
+        values[r.force] = Value::Real(f.total());
+        values[r.overlap] = Value::Real(alpha);
+        values[r.contact_state] = Value::Integer(c.branch_at(alpha, rate).contact_state());
+        values[r.sphere_position] = Value::Real(self.y[0] + self.radius);
+        values[r.sphere_velocity] = Value::Real(self.y[1]);
+        values[r.max_overlap] = Value::Real(c.max_overlap.max(0.0));
+        values[r.plastic_overlap] = Value::Real(c.law.plastic_overlap(&c.history));
+        values[r.pull_off_force] = Value::Real(c.law.pull_off_force(&c.history));
+        values[r.dissipated_energy] = Value::Real(self.y[2]);
+        values[r.sphere_bottom] = Value::Real(self.y[0]);
+        values[r.der_bottom] = Value::Real(dy[0]);
+        values[r.der_velocity] = Value::Real(dy[1]);
+        values[r.der_energy] = Value::Real(dy[2]);
+    }
+
+    fn set_time(&mut self, t: f64) {
+        self.t = t;
+    }
+
+    fn get_states(&self, x: &mut [f64]) {
+        x.copy_from_slice(&self.y);
+    }
+
+    fn set_states(&mut self, x: &[f64]) {
+        self.y.copy_from_slice(x);
+    }
+
+    fn derivatives(&mut self, values: &[Value], dx: &mut [f64]) {
+        if let Some(sphere) = &self.sphere {
+            dx.copy_from_slice(&sphere.derivatives(&self.wall(values), self.t, &self.y));
+        }
+    }
+
+    fn event_indicators(&mut self, values: &[Value], z: &mut [f64]) {
+        if let Some(sphere) = &self.sphere {
+            z.copy_from_slice(&sphere.indicators(&self.wall(values), self.t, &self.y));
+        }
+    }
+
+    fn nominals(&self, x: &mut [f64]) {
+        if let Some(s) = &self.sphere {
+            let c = &s.contact;
+            x.copy_from_slice(&[c.alpha_nominal, c.rate_nominal, 0.5 * s.mass * c.rate_nominal * c.rate_nominal]);
+        } else {
+            x.fill(1.0);
+        }
+    }
+
+    fn accept(&mut self, values: &[Value]) -> Option<String> {
+        let wall = self.wall(values);
+        let (t, y) = (self.t, self.y);
+        let sphere = self.sphere.as_mut()?;
+        let before = sphere.contact.accepted.branch;
+        if sphere.accept(&wall, t, &y) {
+            let after = sphere.contact.accepted.branch;
+            let (alpha, _) = sphere.overlap(&wall, t, &y);
+            return Some(format!("t = {t:e} s: branch {before:?} -> {after:?} at overlap {alpha:e} m"));
+        }
+        None
+    }
+
+    fn do_step(&mut self, values: &[Value], t: f64, h: f64) -> Result<(), String> {
+        let mut wall = self.wall(values);
+        wall.t0 = t;
+        if let Some((input_used, wall_end)) = self.cs_wall {
+            if wall.position == input_used {
+                wall.position = wall_end;
+            }
+        }
+        let sphere = self.sphere.as_mut().ok_or("the unit is not initialized")?;
+        let saved = (sphere.clone(), self.y);
+        let mut y = self.y;
+        if let Err(e) = sphere.advance(&wall, t, t + h, &mut y) {
+            // Nothing half-done: the state stays at the start of the step.
+            (*sphere, self.y) = saved;
+            return Err(e.to_string());
+        }
+        self.y = y;
+        self.t = t + h;
+        self.cs_wall = Some((real(values, self.refs.wall_displacement), wall.at(t + h)));
+        Ok(())
+    }
+
+    fn save(&self) -> Vec<u8> {
+        let Some(s) = &self.sphere else { return Vec::new() };
+        let c = &s.contact;
+        let snap = Snapshot {
+            y: self.y,
+            t: self.t,
+            history: c.history,
+            accepted: c.accepted,
+            accepted_alpha: c.accepted_alpha,
+            max_overlap: c.max_overlap,
+            last_step: s.last_step,
+            cs_wall: self.cs_wall,
+        };
+        bincode::serialize(&snap).unwrap_or_default()
+    }
+
+    fn restore(&mut self, values: &[Value], bytes: &[u8]) -> Result<(), String> {
+        if bytes.is_empty() {
+            self.sphere = None;
+            return Ok(());
+        }
+        let snap: Snapshot = super::decode(bytes)?;
+        let (mut sphere, radius) = self.build(values)?;
+        if std::mem::discriminant(&snap.history) != std::mem::discriminant(&sphere.contact.law.initial_history()) {
+            return Err("the saved state belongs to another contact_model than the parameters".into());
+        }
+        sphere.contact.history = snap.history;
+        sphere.contact.accepted = snap.accepted;
+        sphere.contact.accepted_alpha = snap.accepted_alpha;
+        sphere.contact.max_overlap = snap.max_overlap;
+        sphere.last_step = snap.last_step;
+        self.sphere = Some(sphere);
+        self.radius = radius;
+        self.y = snap.y;
+        self.t = snap.t;
+        self.cs_wall = snap.cs_wall;
+        Ok(())
+    }
+}

@@ -1,0 +1,105 @@
+//! The scene keys as FMU parameters (DESIGN 3: one vocabulary). Each key of `scene::KEYS` becomes one
+//! parameter of the same name: a String for the choices, a Real otherwise. Start values are the default
+//! scene (`000` Table 5, an ammonium fluorescein sphere on silicon). A Real whose scene default is
+//! derived from other values ("pi R* p_y", "rigid", ...) has start 0, and 0 means "derive it": such a
+//! key is left out of the scene the unit builds.
+
+use super::variables::{fmi_unit, Value, Variable};
+use crate::error::ParamError;
+use crate::scene::{Scene, KEYS};
+use serde_json::{Map, Value as Json};
+
+/// The default scene of the units.
+pub const DEFAULT_SCENE: &str = include_str!("../../scenes/ammonium_fluorescein_on_silicon.json");
+
+/// The keys whose values are names, not numbers.
+const CHOICE_KEYS: &[&str] = &[
+    "contact_model",
+    "contact_partner",
+    "yield_pressure_correlation",
+    "unloading_stiffness_law",
+    "pull_off_law",
+    "adhesive_stiffness_law",
+    "pasha_stiffness_law",
+];
+
+/// How a key reaches the FMU.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum KeyKind {
+    /// A String parameter holding one of the key's names.
+    Choice,
+    /// A Real with a fixed default.
+    Number,
+    /// A Real whose default is derived from other keys: 0 stands for "derive".
+    Derived,
+}
+
+pub fn key_kind(name: &str) -> KeyKind {
+    let key = KEYS.iter().find(|k| k.name == name).expect("a scene key");
+    if CHOICE_KEYS.contains(&name) {
+        KeyKind::Choice
+    } else if key.default == "required" || key.default.parse::<f64>().is_ok() {
+        KeyKind::Number
+    } else {
+        KeyKind::Derived
+    }
+}
+
+/// One FMU parameter per scene key.
+pub fn variables() -> Vec<Variable> {
+    let scene: Map<String, Json> = serde_json::from_str(DEFAULT_SCENE).expect("the default scene is a JSON object");
+    KEYS.iter()
+        .map(|key| {
+            let given = scene.get(key.name);
+            match key_kind(key.name) {
+                KeyKind::Choice => {
+                    let start = given.and_then(|v| v.as_str()).unwrap_or(key.default);
+                    Variable::parameter(key.name, Value::String(start.into()), "", key.doc)
+                }
+                KeyKind::Number => {
+                    let start = given.and_then(|v| v.as_f64()).or_else(|| key.default.parse().ok()).expect("a required key is in the default scene");
+                    Variable::parameter(key.name, Value::Real(start), fmi_unit(key.unit), key.doc)
+                }
+                KeyKind::Derived => {
+                    let start = given.and_then(|v| v.as_f64()).unwrap_or(0.0);
+                    let doc = format!("{}. 0 = default: {}", key.doc, key.default);
+                    Variable::parameter(key.name, Value::Real(start), fmi_unit(key.unit), &doc).with_range(Some(0.0), None)
+                }
+            }
+        })
+        .collect()
+}
+
+/// The scene of the parameter values `values[vr]` for the variables `vars` (only the scene keys among
+/// them are read). Every range check of `Scene` applies, with its message naming the parameter.
+pub fn scene(vars: &[Variable], values: &[Value]) -> Result<Scene, ParamError> {
+    let mut map = Map::new();
+    for (v, value) in vars.iter().zip(values) {
+        if !KEYS.iter().any(|k| k.name == v.name) {
+            continue;
+        }
+        let json = match (key_kind(&v.name), value) {
+            (KeyKind::Choice, Value::String(s)) => Json::String(s.clone()),
+            (KeyKind::Derived, Value::Real(x)) if *x == 0.0 => continue,
+            (_, Value::Real(x)) => {
+                if !x.is_finite() {
+                    return Err(ParamError::Malformed { what: format!("parameter `{}` = {x} is not a finite number", v.name) });
+                }
+                Json::from(*x)
+            }
+            _ => continue,
+        };
+        // The wall keys are meaningless against an identical particle; leave them out at their defaults.
+        map.insert(v.name.clone(), json);
+    }
+    if map.get("contact_partner").and_then(|p| p.as_str()) == Some("particle") {
+        for name in ["wall_youngs_modulus", "wall_poisson_ratio", "wall_yield_pressure"] {
+            let default = vars.iter().find(|v| v.name == name).and_then(|v| v.start.clone());
+            let now = vars.iter().position(|v| v.name == name).map(|i| values[i].clone());
+            if now == default {
+                map.remove(name);
+            }
+        }
+    }
+    Scene::from_map(&map)
+}

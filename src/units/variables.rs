@@ -1,0 +1,287 @@
+//! The variable table of a unit (DESIGN 3): every FMU variable defined once, with its value reference,
+//! causality, variability, unit, start, range and description. The `modelDescription.xml`, the value
+//! reference dispatch of the C ABI and the docs tables are all generated from it.
+
+/// The FMI 2.0 base type of a variable.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum VarType {
+    Real,
+    Integer,
+    Boolean,
+    String,
+}
+
+impl VarType {
+    pub fn xml_name(self) -> &'static str {
+        match self {
+            VarType::Real => "Real",
+            VarType::Integer => "Integer",
+            VarType::Boolean => "Boolean",
+            VarType::String => "String",
+        }
+    }
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Causality {
+    Parameter,
+    Input,
+    Output,
+    Local,
+    Independent,
+}
+
+impl Causality {
+    pub fn xml_name(self) -> &'static str {
+        match self {
+            Causality::Parameter => "parameter",
+            Causality::Input => "input",
+            Causality::Output => "output",
+            Causality::Local => "local",
+            Causality::Independent => "independent",
+        }
+    }
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Variability {
+    Fixed,
+    Discrete,
+    Continuous,
+}
+
+impl Variability {
+    pub fn xml_name(self) -> &'static str {
+        match self {
+            Variability::Fixed => "fixed",
+            Variability::Discrete => "discrete",
+            Variability::Continuous => "continuous",
+        }
+    }
+}
+
+/// A start value (also the value a fresh instance holds).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Value {
+    Real(f64),
+    Integer(i32),
+    Boolean(bool),
+    String(String),
+}
+
+impl Value {
+    pub fn var_type(&self) -> VarType {
+        match self {
+            Value::Real(_) => VarType::Real,
+            Value::Integer(_) => VarType::Integer,
+            Value::Boolean(_) => VarType::Boolean,
+            Value::String(_) => VarType::String,
+        }
+    }
+
+    /// The value as the XML `start` attribute writes it (shortest text that reads back exactly).
+    pub fn xml_text(&self) -> String {
+        match self {
+            Value::Real(x) => format_real(*x),
+            Value::Integer(i) => i.to_string(),
+            Value::Boolean(b) => b.to_string(),
+            Value::String(s) => s.clone(),
+        }
+    }
+
+    pub fn as_real(&self) -> f64 {
+        match self {
+            Value::Real(x) => *x,
+            Value::Integer(i) => f64::from(*i),
+            Value::Boolean(b) => f64::from(u8::from(*b)),
+            Value::String(_) => f64::NAN,
+        }
+    }
+}
+
+/// Shortest round-trip text of a real, with an exponent for very small and large magnitudes.
+pub fn format_real(x: f64) -> String {
+    if x != 0.0 && (x.abs() < 1e-3 || x.abs() >= 1e6) {
+        format!("{x:e}")
+    } else {
+        format!("{x}")
+    }
+}
+
+/// How a state variable and its derivative are tied.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Role {
+    /// An ordinary variable.
+    Plain,
+    /// The i-th continuous state (0-based, ME).
+    State(usize),
+    /// The derivative of the i-th continuous state.
+    Derivative(usize),
+}
+
+/// One FMU variable.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Variable {
+    pub name: String,
+    pub causality: Causality,
+    pub variability: Variability,
+    /// Start value for parameters, inputs and exact states; `None` means initial="calculated".
+    pub start: Option<Value>,
+    pub var_type: VarType,
+    /// Unit name (defined in `UNITS`), or "" for a dimensionless value.
+    pub unit: &'static str,
+    pub min: Option<f64>,
+    pub max: Option<f64>,
+    pub nominal: Option<f64>,
+    pub description: String,
+    pub role: Role,
+}
+
+impl Variable {
+    /// A parameter with a start value (causality parameter, variability fixed, initial exact).
+    pub fn parameter(name: &str, start: Value, unit: &'static str, description: &str) -> Variable {
+        Variable {
+            name: name.into(),
+            causality: Causality::Parameter,
+            variability: Variability::Fixed,
+            var_type: start.var_type(),
+            start: Some(start),
+            unit,
+            min: None,
+            max: None,
+            nominal: None,
+            description: description.into(),
+            role: Role::Plain,
+        }
+    }
+
+    /// A continuous real input, start 0.
+    pub fn input(name: &str, unit: &'static str, description: &str) -> Variable {
+        Variable {
+            name: name.into(),
+            causality: Causality::Input,
+            variability: Variability::Continuous,
+            var_type: VarType::Real,
+            start: Some(Value::Real(0.0)),
+            unit,
+            min: None,
+            max: None,
+            nominal: None,
+            description: description.into(),
+            role: Role::Plain,
+        }
+    }
+
+    /// A calculated output.
+    pub fn output(name: &str, var_type: VarType, unit: &'static str, description: &str) -> Variable {
+        Variable {
+            name: name.into(),
+            causality: Causality::Output,
+            variability: if var_type == VarType::Real { Variability::Continuous } else { Variability::Discrete },
+            var_type,
+            start: None,
+            unit,
+            min: None,
+            max: None,
+            nominal: None,
+            description: description.into(),
+            role: Role::Plain,
+        }
+    }
+
+    /// A calculated local continuous real (states and derivatives).
+    pub fn local(name: &str, unit: &'static str, description: &str, role: Role) -> Variable {
+        Variable {
+            name: name.into(),
+            causality: Causality::Local,
+            variability: Variability::Continuous,
+            var_type: VarType::Real,
+            start: None,
+            unit,
+            min: None,
+            max: None,
+            nominal: None,
+            description: description.into(),
+            role,
+        }
+    }
+
+    pub fn with_range(mut self, min: Option<f64>, max: Option<f64>) -> Variable {
+        self.min = min;
+        self.max = max;
+        self
+    }
+
+    pub fn with_nominal(mut self, nominal: f64) -> Variable {
+        self.nominal = Some(nominal);
+        self
+    }
+
+    pub fn with_role(mut self, role: Role) -> Variable {
+        self.role = role;
+        self
+    }
+
+    /// The value a fresh instance holds: the start value, or zero of the type for calculated ones.
+    pub fn initial_value(&self) -> Value {
+        match (&self.start, self.var_type) {
+            (Some(v), _) => v.clone(),
+            (None, VarType::Real) => Value::Real(0.0),
+            (None, VarType::Integer) => Value::Integer(0),
+            (None, VarType::Boolean) => Value::Boolean(false),
+            (None, VarType::String) => Value::String(String::new()),
+        }
+    }
+
+    /// The FMI `initial` attribute.
+    pub fn initial(&self) -> Option<&'static str> {
+        match self.causality {
+            Causality::Independent => None,
+            Causality::Parameter | Causality::Input => Some("exact"),
+            _ => Some(if self.start.is_some() { "exact" } else { "calculated" }),
+        }
+    }
+}
+
+/// A unit of `UnitDefinitions`: name and SI base-unit exponents (kg, m, s).
+pub struct UnitDef {
+    pub name: &'static str,
+    pub kg: i32,
+    pub m: i32,
+    pub s: i32,
+}
+
+/// Every unit a variable may use.
+pub const UNITS: &[UnitDef] = &[
+    UnitDef { name: "s", kg: 0, m: 0, s: 1 },
+    UnitDef { name: "m", kg: 0, m: 1, s: 0 },
+    UnitDef { name: "m/s", kg: 0, m: 1, s: -1 },
+    UnitDef { name: "m/s2", kg: 0, m: 1, s: -2 },
+    UnitDef { name: "1/s", kg: 0, m: 0, s: -1 },
+    UnitDef { name: "1/m", kg: 0, m: -1, s: 0 },
+    UnitDef { name: "kg/m3", kg: 1, m: -3, s: 0 },
+    UnitDef { name: "Pa", kg: 1, m: -1, s: -2 },
+    UnitDef { name: "N", kg: 1, m: 1, s: -2 },
+    UnitDef { name: "N/m", kg: 1, m: 0, s: -2 },
+    UnitDef { name: "J", kg: 1, m: 2, s: -2 },
+    UnitDef { name: "W", kg: 1, m: 2, s: -3 },
+    UnitDef { name: "J/m2", kg: 1, m: 0, s: -2 },
+];
+
+/// The FMI unit name of a scene key's unit text ("-" is dimensionless).
+pub fn fmi_unit(scene_unit: &str) -> &'static str {
+    match scene_unit {
+        "m" => "m",
+        "kg/m^3" => "kg/m3",
+        "Pa" => "Pa",
+        "1/s" => "1/s",
+        "1/m" => "1/m",
+        "J/m^2" => "J/m2",
+        "N/m" => "N/m",
+        "N" => "N",
+        "m/s" => "m/s",
+        "m/s^2" => "m/s2",
+        "J" => "J",
+        _ => "",
+    }
+}
