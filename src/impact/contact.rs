@@ -4,7 +4,8 @@
 //! - Trial evaluations (Runge-Kutta stages, CVode's right-hand sides) use the accepted history and never
 //!   change it.
 //! - `accept` moves the history to the current overlap: at events and at accepted steps only.
-//! - The branch interval of the accepted state gives two event indicators, positive inside the branch.
+//! - The branch interval of the accepted state gives two event indicators, positive inside the branch; a
+//!   third is the overlap rate, so that every turning point (the largest overlap) is landed on.
 //!   A bound that moves with the overlap (plastic loading, where alpha_max follows alpha) is watched through
 //!   the sign of the overlap rate instead, so the turning point, where the history must be taken, is an
 //!   event too. Indicators carry a small hysteresis (DESIGN 6), and an accepted state at a branch point is
@@ -100,8 +101,9 @@ impl Contact {
         (before, into.branch)
     }
 
-    /// The two event indicators at `alpha`, `rate`: positive while the accepted branch holds.
-    pub fn indicators(&self, alpha: f64, rate: f64) -> [f64; 2] {
+    /// The event indicators at `alpha`, `rate`: the lower and upper bound of the accepted branch (positive
+    /// while it holds), and the overlap rate, whose sign change is a turning point (the largest overlap).
+    pub fn indicators(&self, alpha: f64, rate: f64) -> [f64; 3] {
         let e = &self.accepted;
         let lower = if e.lower == self.accepted_alpha {
             rate / self.rate_nominal + HYSTERESIS
@@ -117,7 +119,7 @@ impl Contact {
         } else {
             1.0
         };
-        [lower, upper]
+        [lower, upper, rate / self.rate_nominal + HYSTERESIS]
     }
 
     /// Follows a straight overlap path from the accepted overlap to `to`, accepting the history at every

@@ -96,7 +96,7 @@ impl Sphere {
     }
 
     /// The event indicators at a state.
-    pub fn indicators(&self, wall: &Wall, t: f64, y: &State) -> [f64; 2] {
+    pub fn indicators(&self, wall: &Wall, t: f64, y: &State) -> [f64; 3] {
         let (alpha, rate) = self.overlap(wall, t, y);
         self.contact.indicators(alpha, rate)
     }
@@ -171,7 +171,7 @@ impl Sphere {
             // Accepted by error control. Did the branch change inside the step?
             let g0 = self.indicators(wall, t, y);
             let g1 = self.indicators(wall, t + h_try, &y1);
-            let crossed: Vec<usize> = (0..2).filter(|&i| g0[i] > 0.0 && g1[i] <= 0.0).collect();
+            let crossed: Vec<usize> = (0..3).filter(|&i| g0[i] > 0.0 && g1[i] <= 0.0).collect();
             let (t_new, y_new) = if crossed.is_empty() {
                 (if last { t_end } else { t + h_try }, y1)
             } else {

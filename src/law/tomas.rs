@@ -15,8 +15,9 @@
 //!   force stays continuous (docs/models.md);
 //! - below h_min the contact has failed and the separation s = h_min - alpha is bridged by the van der
 //!   Waals tail -F_H0 a_F^2/(a_F + s)^2 - k_A h_min a_F^3/(a_F + s)^3 (004 Eq. 3.67, measured from A so it
-//!   starts at F_A); beyond s = 99 a_F (tail below 1e-4 of F_H0) the surfaces are apart and the contact
-//!   forgets its history: Tomas' model keeps no permanent deformation (004 Sec. 3.4.4.3).
+//!   starts at F_A); beyond s = 99 a_F (tail below 1e-4 of F_H0) the surfaces are apart, and once the
+//!   overlap is also below -99 a_F (where a fresh contact is apart as well) the contact forgets its history:
+//!   Tomas' model keeps no permanent deformation (004 Sec. 3.4.4.3).
 
 use super::params::Effective;
 use super::{Branch, Evaluation, NormalLaw};
@@ -176,7 +177,13 @@ impl NormalLaw for Tomas {
         if alpha < h.h_min {
             let s = h.h_min - alpha;
             if s > cutoff {
-                return Evaluation::separated(-cutoff, self.initial_history());
+                // Apart. The history is forgotten only where a fresh contact would be apart too (below
+                // -cutoff): between there and h_min - cutoff, a fresh history would put a flattened sphere
+                // back into plastic contact, so the remembered one is kept until then.
+                if alpha < -cutoff {
+                    return Evaluation::separated(-cutoff, self.initial_history());
+                }
+                return Evaluation::separated(h.h_min - cutoff, TomasHistory { last_alpha: alpha, ..*h });
             }
             let (force, stiffness) = self.tail(s, h.h_min);
             let history = if h.yielded {

@@ -54,7 +54,7 @@ pub fn info() -> UnitInfo {
         description: "One elasto-plastic adhesive normal contact as a force element (powderfmu)",
         variables,
         n_states: 1,
-        n_event_indicators: 2,
+        n_event_indicators: 3,
         stop_time: 1.0,
         step_size: 1e-3,
         new_model: |u| Box::new(ContactElement::new(u)),

@@ -64,7 +64,7 @@ pub fn info() -> UnitInfo {
         description: "A sphere against a moving wall with an elasto-plastic adhesive contact law (powderfmu)",
         variables,
         n_states: 3,
-        n_event_indicators: 2,
+        n_event_indicators: 3,
         stop_time: 2e-7,
         step_size: 1e-9,
         new_model: |u| Box::new(ParticleWallImpact::new(u)),

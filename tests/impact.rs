@@ -1,0 +1,106 @@
+//! The sphere-wall dynamics of the ParticleWallImpact unit (`impact::Sphere`, Dormand-Prince steps that
+//! land on branch switches) against the quasi-static energy balance of every law: an undamped impact must
+//! give the same rebound speed and maximum overlap, and the contact work must close the energy balance.
+
+mod common;
+use common::*;
+use powderfmu::impact::{Contact, Sphere, Wall};
+use powderfmu::law::damping::NormalDamping;
+use powderfmu::law::params::Effective;
+use powderfmu::law::{AnyLaw, Branch, NormalLaw};
+use powderfmu::scene::{ModelKind, Scene};
+use powderfmu::theory::energy_balance;
+
+/// The sphere of a scene, starting `gap` above a wall at rest, approaching at `v`.
+fn sphere(s: &Scene, tolerance: f64) -> (Sphere, f64) {
+    let law = AnyLaw::from_scene(s).unwrap();
+    let eff = Effective::from_scene(s).unwrap();
+    let contact = Contact::new(law, NormalDamping::from_scene(s, eff.mass), 1e-3 * s.particle_radius, 1.0);
+    (Sphere { mass: eff.mass, gravity: 0.0, contact, tolerance, last_step: 0.0, steps: 0, events: 0 }, eff.mass)
+}
+
+/// Runs an impact at speed `v` until the sphere has left the wall; returns the final
+/// state [z, v, W] and the largest overlap.
+fn run(s: &Scene, v: f64, tolerance: f64) -> ([f64; 3], f64, Sphere) {
+    let (mut sp, _) = sphere(s, tolerance);
+    let wall = Wall { t0: 0.0, position: 0.0, velocity: 0.0 };
+    // Farther than any attraction tail (Tomas: 99 a_F = 40 nm), so the approach does all its work.
+    let gap = 0.05 * s.particle_radius;
+    let mut y = [gap, -v, 0.0];
+    sp.accept(&wall, 0.0, &y);
+    let mut t = 0.0;
+    let dt = 1e-9;
+    for _ in 0..100_000 {
+        sp.advance(&wall, t, t + dt, &mut y).unwrap();
+        t += dt;
+        // Left the wall: separated (beyond any adhesive neck or attraction tail) and moving away.
+        if y[1] > 0.0 && sp.contact.accepted.branch == Branch::Separated {
+            break;
+        }
+    }
+    let max = sp.contact.max_overlap;
+    (y, max, sp)
+}
+
+fn scene(model: ModelKind) -> Scene {
+    let mut s = table5(model, 2.45e-6, 30e6);
+    match model {
+        ModelKind::Luding => s.luding_adhesion_stiffness = 20.0,
+        ModelKind::Tomas => s.surface_energy = 0.05,
+        _ => {}
+    }
+    s
+}
+
+#[test]
+fn every_law_rebounds_as_its_energy_balance_says() {
+    for model in ModelKind::ALL {
+        let s = scene(model);
+        let law = AnyLaw::from_scene(&s).unwrap();
+        let (_, m) = sphere(&s, 1e-10);
+        let v = 5.0;
+        let want = energy_balance::impact(&law, m, v, s.particle_radius).unwrap();
+        let (y, max, sp) = run(&s, v, 1e-10);
+        assert!(!want.sticks, "{model:?}");
+        assert!(rel(y[1], want.rebound_velocity) < 1e-6, "{model:?}: rebound {} vs energy balance {}", y[1], want.rebound_velocity);
+        assert!(rel(max, want.max_overlap) < 1e-6, "{model:?}: max overlap {max:e} vs {:e}", want.max_overlap);
+        // The contact work is what the sphere lost.
+        let lost = 0.5 * m * (v * v - y[1] * y[1]);
+        let e_in = 0.5 * m * v * v;
+        assert!((y[2] - lost).abs() < 1e-8 * e_in, "{model:?}: work {:e} vs kinetic energy lost {lost:e}", y[2]);
+        assert!(sp.events >= 2, "{model:?}: contact and separation must be events");
+    }
+}
+
+#[test]
+fn hertz_without_damping_is_perfectly_elastic_and_with_damping_restitutes_less() {
+    let mut s = scene(ModelKind::Hertz);
+    let (y, _, _) = run(&s, 2.0, 1e-10);
+    assert!(rel(y[1], 2.0) < 1e-8, "{}", y[1]);
+    s.restitution_coefficient = 0.7;
+    let (y, _, _) = run(&s, 2.0, 1e-10);
+    assert!(y[1] > 0.3 && y[1] < 2.0 * 0.95, "{}", y[1]);
+}
+
+#[test]
+fn below_the_sticking_velocity_the_nan_sphere_stays_on_the_wall() {
+    let s = scene(ModelKind::Nan);
+    // 000 Table 6: V_ys = 1.86 m/s for this sphere.
+    let (y, _, sp) = run(&s, 1.8, 1e-10);
+    assert!(sp.contact.accepted.branch.in_contact(), "{:?}", sp.contact.accepted.branch);
+    assert!(y[0] < 1e-3 * s.particle_radius);
+    let (y, _, _) = run(&s, 1.9, 1e-10);
+    assert!(y[1] > 0.0);
+}
+
+#[test]
+fn a_tighter_tolerance_converges_to_the_energy_balance() {
+    let s = scene(ModelKind::ThorntonNing);
+    let law = AnyLaw::from_scene(&s).unwrap();
+    let (_, m) = sphere(&s, 1e-6);
+    let want = energy_balance::impact(&law, m, 4.0, s.particle_radius).unwrap().rebound_velocity;
+    let err = |tol: f64| (run(&s, 4.0, tol).0[1] - want).abs() / want;
+    let (loose, tight) = (err(1e-5), err(1e-11));
+    assert!(tight < 1e-8, "{tight:e}");
+    assert!(tight <= loose, "{tight:e} vs {loose:e}");
+}
