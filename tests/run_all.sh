@@ -1,19 +1,37 @@
 #!/usr/bin/env bash
-# Runs every test of the project: the Rust tests of the crate and of the packaging tool, then prints
-# one closing line with the totals. Needs only a Rust toolchain (cargo); it installs nothing else yet.
+# Runs every test of the project: the Rust tests (crate and packaging tool, including the importer test
+# and the check of every FMI signature against the official headers), then builds the .fmu files and runs
+# the fmpy suite (tests/python) against them. Installs what it needs: the project's Python virtual
+# environment (.venv, pinned fmpy, numpy, matplotlib, pytest). Ends with one line of totals.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 if ! command -v cargo >/dev/null 2>&1; then
     echo "run_all.sh: cargo is not on PATH; install a Rust toolchain (https://rustup.rs) and rerun" >&2
     exit 1
 fi
+echo "== Python environment (.venv, pinned requirements.txt)"
+python=$(bash tools/venv.sh)
+headers=$("$python" -c 'import fmpy, os; print(os.path.join(os.path.dirname(fmpy.__file__), "c-code"))')
+
 log=$(mktemp)
-trap 'rm -f "$log"' EXIT
-echo "== Rust tests (workspace: powderfmu, fmu_build)"
+pylog=$(mktemp)
+trap 'rm -f "$log" "$pylog"' EXIT
 status=0
-cargo test --workspace --locked 2>&1 | tee "$log" || status=$?
-passed=$(awk '/^test result:/ {s += $4} END {print s + 0}' "$log")
-failed=$(awk '/^test result:/ {s += $6} END {print s + 0}' "$log")
+
+echo "== Rust tests (workspace: powderfmu, fmu_build)"
+FMI2_HEADERS="$headers" cargo test --workspace --locked 2>&1 | tee "$log" || status=$?
+rust_passed=$(awk '/^test result:/ {s += $4} END {print s + 0}' "$log")
+rust_failed=$(awk '/^test result:/ {s += $6} END {print s + 0}' "$log")
+
+echo "== Building the FMUs (target/fmu)"
+cargo run --locked --quiet -p fmu_build || status=$?
+
+echo "== fmpy suite (tests/python)"
+POWDERFMU_FMU_DIR="$PWD/target/fmu" POWDERFMU_CLI="$PWD/target/debug/powderfmu" \
+    "$python" -m pytest tests/python -q -p no:cacheprovider 2>&1 | tee "$pylog" || status=$?
+py_passed=$(grep -Eo '[0-9]+ passed' "$pylog" | tail -1 | grep -Eo '[0-9]+' || echo 0)
+py_failed=$(grep -Eo '[0-9]+ (failed|error)' "$pylog" | awk '{s += $1} END {print s + 0}')
+
 echo
-echo "rust: ${passed} passed, ${failed} failed"
+echo "rust: ${rust_passed} passed, ${rust_failed} failed; fmpy: ${py_passed} passed, ${py_failed} failed"
 exit "$status"

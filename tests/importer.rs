@@ -1,0 +1,381 @@
+//! An importer in Rust: loads the cdylib with libloading and drives the C ABI through whole Model Exchange
+//! and Co-Simulation runs, as fmpy would, so that ABI faults show up in `cargo test` with a backtrace.
+//! The logger is a plain C function (see `logger`): messages are collected per instance.
+
+#![allow(non_snake_case)]
+
+use libloading::{Library, Symbol};
+use powderfmu::fmi2::types::*;
+use powderfmu::law::params::Effective;
+use powderfmu::law::AnyLaw;
+use powderfmu::scene::Scene;
+use powderfmu::theory::energy_balance;
+use powderfmu::units;
+use std::ffi::{c_void, CStr, CString};
+use std::os::raw::c_char;
+use std::sync::Mutex;
+
+/// The cdylib of the current sources. `cargo test` links tests against the rlib and does not refresh the
+/// cdylib, so it is built here once (`cargo build --lib`, same profile, next to this test binary).
+fn library() -> Library {
+    static BUILT: std::sync::OnceLock<()> = std::sync::OnceLock::new();
+    BUILT.get_or_init(|| {
+        let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
+        let status = std::process::Command::new(cargo)
+            .args(["build", "--quiet", "--lib", "-p", "powderfmu"])
+            .current_dir(env!("CARGO_MANIFEST_DIR"))
+            .status()
+            .expect("cargo runs");
+        assert!(status.success(), "cargo build --lib failed");
+    });
+    let exe = std::env::current_exe().unwrap();
+    let dir = exe.parent().and_then(|d| d.parent()).unwrap();
+    let path = dir.join("libpowderfmu.so");
+    // SAFETY: our own library; its initialisers have no preconditions.
+    unsafe { Library::new(&path) }.unwrap_or_else(|e| panic!("cannot load {}: {e}", path.display()))
+}
+
+/// Collected log messages of one instance (the component environment points at one).
+type Log = Mutex<Vec<(fmi2Status, String, String)>>;
+
+/// Called by the FMU as a C variadic function. Stable Rust cannot define one; every message we log is
+/// passed with its text already formatted and no variadic arguments, and on x86-64 System V a variadic call
+/// without variadic arguments reaches a non-variadic function with the same fixed parameters intact.
+unsafe extern "C" fn logger(env: fmi2ComponentEnvironment, _name: fmi2String, status: fmi2Status, category: fmi2String, message: fmi2String) {
+    let log = &*(env as *const Log);
+    let text = CStr::from_ptr(message).to_string_lossy().replace("%%", "%");
+    log.lock().unwrap().push((status, CStr::from_ptr(category).to_string_lossy().into_owned(), text));
+}
+
+fn callbacks(log: &Log) -> fmi2CallbackFunctions {
+    type Plain = unsafe extern "C" fn(fmi2ComponentEnvironment, fmi2String, fmi2Status, fmi2String, fmi2String);
+    // SAFETY: see `logger`.
+    let variadic = unsafe {
+        std::mem::transmute::<Plain, unsafe extern "C" fn(fmi2ComponentEnvironment, fmi2String, fmi2Status, fmi2String, fmi2String, ...)>(logger)
+    };
+    fmi2CallbackFunctions {
+        logger: Some(variadic),
+        allocateMemory: None,
+        freeMemory: None,
+        stepFinished: None,
+        componentEnvironment: log as *const Log as *mut c_void,
+    }
+}
+
+struct Api<'a> {
+    lib: &'a Library,
+}
+
+macro_rules! f {
+    ($api:expr, $name:expr, $ty:ty) => {{
+        // SAFETY: the symbol has this FMI 2.0 signature (checked against the headers by fmi2_headers.rs).
+        let s: Symbol<$ty> = unsafe { $api.lib.get($name) }.expect("an exported fmi2 function");
+        s
+    }};
+}
+
+type Comp = fmi2Component;
+type Status0 = unsafe extern "C" fn(Comp) -> fmi2Status;
+type SetReal = unsafe extern "C" fn(Comp, *const fmi2ValueReference, usize, *const fmi2Real) -> fmi2Status;
+type GetReal = unsafe extern "C" fn(Comp, *const fmi2ValueReference, usize, *mut fmi2Real) -> fmi2Status;
+type Instantiate = unsafe extern "C" fn(fmi2String, fmi2Type, fmi2String, fmi2String, *const fmi2CallbackFunctions, fmi2Boolean, fmi2Boolean) -> Comp;
+type Setup = unsafe extern "C" fn(Comp, fmi2Boolean, fmi2Real, fmi2Real, fmi2Boolean, fmi2Real) -> fmi2Status;
+type DoStep = unsafe extern "C" fn(Comp, fmi2Real, fmi2Real, fmi2Boolean) -> fmi2Status;
+type Vector = unsafe extern "C" fn(Comp, *mut fmi2Real, usize) -> fmi2Status;
+type SetVector = unsafe extern "C" fn(Comp, *const fmi2Real, usize) -> fmi2Status;
+
+impl<'a> Api<'a> {
+    fn instantiate(&self, unit: &str, kind: fmi2Type, log: &Log, resources: Option<&str>) -> Comp {
+        let u = units::by_identifier(unit).unwrap();
+        let name = CString::new("importer").unwrap();
+        let guid = CString::new(u.guid()).unwrap();
+        let res = CString::new(resources.map(str::to_owned).unwrap_or_else(resource_uri)).unwrap();
+        let cb = callbacks(log);
+        unsafe { f!(self, b"fmi2Instantiate", Instantiate)(name.as_ptr(), kind, guid.as_ptr(), res.as_ptr(), &cb, fmi2False, fmi2False) }
+    }
+
+    fn set(&self, c: Comp, unit: &str, name: &str, value: f64) -> fmi2Status {
+        let vr = units::by_identifier(unit).unwrap().vr_of(name) as fmi2ValueReference;
+        unsafe { f!(self, b"fmi2SetReal", SetReal)(c, &vr, 1, &value) }
+    }
+
+    fn get(&self, c: Comp, unit: &str, name: &str) -> f64 {
+        let vr = units::by_identifier(unit).unwrap().vr_of(name) as fmi2ValueReference;
+        let mut v = f64::NAN;
+        let s = unsafe { f!(self, b"fmi2GetReal", GetReal)(c, &vr, 1, &mut v) };
+        assert_eq!(s, fmi2OK, "fmi2GetReal({name})");
+        v
+    }
+
+    fn call0(&self, name: &[u8], c: Comp) -> fmi2Status {
+        unsafe { f!(self, name, Status0)(c) }
+    }
+
+    fn free(&self, c: Comp) {
+        unsafe { f!(self, b"fmi2FreeInstance", unsafe extern "C" fn(Comp))(c) }
+    }
+}
+
+fn resource_uri() -> String {
+    format!("file://{}/", std::env::temp_dir().display())
+}
+
+/// The default scene at 3 m/s: its undamped rebound speed by the energy balance.
+fn expected_rebound(v: f64) -> f64 {
+    let s = Scene::from_json(units::scene_params::DEFAULT_SCENE).unwrap();
+    let law = AnyLaw::from_scene(&s).unwrap();
+    let m = Effective::from_scene(&s).unwrap().mass;
+    energy_balance::impact(&law, m, v, s.particle_radius).unwrap().rebound_velocity
+}
+
+const PWI: &str = "ParticleWallImpact";
+
+#[test]
+fn co_simulation_run_rebounds_as_the_energy_balance_says() {
+    let lib = library();
+    let api = Api { lib: &lib };
+    let log = Log::default();
+    let c = api.instantiate(PWI, fmi2CoSimulation, &log, None);
+    assert!(!c.is_null(), "{:?}", log.lock().unwrap());
+    assert_eq!(api.set(c, PWI, "initial_velocity", 3.0), fmi2OK);
+    unsafe { assert_eq!(f!(api, b"fmi2SetupExperiment", Setup)(c, fmi2False, 0.0, 0.0, fmi2True, 2e-7), fmi2OK) };
+    assert_eq!(api.call0(b"fmi2EnterInitializationMode", c), fmi2OK);
+    assert_eq!(api.call0(b"fmi2ExitInitializationMode", c), fmi2OK);
+    let step = f!(api, b"fmi2DoStep", DoStep);
+    let h = 1e-9;
+    for i in 0..200 {
+        assert_eq!(unsafe { step(c, i as f64 * h, h, fmi2True) }, fmi2OK, "{:?}", log.lock().unwrap());
+    }
+    let v = api.get(c, PWI, "sphere_velocity");
+    let want = expected_rebound(3.0);
+    assert!((v - want).abs() < 1e-7 * want, "rebound {v} vs energy balance {want}");
+    assert!(api.get(c, PWI, "overlap") < 0.0);
+    assert_eq!(api.call0(b"fmi2Terminate", c), fmi2OK);
+    api.free(c);
+}
+
+#[test]
+fn model_exchange_run_with_a_simple_importer_integrator() {
+    let lib = library();
+    let api = Api { lib: &lib };
+    let log = Log::default();
+    let c = api.instantiate(PWI, fmi2ModelExchange, &log, None);
+    assert!(!c.is_null());
+    api.set(c, PWI, "initial_velocity", 3.0);
+    unsafe { f!(api, b"fmi2SetupExperiment", Setup)(c, fmi2False, 0.0, 0.0, fmi2False, 0.0) };
+    api.call0(b"fmi2EnterInitializationMode", c);
+    assert_eq!(api.call0(b"fmi2ExitInitializationMode", c), fmi2OK);
+    let new_discrete = f!(api, b"fmi2NewDiscreteStates", unsafe extern "C" fn(Comp, *mut fmi2EventInfo) -> fmi2Status);
+    let mut info = fmi2EventInfo::default();
+    assert_eq!(unsafe { new_discrete(c, &mut info) }, fmi2OK);
+    assert_eq!(api.call0(b"fmi2EnterContinuousTimeMode", c), fmi2OK);
+    let get_x = f!(api, b"fmi2GetContinuousStates", Vector);
+    let set_x = f!(api, b"fmi2SetContinuousStates", SetVector);
+    let get_dx = f!(api, b"fmi2GetDerivatives", Vector);
+    let get_z = f!(api, b"fmi2GetEventIndicators", Vector);
+    let set_time = f!(api, b"fmi2SetTime", unsafe extern "C" fn(Comp, fmi2Real) -> fmi2Status);
+    let completed =
+        f!(api, b"fmi2CompletedIntegratorStep", unsafe extern "C" fn(Comp, fmi2Boolean, *mut fmi2Boolean, *mut fmi2Boolean) -> fmi2Status);
+    let mut x = [0.0; 3];
+    let mut z = [0.0; 3];
+    let mut z_new = [0.0; 3];
+    unsafe { get_x(c, x.as_mut_ptr(), 3) };
+    unsafe { get_z(c, z.as_mut_ptr(), 3) };
+    // Classical RK4 with events at the step where an indicator changes sign.
+    let dt = 2e-12;
+    let mut t = 0.0;
+    let mut events = 0;
+    let deriv = |t: f64, x: &[f64; 3]| -> [f64; 3] {
+        let mut dx = [0.0; 3];
+        unsafe {
+            set_time(c, t);
+            set_x(c, x.as_ptr(), 3);
+            get_dx(c, dx.as_mut_ptr(), 3);
+        }
+        dx
+    };
+    while t < 1.5e-7 {
+        let k1 = deriv(t, &x);
+        let add = |a: &[f64; 3], k: &[f64; 3], s: f64| [a[0] + s * k[0], a[1] + s * k[1], a[2] + s * k[2]];
+        let k2 = deriv(t + dt / 2.0, &add(&x, &k1, dt / 2.0));
+        let k3 = deriv(t + dt / 2.0, &add(&x, &k2, dt / 2.0));
+        let k4 = deriv(t + dt, &add(&x, &k3, dt));
+        for i in 0..3 {
+            x[i] += dt / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
+        }
+        t += dt;
+        unsafe {
+            set_time(c, t);
+            assert_eq!(set_x(c, x.as_ptr(), 3), fmi2OK);
+            get_z(c, z_new.as_mut_ptr(), 3);
+        }
+        if z.iter().zip(&z_new).any(|(a, b)| (*a > 0.0) != (*b > 0.0)) {
+            events += 1;
+            assert_eq!(api.call0(b"fmi2EnterEventMode", c), fmi2OK);
+            assert_eq!(unsafe { new_discrete(c, &mut info) }, fmi2OK);
+            assert_eq!(info.newDiscreteStatesNeeded, fmi2False);
+            assert_eq!(api.call0(b"fmi2EnterContinuousTimeMode", c), fmi2OK);
+            unsafe { get_z(c, z_new.as_mut_ptr(), 3) };
+        } else {
+            let (mut enter, mut term) = (fmi2True, fmi2True);
+            assert_eq!(unsafe { completed(c, fmi2True, &mut enter, &mut term) }, fmi2OK);
+            assert_eq!((enter, term), (fmi2False, fmi2False));
+        }
+        z = z_new;
+    }
+    let v = api.get(c, PWI, "sphere_velocity");
+    let want = expected_rebound(3.0);
+    // Events are located to one step of 2 ps here (CVode locates them exactly): 1e-3 is this importer's accuracy.
+    assert!((v - want).abs() < 1e-3 * want, "rebound {v} vs energy balance {want}");
+    assert!(events >= 4, "contact, yield, turning point, pull-off, separation: {events} events");
+    api.free(c);
+}
+
+#[test]
+fn bad_calls_return_fmi2error_with_a_message_and_the_instance_stays_usable() {
+    let lib = library();
+    let api = Api { lib: &lib };
+    let log = Log::default();
+    let c = api.instantiate(PWI, fmi2CoSimulation, &log, None);
+    let step = f!(api, b"fmi2DoStep", DoStep);
+    let last = |log: &Log| log.lock().unwrap().last().cloned().map(|(s, cat, m)| (s, cat, m)).unwrap_or((fmi2OK, String::new(), String::new()));
+
+    assert_eq!(unsafe { step(c, 0.0, 1e-9, fmi2True) }, fmi2Error);
+    let (s, cat, m) = last(&log);
+    assert_eq!((s, cat.as_str()), (fmi2Error, "logStatusError"));
+    assert!(m.contains("fmi2DoStep") && m.contains("Instantiated"), "{m}");
+
+    assert_eq!(api.set(c, PWI, "particle_radius", f64::NAN), fmi2Error);
+    assert!(last(&log).2.contains("particle_radius"), "{:?}", last(&log));
+    assert_eq!(api.set(c, PWI, "particle_radius", -1e-6), fmi2OK, "range is checked at initialization");
+    api.call0(b"fmi2EnterInitializationMode", c);
+    assert_eq!(api.call0(b"fmi2ExitInitializationMode", c), fmi2Error);
+    assert!(last(&log).2.contains("particle_radius"), "{:?}", last(&log));
+    // Fixed: still in Initialization Mode, the run goes on.
+    assert_eq!(api.set(c, PWI, "particle_radius", 2.45e-6), fmi2OK);
+    assert_eq!(api.call0(b"fmi2ExitInitializationMode", c), fmi2OK);
+    assert_eq!(unsafe { step(c, 0.0, -1e-9, fmi2True) }, fmi2Error);
+    assert!(last(&log).2.contains("communicationStepSize"));
+    assert_eq!(api.set(c, PWI, "particle_radius", 1e-6), fmi2Error);
+    assert!(last(&log).2.contains("fixed"));
+    assert_eq!(api.set(c, PWI, "force", 1.0), fmi2Error);
+    let vr: fmi2ValueReference = 100_000;
+    let mut v = 0.0;
+    assert_eq!(unsafe { f!(api, b"fmi2GetReal", GetReal)(c, &vr, 1, &mut v) }, fmi2Error);
+    assert!(last(&log).2.contains("100000"));
+    assert_eq!(unsafe { f!(api, b"fmi2GetReal", GetReal)(c, std::ptr::null(), 1, &mut v) }, fmi2Error);
+    assert!(last(&log).2.contains("NULL"));
+    assert_eq!(unsafe { step(c, 0.0, 1e-9, fmi2True) }, fmi2OK);
+    // A percent sign in a message reaches the host doubled (printf-escaped) and arrives as one.
+    api.free(c);
+    // A freed or foreign pointer is refused, not followed.
+    assert_eq!(unsafe { step(c, 1e-9, 1e-9, fmi2True) }, fmi2Error);
+    let mut junk = [0u64; 8];
+    assert_eq!(unsafe { step(junk.as_mut_ptr() as Comp, 0.0, 1e-9, fmi2True) }, fmi2Error);
+}
+
+#[test]
+fn wrong_guid_and_missing_resources_refuse_to_instantiate() {
+    let lib = library();
+    let api = Api { lib: &lib };
+    let log = Log::default();
+    let inst = f!(api, b"fmi2Instantiate", Instantiate);
+    let name = CString::new("x").unwrap();
+    let guid = CString::new("{00000000-0000-0000-0000-000000000000}").unwrap();
+    let res = CString::new(resource_uri()).unwrap();
+    let cb = callbacks(&log);
+    let c = unsafe { inst(name.as_ptr(), fmi2CoSimulation, guid.as_ptr(), res.as_ptr(), &cb, 0, 0) };
+    assert!(c.is_null());
+    assert!(log.lock().unwrap().last().unwrap().2.contains("fmuGUID"));
+    let c = api.instantiate(PWI, fmi2CoSimulation, &log, Some("file:///nonexistent/powderfmu/resources"));
+    assert!(c.is_null());
+    assert!(log.lock().unwrap().last().unwrap().2.contains("not a directory"));
+    let c = api.instantiate(PWI, fmi2CoSimulation, &log, Some("http://example.org/resources"));
+    assert!(c.is_null());
+    assert!(log.lock().unwrap().last().unwrap().2.contains("not a file URI"));
+}
+
+#[test]
+fn saved_state_restores_and_repeats_the_step_bit_for_bit() {
+    let lib = library();
+    let api = Api { lib: &lib };
+    let log = Log::default();
+    let c = api.instantiate(PWI, fmi2CoSimulation, &log, None);
+    api.set(c, PWI, "initial_velocity", 3.0);
+    api.call0(b"fmi2EnterInitializationMode", c);
+    api.call0(b"fmi2ExitInitializationMode", c);
+    let step = f!(api, b"fmi2DoStep", DoStep);
+    let h = 1e-9;
+    for i in 0..20 {
+        unsafe { step(c, i as f64 * h, h, fmi2False) };
+    }
+    let get_state = f!(api, b"fmi2GetFMUstate", unsafe extern "C" fn(Comp, *mut fmi2FMUstate) -> fmi2Status);
+    let set_state = f!(api, b"fmi2SetFMUstate", unsafe extern "C" fn(Comp, fmi2FMUstate) -> fmi2Status);
+    let free_state = f!(api, b"fmi2FreeFMUstate", unsafe extern "C" fn(Comp, *mut fmi2FMUstate) -> fmi2Status);
+    let size = f!(api, b"fmi2SerializedFMUstateSize", unsafe extern "C" fn(Comp, fmi2FMUstate, *mut usize) -> fmi2Status);
+    let ser = f!(api, b"fmi2SerializeFMUstate", unsafe extern "C" fn(Comp, fmi2FMUstate, *mut fmi2Byte, usize) -> fmi2Status);
+    let de = f!(api, b"fmi2DeSerializeFMUstate", unsafe extern "C" fn(Comp, *const fmi2Byte, usize, *mut fmi2FMUstate) -> fmi2Status);
+    let mut s: fmi2FMUstate = std::ptr::null_mut();
+    assert_eq!(unsafe { get_state(c, &mut s) }, fmi2OK);
+    let run = |from: usize| -> Vec<u64> {
+        (from..from + 60)
+            .map(|i| {
+                unsafe { step(c, i as f64 * h, h, fmi2False) };
+                api.get(c, PWI, "sphere_velocity").to_bits() ^ api.get(c, PWI, "force").to_bits()
+            })
+            .collect()
+    };
+    let first = run(20);
+    assert_eq!(unsafe { set_state(c, s) }, fmi2OK);
+    assert_eq!(run(20), first, "rollback repeats the steps bit for bit");
+    // Serialize, corrupt one byte: refused; intact: restores.
+    let mut n = 0usize;
+    unsafe { size(c, s, &mut n) };
+    let mut bytes = vec![0 as c_char; n];
+    assert_eq!(unsafe { ser(c, s, bytes.as_mut_ptr(), n) }, fmi2OK);
+    let mut s2: fmi2FMUstate = std::ptr::null_mut();
+    bytes[n / 2] ^= 0x10;
+    assert_eq!(unsafe { de(c, bytes.as_ptr(), n, &mut s2) }, fmi2Error);
+    assert!(log.lock().unwrap().last().unwrap().2.contains("checksum"));
+    bytes[n / 2] ^= 0x10;
+    assert_eq!(unsafe { de(c, bytes.as_ptr(), n - 3, &mut s2) }, fmi2Error);
+    assert_eq!(unsafe { de(c, bytes.as_ptr(), n, &mut s2) }, fmi2OK);
+    assert_eq!(unsafe { set_state(c, s2) }, fmi2OK);
+    assert_eq!(run(20), first, "a deserialized state continues identically");
+    unsafe {
+        assert_eq!(free_state(c, &mut s), fmi2OK);
+        assert_eq!(free_state(c, &mut s2), fmi2OK);
+        assert!(s.is_null());
+        assert_eq!(set_state(c, s2), fmi2Error, "a freed state is refused");
+    }
+    api.free(c);
+}
+
+#[test]
+fn contact_element_force_follows_its_input() {
+    let lib = library();
+    let api = Api { lib: &lib };
+    let log = Log::default();
+    let u = "ContactElement";
+    let c = api.instantiate(u, fmi2CoSimulation, &log, None);
+    assert!(!c.is_null());
+    api.call0(b"fmi2EnterInitializationMode", c);
+    assert_eq!(api.call0(b"fmi2ExitInitializationMode", c), fmi2OK);
+    let step = f!(api, b"fmi2DoStep", DoStep);
+    // Load to 60 nm and unload: the force follows the Nan law; unloading leaves a plastic overlap.
+    let n = 200;
+    let mut t = 0.0;
+    let mut peak = 0.0f64;
+    for i in 0..=2 * n {
+        let alpha = 60e-9 * (1.0 - ((i as f64 - n as f64) / n as f64).abs());
+        api.set(c, u, "wall_displacement", alpha);
+        peak = peak.max(api.get(c, u, "force"));
+        unsafe { step(c, t, 1e-3, fmi2True) };
+        t += 1e-3;
+    }
+    assert!(peak > 1e-6, "{peak}");
+    assert!(api.get(c, u, "plastic_overlap") > 0.0);
+    assert!(api.get(c, u, "max_overlap") >= 60e-9 * (1.0 - 1e-9));
+    assert!(api.get(c, u, "dissipated_energy") > 0.0);
+    api.free(c);
+}
