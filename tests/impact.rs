@@ -104,3 +104,22 @@ fn a_tighter_tolerance_converges_to_the_energy_balance() {
     assert!(tight < 1e-8, "{tight:e}");
     assert!(tight <= loose, "{tight:e} vs {loose:e}");
 }
+
+#[test]
+fn accepting_the_same_point_twice_changes_nothing() {
+    // A master may accept one state more than once (an event, then a completed step at the same time).
+    let s = scene(ModelKind::Nan);
+    let (mut sp, _) = sphere(&s, 1e-10);
+    let c = &mut sp.contact;
+    for alpha in [-1e-9, 0.0, 5e-9, 20e-9, 40e-9] {
+        c.accept(alpha, 1.0);
+    }
+    assert_eq!(c.accepted.branch, Branch::Plastic);
+    let (history, branch) = (c.history, c.accepted.branch);
+    c.accept(40e-9, 1.0);
+    assert_eq!((c.history, c.accepted.branch), (history, branch));
+    assert_eq!(c.branch_at(40e-9, 1.0), Branch::Plastic, "plastic loading goes on at the accepted point");
+    c.accept(40e-9, -1.0);
+    assert_eq!(c.accepted.branch, Branch::Elastic, "unloading from the turning point");
+    assert_eq!(c.history, history);
+}

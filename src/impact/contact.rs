@@ -90,9 +90,12 @@ impl Contact {
         // the branch the motion goes into.
         let here = self.law.evaluate(alpha, &self.history);
         let step = NUDGE * self.alpha_nominal * direction(rate);
-        let into = if step == 0.0 { here } else { self.law.evaluate(alpha + step, &here.history) };
+        let mut into = if step == 0.0 { here } else { self.law.evaluate(alpha + step, &here.history) };
         let into_point = alpha + step;
-        self.history = into.history;
+        // The history is the one at alpha itself; the nudged evaluation only names the branch and its
+        // bounds. So accepting the same point twice changes nothing.
+        into.history = here.history;
+        self.history = here.history;
         self.accepted = into;
         self.accepted_alpha = into_point;
         if alpha > self.max_overlap {

@@ -1,0 +1,218 @@
+"""Shared helpers of the fmpy suite: the two FMUs (extracted once), the command-line tool for
+energy-balance reference values, and a logger callback that collects the FMU's messages.
+
+Reference values come from the FMUs' own model descriptions and from `powderfmu analyze` at run time;
+the only numbers written into the tests are published ones (000 Table 6, 004 Table 4.2).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import subprocess
+import tempfile
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+from fmpy import calloc, free, simulate_fmu
+from fmpy.fmi2 import (
+    FMU2Model,
+    FMU2Slave,
+    fmi2CallbackAllocateMemoryTYPE,
+    fmi2CallbackFreeMemoryTYPE,
+    fmi2CallbackFunctions,
+    fmi2CallbackLoggerTYPE,
+)
+from fmpy.model_description import ModelDescription
+
+REPO = Path(__file__).resolve().parents[2]
+UNIT_NAMES = ("ParticleWallImpact", "ContactElement")
+
+# Parameters of the units that are not scene keys of `powderfmu analyze`.
+OWN_PARAMETERS = frozenset({"initial_gap", "initial_velocity", "gravity", "tolerance"})
+
+
+def fmu_dir() -> Path:
+    return Path(os.environ.get("POWDERFMU_FMU_DIR", REPO / "target" / "fmu"))
+
+
+def cli_path() -> Path:
+    return Path(os.environ.get("POWDERFMU_CLI", REPO / "target" / "release" / "powderfmu"))
+
+
+def sphere_mass(radius: float, density: float) -> float:
+    return 4.0 / 3.0 * math.pi * radius**3 * density
+
+
+def rel(a: float, b: float) -> float:
+    """Relative difference of a against the reference b."""
+    return abs(a - b) / abs(b)
+
+
+# ---------------------------------------------------------------------------------------------------
+# Logging
+
+
+@dataclass
+class LogRecord:
+    instance: str
+    status: int
+    category: str
+    message: str
+
+
+@dataclass
+class MessageLog:
+    """fmi2CallbackFunctions whose logger appends to `records` (keep this object alive while the
+    instance lives: ctypes does not hold the callback for the FMU)."""
+
+    records: list[LogRecord] = field(default_factory=list)
+
+    def __post_init__(self):
+        def logger(_env, instance, status, category, message):
+            def text(b):
+                return b.decode("utf-8", "replace") if b is not None else ""
+
+            self.records.append(LogRecord(text(instance), int(status), text(category), text(message)))
+
+        self._logger = fmi2CallbackLoggerTYPE(logger)
+        self.callbacks = fmi2CallbackFunctions()
+        self.callbacks.logger = self._logger
+        self.callbacks.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
+        self.callbacks.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
+        self.callbacks.stepFinished = None
+        self.callbacks.componentEnvironment = None
+
+    def messages(self, min_status: int = 0) -> list[str]:
+        return [r.message for r in self.records if r.status >= min_status]
+
+    def clear(self):
+        self.records.clear()
+
+
+# ---------------------------------------------------------------------------------------------------
+# The units
+
+
+@dataclass
+class Unit:
+    """One FMU, extracted once per test session."""
+
+    name: str
+    path: Path
+    unzipdir: str
+    md: ModelDescription
+
+    @property
+    def variables(self):
+        return {v.name: v for v in self.md.modelVariables}
+
+    @property
+    def vr(self) -> dict[str, int]:
+        return {v.name: v.valueReference for v in self.md.modelVariables}
+
+    def start(self, name: str):
+        v = self.variables[name]
+        return float(v.start) if v.type == "Real" else (int(v.start) if v.type == "Integer" else v.start)
+
+    def simulate(self, fmi_type: str = "CoSimulation", start_values: dict | None = None, **kwargs) -> np.ndarray:
+        """fmpy.simulate_fmu on the extracted unit; unknown start values raise (validate)."""
+        return simulate_fmu(
+            self.unzipdir,
+            model_description=self.md,
+            fmi_type=fmi_type,
+            start_values=dict(start_values or {}),
+            **kwargs,
+        )
+
+    def scene(self, start_values: dict | None = None) -> dict:
+        """The scene (JSON object for `powderfmu`) that the unit sees with these start values: every
+        scene-key parameter at its start value or override; a Real whose 0 means "derive" is left out
+        when it is 0."""
+        start_values = dict(start_values or {})
+        scene = {}
+        for v in self.md.modelVariables:
+            if v.causality != "parameter" or v.name in OWN_PARAMETERS:
+                continue
+            value = start_values.pop(v.name, v.start)
+            if v.type == "Real":
+                value = float(value)
+                if value == 0.0 and "0 = default" in (v.description or ""):
+                    continue
+            scene[v.name] = value
+        unknown = set(start_values) - OWN_PARAMETERS
+        assert not unknown, f"not parameters of {self.name}: {sorted(unknown)}"
+        return scene
+
+    def _kwargs(self, instance_name: str, interface) -> dict:
+        return dict(
+            guid=self.md.guid,
+            unzipDirectory=self.unzipdir,
+            modelIdentifier=interface.modelIdentifier,
+            instanceName=instance_name,
+        )
+
+    def slave(self, instance_name: str = "slave", log: MessageLog | None = None, guid: str | None = None) -> FMU2Slave:
+        """An instantiated Co-Simulation instance (fmi2Instantiate called)."""
+        kwargs = self._kwargs(instance_name, self.md.coSimulation)
+        if guid is not None:
+            kwargs["guid"] = guid
+        fmu = FMU2Slave(**kwargs)
+        fmu.instantiate(callbacks=log.callbacks if log else None)
+        return fmu
+
+    def model(self, instance_name: str = "model", log: MessageLog | None = None) -> FMU2Model:
+        """An instantiated Model Exchange instance."""
+        fmu = FMU2Model(**self._kwargs(instance_name, self.md.modelExchange))
+        fmu.instantiate(callbacks=log.callbacks if log else None)
+        return fmu
+
+    def set_start_values(self, fmu, start_values: dict):
+        """Sets parameters by name through fmi2SetReal / fmi2SetString / fmi2SetInteger."""
+        for name, value in start_values.items():
+            v = self.variables[name]
+            if v.type == "Real":
+                fmu.setReal([v.valueReference], [float(value)])
+            elif v.type == "String":
+                fmu.setString([v.valueReference], [value])
+            elif v.type == "Integer":
+                fmu.setInteger([v.valueReference], [int(value)])
+            else:
+                fmu.setBoolean([v.valueReference], [bool(value)])
+
+    def initialize(self, fmu, start_values: dict | None = None, start_time: float = 0.0, stop_time: float | None = None):
+        fmu.setupExperiment(startTime=start_time, stopTime=stop_time)
+        self.set_start_values(fmu, start_values or {})
+        fmu.enterInitializationMode()
+        fmu.exitInitializationMode()
+
+
+# ---------------------------------------------------------------------------------------------------
+# The command-line tool
+
+
+class Cli:
+    """`powderfmu analyze` on a scene given as a dict."""
+
+    def __init__(self, path: Path):
+        self.path = path
+        self._cache: dict[str, dict] = {}
+
+    def analyze(self, scene: dict, velocity: float | None = None) -> dict:
+        key = json.dumps([scene, velocity], sort_keys=True)
+        if key not in self._cache:
+            with tempfile.NamedTemporaryFile("w", suffix=".json", delete=False) as f:
+                json.dump(scene, f)
+                name = f.name
+            try:
+                cmd = [str(self.path), "analyze", name]
+                if velocity is not None:
+                    cmd += ["--velocity", repr(float(velocity))]
+                run = subprocess.run(cmd, capture_output=True, text=True, timeout=60)
+            finally:
+                os.unlink(name)
+            assert run.returncode == 0, f"{' '.join(cmd)} failed ({run.returncode}): {run.stderr}"
+            self._cache[key] = json.loads(run.stdout)
+        return self._cache[key]
