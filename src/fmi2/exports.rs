@@ -159,7 +159,7 @@ pub unsafe extern "C" fn fmi2SetDebugLogging(
                 }
             }
         }
-        inst.logger.logging_on = on || (!indices.is_empty() && inst.logger.logging_on);
+        // No categories: all of them on or off; otherwise only the named ones.
         if indices.is_empty() {
             inst.logger.categories.fill(on);
             inst.logger.logging_on = on;

@@ -122,7 +122,12 @@ impl Contact {
         } else {
             1.0
         };
-        [lower, upper, rate / self.rate_nominal + HYSTERESIS]
+        // Turning points matter where the overlap is the largest so far (max_overlap, and the end of
+        // plastic loading); elsewhere (a sphere oscillating in its adhesive well, at rest under gravity)
+        // watching the rate would only make events.
+        let turning =
+            if self.accepted_alpha >= self.max_overlap - 2.0 * NUDGE * self.alpha_nominal { rate / self.rate_nominal + HYSTERESIS } else { 1.0 };
+        [lower, upper, turning]
     }
 
     /// Follows a straight overlap path from the accepted overlap to `to`, accepting the history at every

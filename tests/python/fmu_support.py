@@ -82,8 +82,6 @@ class MessageLog:
         self.callbacks.logger = self._logger
         self.callbacks.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
         self.callbacks.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
-        self.callbacks.stepFinished = None
-        self.callbacks.componentEnvironment = None
 
     def messages(self, min_status: int = 0) -> list[str]:
         return [r.message for r in self.records if r.status >= min_status]
@@ -216,3 +214,61 @@ class Cli:
             assert run.returncode == 0, f"{' '.join(cmd)} failed ({run.returncode}): {run.stderr}"
             self._cache[key] = json.loads(run.stdout)
         return self._cache[key]
+
+    def curve(self, scene: dict, path: list[float], points: int) -> np.ndarray:
+        """`powderfmu curve`: the quasi-static force along an overlap path, as a structured array
+        (overlap_m, force_N, stiffness_N_per_m, branch, contact_state)."""
+        with tempfile.NamedTemporaryFile("w", suffix=".json", delete=False) as f:
+            json.dump(scene, f)
+            name = f.name
+        try:
+            cmd = [str(self.path), "curve", name, "--path", ",".join(repr(float(a)) for a in path), "--points", str(points)]
+            run = subprocess.run(cmd, capture_output=True, text=True, timeout=60)
+        finally:
+            os.unlink(name)
+        assert run.returncode == 0, f"{' '.join(cmd)} failed ({run.returncode}): {run.stderr}"
+        return np.genfromtxt(run.stdout.splitlines(), delimiter=",", names=True, dtype=None, encoding=None)
+
+    def restitution_sticking_velocity(self, scene: dict) -> float:
+        """The energy-balance sticking velocity of the scene's law, from the header line
+        `# sticking_velocity_m_per_s = ...` of `powderfmu restitution`."""
+        with tempfile.NamedTemporaryFile("w", suffix=".json", delete=False) as f:
+            json.dump(scene, f)
+            name = f.name
+        try:
+            cmd = [str(self.path), "restitution", name, "--velocities", "1"]
+            run = subprocess.run(cmd, capture_output=True, text=True, timeout=60)
+        finally:
+            os.unlink(name)
+        assert run.returncode == 0, f"{' '.join(cmd)} failed ({run.returncode}): {run.stderr}"
+        for line in run.stdout.splitlines():
+            if line.startswith("# sticking_velocity_m_per_s"):
+                return float(line.split("=")[1])
+        raise AssertionError(f"{' '.join(cmd)} printed no sticking velocity:\n{run.stdout}")
+
+
+# ---------------------------------------------------------------------------------------------------
+# Inputs
+
+
+def wall_input(times, displacement) -> np.ndarray:
+    """fmpy input signal for (wall_displacement, wall_velocity): the displacement linear between the
+    given points and the velocity its exact slope, piecewise constant, switching at each interior point
+    (a repeated time row, which fmpy treats as an input event). So wall_velocity is always the time
+    derivative of wall_displacement, as the units assume."""
+    t = np.asarray(times, dtype=float)
+    d = np.asarray(displacement, dtype=float)
+    assert t.shape == d.shape and t.size >= 2 and np.all(np.diff(t) > 0)
+    v = np.diff(d) / np.diff(t)
+    rows = [(t[0], d[0], v[0])]
+    for k in range(1, t.size - 1):
+        rows.append((t[k], d[k], v[k - 1]))
+        rows.append((t[k], d[k], v[k]))
+    rows.append((t[-1], d[-1], v[-1]))
+    return np.array(rows, dtype=[("time", np.float64), ("wall_displacement", np.float64), ("wall_velocity", np.float64)])
+
+
+def power_of_two_below(x: float) -> float:
+    """The largest power of two not above x: a communication step that is exact in binary, so that
+    t + h and n h carry no rounding."""
+    return 2.0 ** math.floor(math.log2(x))
