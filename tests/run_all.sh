@@ -29,9 +29,9 @@ cargo run --locked --quiet -p fmu_build || status=$?
 echo "== fmpy suite (tests/python)"
 POWDERFMU_FMU_DIR="$PWD/target/fmu" POWDERFMU_CLI="$PWD/target/debug/powderfmu" \
     "$python" -m pytest tests/python -q -p no:cacheprovider 2>&1 | tee "$pylog" || status=$?
-py_passed=$(grep -Eo '[0-9]+ passed' "$pylog" | tail -1 | grep -Eo '[0-9]+' || echo 0)
-py_failed=$(grep -Eo '[0-9]+ (failed|error)' "$pylog" | awk '{s += $1} END {print s + 0}')
+py_passed=$( (grep -Eo '[0-9]+ passed' "$pylog" || true) | tail -1 | grep -Eo '[0-9]+' || true)
+py_failed=$( (grep -Eo '[0-9]+ (failed|error)' "$pylog" || true) | awk '{s += $1} END {print s + 0}')
 
 echo
-echo "rust: ${rust_passed} passed, ${rust_failed} failed; fmpy: ${py_passed} passed, ${py_failed} failed"
+echo "rust: ${rust_passed} passed, ${rust_failed} failed; fmpy: ${py_passed:-0} passed, ${py_failed} failed"
 exit "$status"
