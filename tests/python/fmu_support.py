@@ -7,6 +7,7 @@ the only numbers written into the tests are published ones (000 Table 6, 004 Tab
 
 from __future__ import annotations
 
+import ctypes
 import json
 import math
 import os
@@ -28,7 +29,6 @@ from fmpy.fmi2 import (
 from fmpy.model_description import ModelDescription
 
 REPO = Path(__file__).resolve().parents[2]
-UNIT_NAMES = ("ParticleWallImpact", "ContactElement")
 
 # Parameters of the units that are not scene keys of `powderfmu analyze`.
 OWN_PARAMETERS = frozenset({"initial_gap", "initial_velocity", "gravity", "tolerance"})
@@ -192,7 +192,8 @@ class Unit:
 
 
 class Cli:
-    """`powderfmu analyze` on a scene given as a dict."""
+    """The command-line tool on scenes given as dicts: `analyze` (closed-form and energy-balance
+    results, JSON), `curve` (quasi-static force along an overlap path), `restitution`."""
 
     def __init__(self, path: Path):
         self.path = path
@@ -229,14 +230,15 @@ class Cli:
         assert run.returncode == 0, f"{' '.join(cmd)} failed ({run.returncode}): {run.stderr}"
         return np.genfromtxt(run.stdout.splitlines(), delimiter=",", names=True, dtype=None, encoding=None)
 
-    def restitution_sticking_velocity(self, scene: dict) -> float:
+    def restitution_sticking_velocity(self, scene: dict, velocities: list[float]) -> float:
         """The energy-balance sticking velocity of the scene's law, from the header line
-        `# sticking_velocity_m_per_s = ...` of `powderfmu restitution`."""
+        `# sticking_velocity_m_per_s = ...` of `powderfmu restitution` (printed when the velocities
+        bracket it)."""
         with tempfile.NamedTemporaryFile("w", suffix=".json", delete=False) as f:
             json.dump(scene, f)
             name = f.name
         try:
-            cmd = [str(self.path), "restitution", name, "--velocities", "1"]
+            cmd = [str(self.path), "restitution", name, "--velocities", ",".join(repr(float(v)) for v in velocities)]
             run = subprocess.run(cmd, capture_output=True, text=True, timeout=60)
         finally:
             os.unlink(name)
@@ -272,3 +274,126 @@ def power_of_two_below(x: float) -> float:
     """The largest power of two not above x: a communication step that is exact in binary, so that
     t + h and n h carry no rounding."""
     return 2.0 ** math.floor(math.log2(x))
+
+
+# ---------------------------------------------------------------------------------------------------
+# Stepping by hand (fmpy's low-level API)
+
+
+def output_names(unit: Unit) -> list[str]:
+    return [v.name for v in unit.md.modelVariables if v.causality == "output"]
+
+
+def read_outputs(unit: Unit, fmu) -> list[str]:
+    """Every output, Reals as float.hex (exact, so comparisons are bit-for-bit)."""
+    values = []
+    for name in output_names(unit):
+        v = unit.variables[name]
+        if v.type == "Real":
+            values.append(float(fmu.getReal([v.valueReference])[0]).hex())
+        else:
+            values.append(str(fmu.getInteger([v.valueReference])[0]))
+    return values
+
+
+def record_steps(unit: Unit, fmu, t0: float, h: float, n: int, wall=None) -> list[list[str]]:
+    """n Co-Simulation steps of h from t0, the wall inputs (displacement, velocity) = wall(t) set before
+    each step when given; returns the outputs after every step."""
+    rows = []
+    t = t0
+    for _ in range(n):
+        if wall is not None:
+            d, v = wall(t)
+            fmu.setReal([unit.vr["wall_displacement"], unit.vr["wall_velocity"]], [d, v])
+        fmu.doStep(currentCommunicationPoint=t, communicationStepSize=h)
+        t += h
+        rows.append(read_outputs(unit, fmu))
+    return rows
+
+
+def triangle_wall(peak: float, period: float, low: float):
+    """A wall moving linearly from `low` up to `peak` and back in one period, repeating: (d, v) at t."""
+
+    def wall(t: float):
+        phase = (t / period) % 1.0
+        slope = 2.0 * (peak - low) / period
+        if phase < 0.5:
+            return low + slope * phase * period, slope
+        return peak - slope * (phase - 0.5) * period, -slope
+
+    return wall
+
+
+class FixedStepME:
+    """A fixed-step RK4 driver of a Model Exchange instance with crude event handling (an event when an
+    indicator changes sign over a step or the FMU asks for one). Deterministic, so two runs from the
+    same FMU state must agree bit for bit."""
+
+    def __init__(self, unit, fmu, h):
+        self.unit, self.fmu, self.h = unit, fmu, h
+        self.nx = unit.md.numberOfContinuousStates
+        self.nz = unit.md.numberOfEventIndicators
+        self.x = (ctypes.c_double * self.nx)()
+        self.dx = (ctypes.c_double * self.nx)()
+        self.z = (ctypes.c_double * self.nz)()
+
+    def indicators(self):
+        self.fmu.getEventIndicators(self.z, self.nz)
+        return list(self.z)
+
+    def derivative(self, t, x):
+        self.fmu.setTime(t)
+        self.x[:] = x
+        self.fmu.setContinuousStates(self.x, self.nx)
+        self.fmu.getDerivatives(self.dx, self.nx)
+        return list(self.dx)
+
+    def event_iteration(self, enter: bool = True):
+        """Event mode (entered unless already there, as after initialization), the discrete-state
+        iteration, back to continuous-time mode."""
+        if enter:
+            self.fmu.enterEventMode()
+        while self.fmu.newDiscreteStates()[0]:
+            pass
+        self.fmu.enterContinuousTimeMode()
+
+    def run(self, t, n):
+        fmu, h = self.fmu, self.h
+        fmu.getContinuousStates(self.x, self.nx)
+        x = list(self.x)
+        z0 = self.indicators()
+        rows = []
+        for _ in range(n):
+            k1 = self.derivative(t, x)
+            k2 = self.derivative(t + h / 2, [a + h / 2 * b for a, b in zip(x, k1)])
+            k3 = self.derivative(t + h / 2, [a + h / 2 * b for a, b in zip(x, k2)])
+            k4 = self.derivative(t + h, [a + h * b for a, b in zip(x, k3)])
+            x = [a + h / 6 * (b + 2 * c + 2 * d + e) for a, b, c, d, e in zip(x, k1, k2, k3, k4)]
+            t += h
+            fmu.setTime(t)
+            self.x[:] = x
+            fmu.setContinuousStates(self.x, self.nx)
+            step_event, terminate = fmu.completedIntegratorStep()
+            assert not terminate
+            z1 = self.indicators()
+            if step_event or any((a > 0) != (b > 0) for a, b in zip(z0, z1)):
+                self.event_iteration()
+                fmu.getContinuousStates(self.x, self.nx)
+                x = list(self.x)
+                z1 = self.indicators()
+            z0 = z1
+            rows.append(read_outputs(self.unit, fmu))
+        return rows
+
+
+def initialized_model(unit: Unit, start_values: dict | None = None, instance_name: str = "model", log: MessageLog | None = None):
+    """A Model Exchange instance through initialization and the first event iteration, in
+    continuous-time mode, with a FixedStepME driver (h set by the caller)."""
+    fmu = unit.model(instance_name, log)
+    fmu.setupExperiment(startTime=0.0)
+    unit.set_start_values(fmu, start_values or {})
+    fmu.enterInitializationMode()
+    fmu.exitInitializationMode()
+    driver = FixedStepME(unit, fmu, h=0.0)
+    driver.event_iteration(enter=False)
+    return fmu, driver
