@@ -50,12 +50,10 @@ fn call(c: fmi2Component, function: &'static str, modes: u32, f: impl FnOnce(&mu
     // SAFETY: `c` was made by fmi2Instantiate from a Box<Instance> and has not been freed (it is live).
     let inst = unsafe { &mut *(c as *mut Instance) };
     let result = catch_unwind(AssertUnwindSafe(|| {
-        if inst.mode == Mode::Fatal && modes != u32::MAX {
+        if inst.mode == Mode::Fatal {
             return error(format!("{function}: the instance is in the Fatal state after an earlier internal error; free it"));
         }
-        if modes != u32::MAX {
-            inst.check_mode(function, modes)?;
-        }
+        inst.check_mode(function, modes)?;
         if inst.logger.enabled("logAll") {
             inst.log(fmi2OK, "logAll", function);
         }

@@ -73,12 +73,7 @@ fn put_str(b: &mut Vec<u8>, s: &str) {
 }
 
 fn fnv1a(bytes: &[u8]) -> u64 {
-    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
-    for x in bytes {
-        h ^= u64::from(*x);
-        h = h.wrapping_mul(0x0000_0100_0000_01b3);
-    }
-    h
+    crate::units::fnv1a64(bytes, 0xcbf2_9ce4_8422_2325)
 }
 
 /// A bounds-checked reader: every read says what it wanted when the bytes run out.

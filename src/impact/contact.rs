@@ -14,6 +14,7 @@
 use crate::law::damping::NormalDamping;
 use crate::law::{AnyHistory, AnyLaw, Branch, Evaluation, NormalLaw};
 use crate::numeric::tanh_sinh;
+use serde::{Deserialize, Serialize};
 
 /// Indicator hysteresis, in units of the nominal overlap (or nominal rate).
 pub const HYSTERESIS: f64 = 1e-10;
@@ -34,6 +35,15 @@ pub struct Contact {
     /// The overlap at which `accepted` was evaluated [m].
     pub accepted_alpha: f64,
     /// Largest overlap reached [m] (NEG_INFINITY before any).
+    pub max_overlap: f64,
+}
+
+/// What a contact remembers beyond its parameters: the part of a saved FMU state.
+#[derive(Debug, Clone, Copy, Serialize, Deserialize)]
+pub struct Memory {
+    pub history: AnyHistory,
+    pub accepted: Evaluation<AnyHistory>,
+    pub accepted_alpha: f64,
     pub max_overlap: f64,
 }
 
@@ -59,6 +69,22 @@ impl Contact {
         // A placeholder until the unit accepts its initial state.
         let accepted = Evaluation::separated(f64::INFINITY, history);
         Contact { law, damping, alpha_nominal, rate_nominal, history, accepted, accepted_alpha: f64::NAN, max_overlap: f64::NEG_INFINITY }
+    }
+
+    pub fn memory(&self) -> Memory {
+        Memory { history: self.history, accepted: self.accepted, accepted_alpha: self.accepted_alpha, max_overlap: self.max_overlap }
+    }
+
+    /// Takes back a saved memory; refuses one of another law.
+    pub fn remember(&mut self, m: Memory) -> Result<(), String> {
+        if std::mem::discriminant(&m.history) != std::mem::discriminant(&self.law.initial_history()) {
+            return Err("the saved state belongs to another contact_model than the parameters".into());
+        }
+        self.history = m.history;
+        self.accepted = m.accepted;
+        self.accepted_alpha = m.accepted_alpha;
+        self.max_overlap = m.max_overlap;
+        Ok(())
     }
 
     /// Force at overlap `alpha` and overlap rate `rate` with the accepted history (a trial: nothing kept).

@@ -175,8 +175,9 @@ impl Sphere {
             // Accepted by error control. Did the branch change inside the step?
             let g0 = self.indicators(wall, t, y);
             let g1 = self.indicators(wall, t + h_try, &y1);
-            let crossed: Vec<usize> = (0..3).filter(|&i| g0[i] > 0.0 && g1[i] <= 0.0).collect();
-            let (t_new, y_new) = if crossed.is_empty() {
+            let crossed: [bool; 3] = std::array::from_fn(|i| g0[i] > 0.0 && g1[i] <= 0.0);
+            let any_crossed = crossed.contains(&true);
+            let (t_new, y_new) = if !any_crossed {
                 (if last { t_end } else { t + h_try }, y1)
             } else {
                 let tau = self.locate(wall, t, y, h_try, &crossed);
@@ -190,7 +191,7 @@ impl Sphere {
             self.accept(wall, t, y);
             // The shortened last step of a communication step says nothing about the step size the
             // dynamics allows: it is not kept for the next call.
-            if crossed.is_empty() && !last {
+            if !any_crossed && !last {
                 self.last_step = h_try;
                 h = h_try * (0.9 * e.max(1e-10).powf(-0.2)).min(5.0);
             }
@@ -199,11 +200,11 @@ impl Sphere {
     }
 
     /// The smallest step in (0, h] after which one of the `crossed` indicators has changed sign, to 1e-13 h.
-    fn locate(&self, wall: &Wall, t: f64, y: &State, h: f64, crossed: &[usize]) -> f64 {
+    fn locate(&self, wall: &Wall, t: f64, y: &State, h: f64, crossed: &[bool; 3]) -> f64 {
         let g = |tau: f64| -> f64 {
             let (y_tau, _) = self.dp_step(wall, t, y, tau);
             let z = self.indicators(wall, t + tau, &y_tau);
-            crossed.iter().map(|&i| z[i]).fold(f64::INFINITY, f64::min)
+            (0..3).filter(|&i| crossed[i]).map(|i| z[i]).fold(f64::INFINITY, f64::min)
         };
         let (mut lo, mut hi) = (0.0, h);
         let (mut g_lo, mut g_hi) = (g(0.0), g(h));

@@ -7,33 +7,29 @@
 //! walks from the last accepted overlap to the current one and stops at each branch point on the way.
 //! ME has one continuous state, the contact work (its derivative is force times wall_velocity).
 
+use super::contact_parts::{self, Outputs};
 use super::scene_params;
 use super::variables::{Role, Value, VarType, Variable};
 use super::{Model, UnitInfo};
+use crate::impact::contact::Memory;
 use crate::impact::Contact;
-use crate::law::damping::NormalDamping;
-use crate::law::params::Effective;
-use crate::law::{AnyHistory, AnyLaw, Evaluation, NormalLaw};
+use crate::law::NormalLaw;
 use serde::{Deserialize, Serialize};
 
 pub const MODEL_IDENTIFIER: &str = "ContactElement";
 
 fn own_variables() -> Vec<Variable> {
+    let [max_overlap, plastic_overlap, pull_off_force] = contact_parts::history_outputs();
     vec![
         Variable::input("wall_displacement", "m", "approach of the wall toward the sphere (overlap = wall_displacement - initial_gap)"),
         Variable::input("wall_velocity", "m/s", "rate of the approach (for the viscous damping and the contact work)"),
         Variable::output("force", VarType::Real, "N", "normal contact force (law plus damping), positive repulsive"),
-        Variable::output("overlap", VarType::Real, "m", "overlap alpha = wall_displacement - initial_gap, positive in compression").with_nominal(1e-9),
-        Variable::output(
-            "contact_state",
-            VarType::Integer,
-            "",
-            "branch of the law: 0 not in contact, 1 elastic, 2 plastic loading, 3 adhesive (beyond pull-off), 4 reloading (tomas), 5 attracted without contact (tomas)",
-        ),
-        Variable::output("max_overlap", VarType::Real, "m", "largest overlap reached so far (0 before contact)").with_nominal(1e-9),
-        Variable::output("plastic_overlap", VarType::Real, "m", "overlap at which the current unloading branch meets zero force (alpha_p)")
+        Variable::output("overlap", VarType::Real, "m", "overlap alpha = wall_displacement - initial_gap, positive in compression")
             .with_nominal(1e-9),
-        Variable::output("pull_off_force", VarType::Real, "N", "largest tensile force the contact can take with its current history (f_cp)"),
+        contact_parts::contact_state_output(),
+        max_overlap,
+        plastic_overlap,
+        pull_off_force,
         Variable::output(
             "dissipated_energy",
             VarType::Real,
@@ -65,12 +61,7 @@ pub fn info() -> UnitInfo {
 struct Refs {
     wall_displacement: usize,
     wall_velocity: usize,
-    force: usize,
-    overlap: usize,
-    contact_state: usize,
-    max_overlap: usize,
-    plastic_overlap: usize,
-    pull_off_force: usize,
+    outputs: Outputs,
     dissipated_energy: usize,
     der_energy: usize,
     initial_gap: usize,
@@ -87,10 +78,7 @@ pub struct ContactElement {
 #[derive(Serialize, Deserialize)]
 struct Snapshot {
     work: f64,
-    history: AnyHistory,
-    accepted: Evaluation<AnyHistory>,
-    accepted_alpha: f64,
-    max_overlap: f64,
+    contact: Memory,
 }
 
 impl ContactElement {
@@ -100,12 +88,7 @@ impl ContactElement {
             refs: Refs {
                 wall_displacement: r("wall_displacement"),
                 wall_velocity: r("wall_velocity"),
-                force: r("force"),
-                overlap: r("overlap"),
-                contact_state: r("contact_state"),
-                max_overlap: r("max_overlap"),
-                plastic_overlap: r("plastic_overlap"),
-                pull_off_force: r("pull_off_force"),
+                outputs: Outputs::new(r),
                 dissipated_energy: r("dissipated_energy"),
                 der_energy: r("der(dissipated_energy)"),
                 initial_gap: r("initial_gap"),
@@ -118,16 +101,13 @@ impl ContactElement {
     }
 
     fn build(&self, values: &[Value]) -> Result<(Contact, f64), String> {
-        let scene = scene_params::scene(&self.variables, values).map_err(|e| e.to_string())?;
-        let law = AnyLaw::from_scene(&scene).map_err(|e| e.to_string())?;
-        let eff = Effective::from_scene(&scene).map_err(|e| e.to_string())?;
-        let damping = NormalDamping::from_scene(&scene, eff.mass);
         let gap = values[self.refs.initial_gap].as_real();
         if !gap.is_finite() {
             return Err(format!("parameter `initial_gap` = {gap} m is not a finite number"));
         }
         let rate_nominal = values[self.refs.wall_velocity].as_real().abs().max(1e-3);
-        Ok((Contact::new(law, damping, 1e-3 * eff.radius, rate_nominal), gap))
+        let (contact, _, _) = contact_parts::build(&self.variables, values, rate_nominal)?;
+        Ok((contact, gap))
     }
 
     /// Overlap and rate of the current inputs.
@@ -154,15 +134,9 @@ impl Model for ContactElement {
         let (alpha, rate) = self.inputs(values);
         let Some(c) = &self.contact else { return };
         let r = self.refs;
-        let f = c.force(alpha, rate);
-        values[r.force] = Value::Real(f.total());
-        values[r.overlap] = Value::Real(alpha);
-        values[r.contact_state] = Value::Integer(c.branch_at(alpha, rate).contact_state());
-        values[r.max_overlap] = Value::Real(c.max_overlap.max(alpha).max(0.0));
-        values[r.plastic_overlap] = Value::Real(c.law.plastic_overlap(&c.history));
-        values[r.pull_off_force] = Value::Real(c.law.pull_off_force(&c.history));
+        let f = r.outputs.write(values, c, alpha, rate, c.max_overlap.max(alpha).max(0.0));
         values[r.dissipated_energy] = Value::Real(self.work);
-        values[r.der_energy] = Value::Real(f.total() * rate);
+        values[r.der_energy] = Value::Real(f * rate);
     }
 
     fn set_time(&mut self, _t: f64) {}
@@ -219,8 +193,7 @@ impl Model for ContactElement {
 
     fn save(&self) -> Vec<u8> {
         let Some(c) = &self.contact else { return Vec::new() };
-        let snap =
-            Snapshot { work: self.work, history: c.history, accepted: c.accepted, accepted_alpha: c.accepted_alpha, max_overlap: c.max_overlap };
+        let snap = Snapshot { work: self.work, contact: c.memory() };
         bincode::serialize(&snap).unwrap_or_default()
     }
 
@@ -231,13 +204,7 @@ impl Model for ContactElement {
         }
         let snap: Snapshot = super::decode(bytes)?;
         let (mut c, gap) = self.build(values)?;
-        if std::mem::discriminant(&snap.history) != std::mem::discriminant(&c.law.initial_history()) {
-            return Err("the saved state belongs to another contact_model than the parameters".into());
-        }
-        c.history = snap.history;
-        c.accepted = snap.accepted;
-        c.accepted_alpha = snap.accepted_alpha;
-        c.max_overlap = snap.max_overlap;
+        c.remember(snap.contact)?;
         self.contact = Some(c);
         self.gap = gap;
         self.work = snap.work;

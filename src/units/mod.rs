@@ -2,6 +2,7 @@
 //! glue in `crate::fmi2` knows only this module's `UnitInfo` and `Model` trait, never the physics.
 
 pub mod contact_element;
+pub mod contact_parts;
 pub mod model_description;
 pub mod particle_wall_impact;
 pub mod scene_params;
@@ -86,7 +87,8 @@ impl UnitInfo {
     }
 }
 
-fn fnv1a64(bytes: &[u8], seed: u64) -> u64 {
+/// FNV-1a, 64 bit, from `seed` (the standard offset basis is 0xcbf2_9ce4_8422_2325).
+pub(crate) fn fnv1a64(bytes: &[u8], seed: u64) -> u64 {
     let mut h = seed;
     for b in bytes {
         h ^= u64::from(*b);

@@ -5,13 +5,12 @@
 //! tolerances act on overlap-sized numbers), the velocity and the contact work; two event indicators follow
 //! the branch interval of the law. Co-Simulation: `impact::Sphere::advance`.
 
+use super::contact_parts::{self, Outputs};
 use super::scene_params;
 use super::variables::{Causality, Role, Value, VarType, Variable};
 use super::{Model, UnitInfo};
-use crate::impact::{Contact, Sphere, State, Wall};
-use crate::law::damping::NormalDamping;
-use crate::law::params::Effective;
-use crate::law::{AnyHistory, AnyLaw, Evaluation, NormalLaw};
+use crate::impact::contact::Memory;
+use crate::impact::{Sphere, State, Wall};
 use crate::scene::Partner;
 use serde::{Deserialize, Serialize};
 
@@ -19,23 +18,24 @@ pub const MODEL_IDENTIFIER: &str = "ParticleWallImpact";
 
 /// The unit's own variables (the scene keys follow them).
 fn own_variables() -> Vec<Variable> {
+    let [max_overlap, plastic_overlap, pull_off_force] = contact_parts::history_outputs();
     vec![
         Variable::input("wall_displacement", "m", "position of the wall plane along the normal (z of the wall)"),
         Variable::input("wall_velocity", "m/s", "velocity of the wall along the normal (positive toward the sphere's side)"),
         Variable::output("force", VarType::Real, "N", "normal contact force on the sphere (law plus damping), positive pushes it away from the wall"),
-        Variable::output("overlap", VarType::Real, "m", "overlap alpha = particle_radius - (sphere_position - wall_displacement), positive in compression").with_nominal(1e-9),
         Variable::output(
-            "contact_state",
-            VarType::Integer,
-            "",
-            "branch of the law: 0 not in contact, 1 elastic, 2 plastic loading, 3 adhesive (beyond pull-off), 4 reloading (tomas), 5 attracted without contact (tomas)",
-        ),
+            "overlap",
+            VarType::Real,
+            "m",
+            "overlap alpha = particle_radius - (sphere_position - wall_displacement), positive in compression",
+        )
+        .with_nominal(1e-9),
+        contact_parts::contact_state_output(),
         Variable::output("sphere_position", VarType::Real, "m", "height of the sphere centre"),
         Variable::output("sphere_velocity", VarType::Real, "m/s", "velocity of the sphere, positive away from the wall").with_role(Role::State(1)),
-        Variable::output("max_overlap", VarType::Real, "m", "largest overlap reached so far (0 before contact)").with_nominal(1e-9),
-        Variable::output("plastic_overlap", VarType::Real, "m", "overlap at which the current unloading branch meets zero force (alpha_p)")
-            .with_nominal(1e-9),
-        Variable::output("pull_off_force", VarType::Real, "N", "largest tensile force the contact can take with its current history (f_cp)"),
+        max_overlap,
+        plastic_overlap,
+        pull_off_force,
         Variable::output(
             "dissipated_energy",
             VarType::Real,
@@ -43,11 +43,13 @@ fn own_variables() -> Vec<Variable> {
             "work done on the contact, the integral of force d(overlap); after the sphere has left the wall, the energy the contact dissipated",
         )
         .with_role(Role::State(2)),
-        Variable::local("sphere_bottom", "m", "height of the sphere's lowest point, sphere_position - particle_radius (ME state)", Role::State(0)).with_nominal(1e-9),
+        Variable::local("sphere_bottom", "m", "height of the sphere's lowest point, sphere_position - particle_radius (ME state)", Role::State(0))
+            .with_nominal(1e-9),
         Variable::local("der(sphere_bottom)", "m/s", "velocity of the sphere's lowest point", Role::Derivative(0)),
         Variable::local("der(sphere_velocity)", "m/s2", "acceleration of the sphere", Role::Derivative(1)),
         Variable::local("der(dissipated_energy)", "W", "power of the contact force on the overlap rate", Role::Derivative(2)),
-        Variable::parameter("initial_gap", Value::Real(1e-8), "m", "gap between the sphere surface and the wall at the start").with_range(Some(0.0), None),
+        Variable::parameter("initial_gap", Value::Real(1e-8), "m", "gap between the sphere surface and the wall at the start")
+            .with_range(Some(0.0), None),
         Variable::parameter("initial_velocity", Value::Real(1.0), "m/s", "approach speed of the sphere at the start, positive toward the wall"),
         Variable::parameter("gravity", Value::Real(0.0), "m/s2", "gravitational acceleration toward the wall"),
         Variable::parameter("tolerance", Value::Real(1e-10), "", "relative tolerance of the Co-Simulation integrator, in [1e-14, 1e-2]")
@@ -76,14 +78,9 @@ pub fn info() -> UnitInfo {
 struct Refs {
     wall_displacement: usize,
     wall_velocity: usize,
-    force: usize,
-    overlap: usize,
-    contact_state: usize,
+    outputs: Outputs,
     sphere_position: usize,
     sphere_velocity: usize,
-    max_overlap: usize,
-    plastic_overlap: usize,
-    pull_off_force: usize,
     dissipated_energy: usize,
     sphere_bottom: usize,
     der_bottom: usize,
@@ -111,10 +108,7 @@ pub struct ParticleWallImpact {
 struct Snapshot {
     y: State,
     t: f64,
-    history: AnyHistory,
-    accepted: Evaluation<AnyHistory>,
-    accepted_alpha: f64,
-    max_overlap: f64,
+    contact: Memory,
     last_step: f64,
     cs_wall: Option<(f64, f64)>,
 }
@@ -130,14 +124,9 @@ impl ParticleWallImpact {
             refs: Refs {
                 wall_displacement: r("wall_displacement"),
                 wall_velocity: r("wall_velocity"),
-                force: r("force"),
-                overlap: r("overlap"),
-                contact_state: r("contact_state"),
+                outputs: Outputs::new(r),
                 sphere_position: r("sphere_position"),
                 sphere_velocity: r("sphere_velocity"),
-                max_overlap: r("max_overlap"),
-                plastic_overlap: r("plastic_overlap"),
-                pull_off_force: r("pull_off_force"),
                 dissipated_energy: r("dissipated_energy"),
                 sphere_bottom: r("sphere_bottom"),
                 der_bottom: r("der(sphere_bottom)"),
@@ -159,24 +148,19 @@ impl ParticleWallImpact {
 
     /// The sphere of the current parameters (law, damping, mass, tolerances); the state is not touched.
     fn build(&self, values: &[Value]) -> Result<(Sphere, f64), String> {
-        let scene = scene_params::scene(&self.variables, values).map_err(|e| e.to_string())?;
+        let refs = self.refs;
+        let rate_nominal = real(values, refs.initial_velocity).abs().max(real(values, refs.wall_velocity).abs()).max(1e-3);
+        let (contact, scene, eff) = contact_parts::build(&self.variables, values, rate_nominal)?;
         if scene.contact_partner != Partner::Wall {
             return Err("parameter `contact_partner` = \"particle\" is not allowed in ParticleWallImpact: the sphere hits a wall; use \"wall\" (two identical particles: use ContactElement)".into());
         }
-        let law = AnyLaw::from_scene(&scene).map_err(|e| e.to_string())?;
-        let eff = Effective::from_scene(&scene).map_err(|e| e.to_string())?;
-        let damping = NormalDamping::from_scene(&scene, eff.mass);
-        let refs = self.refs;
-        let v0 = finite(values, refs.initial_velocity, "initial_velocity", "m/s")?;
+        finite(values, refs.initial_velocity, "initial_velocity", "m/s")?;
         let g = finite(values, refs.gravity, "gravity", "m/s2")?;
         let tol = finite(values, refs.tolerance, "tolerance", "")?;
         if !(1e-14..=1e-2).contains(&tol) {
             return Err(format!("parameter `tolerance` = {tol:e} is out of range: allowed [1e-14, 1e-2]"));
         }
-        let wd = finite(values, refs.wall_velocity, "wall_velocity", "m/s")?;
-        let alpha_nominal = 1e-3 * scene.particle_radius;
-        let rate_nominal = v0.abs().max(wd.abs()).max(1e-3);
-        let contact = Contact::new(law, damping, alpha_nominal, rate_nominal);
+        finite(values, refs.wall_velocity, "wall_velocity", "m/s")?;
         Ok((Sphere { mass: eff.mass, gravity: g, contact, tolerance: tol, last_step: 0.0, steps: 0, events: 0 }, scene.particle_radius))
     }
 
@@ -225,22 +209,16 @@ impl Model for ParticleWallImpact {
             }
         }
         let (alpha, rate) = sphere.overlap(&wall, self.t, &self.y);
-        let f = sphere.contact.force(alpha, rate);
         let c = &sphere.contact;
-        let dy = sphere.derivatives(&wall, self.t, &self.y);
-        values[r.force] = Value::Real(f.total());
-        values[r.overlap] = Value::Real(alpha);
-        values[r.contact_state] = Value::Integer(c.branch_at(alpha, rate).contact_state());
+        let f = r.outputs.write(values, c, alpha, rate, c.max_overlap.max(0.0));
         values[r.sphere_position] = Value::Real(self.y[0] + self.radius);
         values[r.sphere_velocity] = Value::Real(self.y[1]);
-        values[r.max_overlap] = Value::Real(c.max_overlap.max(0.0));
-        values[r.plastic_overlap] = Value::Real(c.law.plastic_overlap(&c.history));
-        values[r.pull_off_force] = Value::Real(c.law.pull_off_force(&c.history));
         values[r.dissipated_energy] = Value::Real(self.y[2]);
         values[r.sphere_bottom] = Value::Real(self.y[0]);
-        values[r.der_bottom] = Value::Real(dy[0]);
-        values[r.der_velocity] = Value::Real(dy[1]);
-        values[r.der_energy] = Value::Real(dy[2]);
+        // The derivatives of `Sphere::derivatives`, from the force just evaluated.
+        values[r.der_bottom] = Value::Real(self.y[1]);
+        values[r.der_velocity] = Value::Real(f / sphere.mass - sphere.gravity);
+        values[r.der_energy] = Value::Real(f * rate);
     }
 
     fn set_time(&mut self, t: f64) {
@@ -313,17 +291,7 @@ impl Model for ParticleWallImpact {
 
     fn save(&self) -> Vec<u8> {
         let Some(s) = &self.sphere else { return Vec::new() };
-        let c = &s.contact;
-        let snap = Snapshot {
-            y: self.y,
-            t: self.t,
-            history: c.history,
-            accepted: c.accepted,
-            accepted_alpha: c.accepted_alpha,
-            max_overlap: c.max_overlap,
-            last_step: s.last_step,
-            cs_wall: self.cs_wall,
-        };
+        let snap = Snapshot { y: self.y, t: self.t, contact: s.contact.memory(), last_step: s.last_step, cs_wall: self.cs_wall };
         bincode::serialize(&snap).unwrap_or_default()
     }
 
@@ -334,13 +302,7 @@ impl Model for ParticleWallImpact {
         }
         let snap: Snapshot = super::decode(bytes)?;
         let (mut sphere, radius) = self.build(values)?;
-        if std::mem::discriminant(&snap.history) != std::mem::discriminant(&sphere.contact.law.initial_history()) {
-            return Err("the saved state belongs to another contact_model than the parameters".into());
-        }
-        sphere.contact.history = snap.history;
-        sphere.contact.accepted = snap.accepted;
-        sphere.contact.accepted_alpha = snap.accepted_alpha;
-        sphere.contact.max_overlap = snap.max_overlap;
+        sphere.contact.remember(snap.contact)?;
         sphere.last_step = snap.last_step;
         self.sphere = Some(sphere);
         self.radius = radius;

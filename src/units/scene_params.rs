@@ -89,9 +89,9 @@ pub fn scene(vars: &[Variable], values: &[Value]) -> Result<Scene, ParamError> {
             }
             _ => continue,
         };
-        // The wall keys are meaningless against an identical particle; leave them out at their defaults.
         map.insert(v.name.clone(), json);
     }
+    // The wall keys are meaningless against an identical particle: left out while at their start values.
     if map.get("contact_partner").and_then(|p| p.as_str()) == Some("particle") {
         for name in ["wall_youngs_modulus", "wall_poisson_ratio", "wall_yield_pressure"] {
             let default = vars.iter().find(|v| v.name == name).and_then(|v| v.start.clone());

@@ -138,65 +138,22 @@ pub struct Variable {
 }
 
 impl Variable {
-    /// A parameter with a start value (causality parameter, variability fixed, initial exact).
-    pub fn parameter(name: &str, start: Value, unit: &'static str, description: &str) -> Variable {
+    fn new(
+        name: &str,
+        causality: Causality,
+        variability: Variability,
+        var_type: VarType,
+        start: Option<Value>,
+        unit: &'static str,
+        description: &str,
+        role: Role,
+    ) -> Variable {
         Variable {
             name: name.into(),
-            causality: Causality::Parameter,
-            variability: Variability::Fixed,
-            var_type: start.var_type(),
-            start: Some(start),
-            unit,
-            min: None,
-            max: None,
-            nominal: None,
-            description: description.into(),
-            role: Role::Plain,
-        }
-    }
-
-    /// A continuous real input, start 0.
-    pub fn input(name: &str, unit: &'static str, description: &str) -> Variable {
-        Variable {
-            name: name.into(),
-            causality: Causality::Input,
-            variability: Variability::Continuous,
-            var_type: VarType::Real,
-            start: Some(Value::Real(0.0)),
-            unit,
-            min: None,
-            max: None,
-            nominal: None,
-            description: description.into(),
-            role: Role::Plain,
-        }
-    }
-
-    /// A calculated output.
-    pub fn output(name: &str, var_type: VarType, unit: &'static str, description: &str) -> Variable {
-        Variable {
-            name: name.into(),
-            causality: Causality::Output,
-            variability: if var_type == VarType::Real { Variability::Continuous } else { Variability::Discrete },
+            causality,
+            variability,
             var_type,
-            start: None,
-            unit,
-            min: None,
-            max: None,
-            nominal: None,
-            description: description.into(),
-            role: Role::Plain,
-        }
-    }
-
-    /// A calculated local continuous real (states and derivatives).
-    pub fn local(name: &str, unit: &'static str, description: &str, role: Role) -> Variable {
-        Variable {
-            name: name.into(),
-            causality: Causality::Local,
-            variability: Variability::Continuous,
-            var_type: VarType::Real,
-            start: None,
+            start,
             unit,
             min: None,
             max: None,
@@ -204,6 +161,27 @@ impl Variable {
             description: description.into(),
             role,
         }
+    }
+
+    /// A parameter with a start value (causality parameter, variability fixed, initial exact).
+    pub fn parameter(name: &str, start: Value, unit: &'static str, description: &str) -> Variable {
+        Variable::new(name, Causality::Parameter, Variability::Fixed, start.var_type(), Some(start), unit, description, Role::Plain)
+    }
+
+    /// A continuous real input, start 0.
+    pub fn input(name: &str, unit: &'static str, description: &str) -> Variable {
+        Variable::new(name, Causality::Input, Variability::Continuous, VarType::Real, Some(Value::Real(0.0)), unit, description, Role::Plain)
+    }
+
+    /// A calculated output.
+    pub fn output(name: &str, var_type: VarType, unit: &'static str, description: &str) -> Variable {
+        let variability = if var_type == VarType::Real { Variability::Continuous } else { Variability::Discrete };
+        Variable::new(name, Causality::Output, variability, var_type, None, unit, description, Role::Plain)
+    }
+
+    /// A calculated local continuous real (states and derivatives).
+    pub fn local(name: &str, unit: &'static str, description: &str, role: Role) -> Variable {
+        Variable::new(name, Causality::Local, Variability::Continuous, VarType::Real, None, unit, description, role)
     }
 
     pub fn with_range(mut self, min: Option<f64>, max: Option<f64>) -> Variable {

@@ -1,0 +1,75 @@
+//! What the two units share about their contact: building it from the parameter values, the outputs
+//! both report with the same meaning, and writing those outputs.
+
+use super::scene_params;
+use super::variables::{Value, VarType, Variable};
+use crate::impact::Contact;
+use crate::law::damping::NormalDamping;
+use crate::law::params::Effective;
+use crate::law::{AnyLaw, NormalLaw};
+use crate::scene::Scene;
+
+/// The contact of the scene in `values`: law, damping with the scene's m*, indicator scales 1e-3 R* and
+/// `rate_nominal`. Errors name the parameter.
+pub fn build(variables: &[Variable], values: &[Value], rate_nominal: f64) -> Result<(Contact, Scene, Effective), String> {
+    let scene = scene_params::scene(variables, values).map_err(|e| e.to_string())?;
+    let law = AnyLaw::from_scene(&scene).map_err(|e| e.to_string())?;
+    let eff = Effective::from_scene(&scene).map_err(|e| e.to_string())?;
+    let damping = NormalDamping::from_scene(&scene, eff.mass);
+    Ok((Contact::new(law, damping, 1e-3 * eff.radius, rate_nominal), scene, eff))
+}
+
+pub fn contact_state_output() -> Variable {
+    Variable::output(
+        "contact_state",
+        VarType::Integer,
+        "",
+        "branch of the law: 0 not in contact, 1 elastic, 2 plastic loading, 3 adhesive (beyond pull-off), 4 reloading (tomas), 5 attracted without contact (tomas)",
+    )
+}
+
+/// max_overlap, plastic_overlap, pull_off_force, in this order.
+pub fn history_outputs() -> [Variable; 3] {
+    [
+        Variable::output("max_overlap", VarType::Real, "m", "largest overlap reached so far (0 before contact)").with_nominal(1e-9),
+        Variable::output("plastic_overlap", VarType::Real, "m", "overlap at which the current unloading branch meets zero force (alpha_p)")
+            .with_nominal(1e-9),
+        Variable::output("pull_off_force", VarType::Real, "N", "largest tensile force the contact can take with its current history (f_cp)"),
+    ]
+}
+
+/// Value references of the outputs every contact unit writes.
+#[derive(Debug, Clone, Copy)]
+pub struct Outputs {
+    force: usize,
+    overlap: usize,
+    contact_state: usize,
+    max_overlap: usize,
+    plastic_overlap: usize,
+    pull_off_force: usize,
+}
+
+impl Outputs {
+    pub fn new(vr: impl Fn(&str) -> usize) -> Outputs {
+        Outputs {
+            force: vr("force"),
+            overlap: vr("overlap"),
+            contact_state: vr("contact_state"),
+            max_overlap: vr("max_overlap"),
+            plastic_overlap: vr("plastic_overlap"),
+            pull_off_force: vr("pull_off_force"),
+        }
+    }
+
+    /// Writes force, overlap, state and history at `alpha`, `rate`; returns the total force.
+    pub fn write(&self, values: &mut [Value], c: &Contact, alpha: f64, rate: f64, max_overlap: f64) -> f64 {
+        let f = c.force(alpha, rate).total();
+        values[self.force] = Value::Real(f);
+        values[self.overlap] = Value::Real(alpha);
+        values[self.contact_state] = Value::Integer(c.branch_at(alpha, rate).contact_state());
+        values[self.max_overlap] = Value::Real(max_overlap);
+        values[self.plastic_overlap] = Value::Real(c.law.plastic_overlap(&c.history));
+        values[self.pull_off_force] = Value::Real(c.law.pull_off_force(&c.history));
+        f
+    }
+}
