@@ -94,6 +94,14 @@ impl ModelKind {
         ModelKind::WaltonBraun,
     ];
 
+    /// The laws whose branches are straight lines for a fixed history.
+    pub fn is_piecewise_linear(self) -> bool {
+        matches!(
+            self,
+            ModelKind::Nan | ModelKind::Pasha | ModelKind::PashaSimplified | ModelKind::Luding | ModelKind::Linear | ModelKind::WaltonBraun
+        )
+    }
+
     pub fn name(self) -> &'static str {
         match self {
             ModelKind::Nan => "nan",

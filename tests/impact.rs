@@ -4,25 +4,33 @@
 
 mod common;
 use common::*;
-use powderfmu::impact::{Contact, Sphere, Wall};
+use powderfmu::impact::{Contact, Solver, Sphere, Wall};
 use powderfmu::law::damping::NormalDamping;
 use powderfmu::law::params::Effective;
 use powderfmu::law::{AnyLaw, Branch, NormalLaw};
 use powderfmu::scene::{ModelKind, Scene};
-use powderfmu::theory::energy_balance;
+use powderfmu::theory::{energy_balance, restitution};
 
 /// The sphere of a scene, starting `gap` above a wall at rest, approaching at `v`.
 fn sphere(s: &Scene, tolerance: f64) -> (Sphere, f64) {
+    sphere_with(s, Solver::Adaptive, tolerance)
+}
+
+fn sphere_with(s: &Scene, solver: Solver, tolerance: f64) -> (Sphere, f64) {
     let law = AnyLaw::from_scene(s).unwrap();
     let eff = Effective::from_scene(s).unwrap();
     let contact = Contact::new(law, NormalDamping::from_scene(s, eff.mass), 1e-3 * s.particle_radius, 1.0);
-    (Sphere { mass: eff.mass, gravity: 0.0, contact, tolerance, last_step: 0.0, steps: 0, events: 0 }, eff.mass)
+    (Sphere::new(eff.mass, 0.0, contact, solver, tolerance), eff.mass)
 }
 
 /// Runs an impact at speed `v` until the sphere has left the wall; returns the final
 /// state [z, v, W] and the largest overlap.
 fn run(s: &Scene, v: f64, tolerance: f64) -> ([f64; 3], f64, Sphere) {
-    let (mut sp, _) = sphere(s, tolerance);
+    run_with(s, v, Solver::Adaptive, tolerance)
+}
+
+fn run_with(s: &Scene, v: f64, solver: Solver, tolerance: f64) -> ([f64; 3], f64, Sphere) {
+    let (mut sp, _) = sphere_with(s, solver, tolerance);
     let wall = Wall { t0: 0.0, position: 0.0, velocity: 0.0 };
     // Farther than any attraction tail (Tomas: 99 a_F = 40 nm), so the approach does all its work.
     let gap = 0.05 * s.particle_radius;
@@ -69,6 +77,23 @@ fn every_law_rebounds_as_its_energy_balance_says() {
         let e_in = 0.5 * m * v * v;
         assert!((y[2] - lost).abs() < 1e-8 * e_in, "{model:?}: work {:e} vs kinetic energy lost {lost:e}", y[2]);
         assert!(sp.events >= 2, "{model:?}: contact and separation must be events");
+    }
+}
+
+#[test]
+fn exact_rebounds_as_the_closed_form_to_1e_12_for_every_piecewise_linear_law() {
+    for model in ModelKind::ALL.into_iter().filter(|m| m.is_piecewise_linear()) {
+        let s = scene(model);
+        let law = AnyLaw::from_scene(&s).unwrap();
+        let (_, m) = sphere(&s, 1e-10);
+        for v in [3.0, 5.0, 20.0] {
+            let want = restitution::closed_form(&law, m, v).unwrap();
+            let (y, max, sp) = run_with(&s, v, Solver::Exact, 0.0);
+            assert!(rel(y[1], want.rebound_velocity) < 1e-12, "{model:?} at {v} m/s: rebound {} vs energy balance {}", y[1], want.rebound_velocity);
+            assert!(rel(max, want.max_overlap) < 1e-12, "{model:?}: max overlap {max:e} vs {:e}", want.max_overlap);
+            let lost = 0.5 * m * (v * v - y[1] * y[1]);
+            assert!((y[2] - lost).abs() < 1e-12 * 0.5 * m * v * v, "{model:?}: work {:e} vs {lost:e}", y[2]);
+        }
     }
 }
 

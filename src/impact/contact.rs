@@ -47,6 +47,41 @@ pub struct Memory {
     pub max_overlap: f64,
 }
 
+/// An event indicator g = constant + overlap * alpha + rate * (d alpha / dt), positive while the accepted
+/// branch holds.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Line {
+    pub constant: f64,
+    /// [1/m]
+    pub overlap: f64,
+    /// [s/m]
+    pub rate: f64,
+}
+
+impl Line {
+    /// An indicator that never changes sign.
+    pub const INACTIVE: Line = Line { constant: 1.0, overlap: 0.0, rate: 0.0 };
+
+    pub fn at(&self, alpha: f64, rate: f64) -> f64 {
+        self.constant + self.overlap * alpha + self.rate * rate
+    }
+
+    pub fn is_active(&self) -> bool {
+        self.overlap != 0.0 || self.rate != 0.0
+    }
+}
+
+/// A branch of a piecewise-linear law with linear damping: f = stiffness alpha + offset + damping rate.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BranchLine {
+    /// [N/m]
+    pub stiffness: f64,
+    /// [N]
+    pub offset: f64,
+    /// [N s/m]
+    pub damping: f64,
+}
+
 /// Force of one trial evaluation.
 #[derive(Debug, Clone, Copy)]
 pub struct ContactForce {
@@ -132,28 +167,54 @@ impl Contact {
 
     /// The event indicators at `alpha`, `rate`: the lower and upper bound of the accepted branch (positive
     /// while it holds), and the overlap rate, whose sign change is a turning point (the largest overlap).
+    /// Each active indicator carries the hysteresis.
     pub fn indicators(&self, alpha: f64, rate: f64) -> [f64; 3] {
+        self.indicator_lines().map(|l| if l.is_active() { l.at(alpha, rate) + HYSTERESIS } else { l.at(alpha, rate) })
+    }
+
+    /// The event indicators as linear functions of overlap and rate, without hysteresis (the `exact`
+    /// integrator solves for their zeros in closed form).
+    pub fn indicator_lines(&self) -> [Line; 3] {
         let e = &self.accepted;
+        let (a, r) = (1.0 / self.alpha_nominal, 1.0 / self.rate_nominal);
         let lower = if e.lower == self.accepted_alpha {
-            rate / self.rate_nominal + HYSTERESIS
+            Line { constant: 0.0, overlap: 0.0, rate: r }
         } else if e.lower.is_finite() {
-            (alpha - e.lower) / self.alpha_nominal + HYSTERESIS
+            Line { constant: -e.lower * a, overlap: a, rate: 0.0 }
         } else {
-            1.0
+            Line::INACTIVE
         };
         let upper = if e.upper == self.accepted_alpha {
-            -rate / self.rate_nominal + HYSTERESIS
+            Line { constant: 0.0, overlap: 0.0, rate: -r }
         } else if e.upper.is_finite() {
-            (e.upper - alpha) / self.alpha_nominal + HYSTERESIS
+            Line { constant: e.upper * a, overlap: -a, rate: 0.0 }
         } else {
-            1.0
+            Line::INACTIVE
         };
         // Turning points matter where the overlap is the largest so far (max_overlap, and the end of
         // plastic loading); elsewhere (a sphere oscillating in its adhesive well, at rest under gravity)
         // watching the rate would only make events.
-        let turning =
-            if self.accepted_alpha >= self.max_overlap - 2.0 * NUDGE * self.alpha_nominal { rate / self.rate_nominal + HYSTERESIS } else { 1.0 };
+        let turning = if self.accepted_alpha >= self.max_overlap - 2.0 * NUDGE * self.alpha_nominal {
+            Line { constant: 0.0, overlap: 0.0, rate: r }
+        } else {
+            Line::INACTIVE
+        };
         [lower, upper, turning]
+    }
+
+    /// The accepted branch as a straight line with linear damping: force = stiffness alpha + offset +
+    /// damping rate. Exact for the piecewise-linear laws (`AnyLaw::is_piecewise_linear`); for the others it
+    /// is the tangent at the accepted point.
+    pub fn branch_line(&self) -> BranchLine {
+        let alpha = self.accepted_alpha;
+        let e = self.law.evaluate(alpha, &self.history);
+        let damping = if e.branch.in_contact() {
+            let k = self.law.damping_stiffness(alpha, &e.history, e.stiffness);
+            self.damping.coefficient(k, self.law.has_yielded(&e.history))
+        } else {
+            0.0
+        };
+        BranchLine { stiffness: e.stiffness, offset: e.force - e.stiffness * alpha, damping }
     }
 
     /// Follows a straight overlap path from the accepted overlap to `to`, accepting the history at every

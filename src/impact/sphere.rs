@@ -3,13 +3,14 @@
 //! wall plane is at w, so the overlap is alpha = w - z and its rate w' - v. Newton: m v' = f - m g, with
 //! f the contact force (positive pushes the sphere away) and g the gravity toward the wall.
 //!
-//! Co-simulation steps use an embedded Runge-Kutta pair (Dormand-Prince 5(4)) with error control, and land
-//! on every branch switch of the law: a step that changes the sign of an event indicator of `Contact` is
-//! shortened by regula falsi (Illinois) until the switch is bracketed to 1e-13 of the step, and the history
-//! is accepted there. Within a communication step the wall moves with the velocity input:
-//! w(t) = w(t_0) + w'(t_0) (t - t_0).
+//! Co-simulation steps use one of three integrators (`Solver`): `exact` (closed-form motion on each branch
+//! of a piecewise-linear law, `exact.rs`), `adaptive` (Dormand-Prince 5(4) with event location,
+//! `adaptive.rs`) and `verlet` (fixed-step velocity Verlet, what DEM codes do, `verlet.rs`). Within a
+//! communication step the wall moves with the velocity input: w(t) = w(t_0) + w'(t_0) (t - t_0). Where
+//! the master moves the wall between steps by more than that, the contact walks the jump quasi-statically
+//! (`Contact::follow`) before the step.
 
-use super::contact::Contact;
+use super::contact::{Contact, NUDGE};
 
 /// The state of the sphere: [z, v, W] with W the work done on the contact (the integral of f d alpha).
 pub type State = [f64; 3];
@@ -28,17 +29,35 @@ impl Wall {
     }
 }
 
+/// The integrator of a co-simulation step.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Solver {
+    /// Closed-form motion on each branch; the piecewise-linear laws only.
+    Exact,
+    /// Dormand-Prince 5(4) with error control at `Sphere::tolerance`.
+    Adaptive,
+    /// Fixed-step velocity Verlet with this step [s].
+    Verlet { step: f64 },
+}
+
+impl Solver {
+    /// The solver names of the `solver` parameter.
+    pub const NAMES: [&'static str; 4] = ["auto", "exact", "adaptive", "verlet"];
+}
+
 #[derive(Debug, Clone)]
 pub struct Sphere {
     pub mass: f64,
     /// Gravity toward the wall [m/s^2].
     pub gravity: f64,
     pub contact: Contact,
+    pub solver: Solver,
     /// Relative tolerance of the integrator; absolute tolerances are it times the nominal overlap and rate.
     pub tolerance: f64,
     /// Last step size the controller chose [s] (0 before the first step).
     pub last_step: f64,
-    /// Counters for the logs and benchmarks.
+    /// Counters for the logs and benchmarks: integrator steps (closed-form segments for `exact`) and
+    /// branch events.
     pub steps: u64,
     pub events: u64,
 }
@@ -52,6 +71,8 @@ pub enum StepError {
     StepTooSmall { t: f64 },
     /// More steps than allowed in one communication step.
     TooManySteps { t: f64, limit: u64 },
+    /// The law switched branches without the state moving (branch intervals that do not meet).
+    NoProgress { t: f64 },
 }
 
 impl std::fmt::Display for StepError {
@@ -62,27 +83,39 @@ impl std::fmt::Display for StepError {
             StepError::TooManySteps { t, limit } => {
                 write!(f, "more than {limit} integrator steps in one communication step (at t = {t:e} s); use shorter communication steps")
             }
+            StepError::NoProgress { t } => write!(f, "the contact switched branches repeatedly without moving at t = {t:e} s"),
         }
     }
 }
 
-const MAX_STEPS: u64 = 10_000_000;
-
-// Dormand-Prince 5(4) coefficients (Hairer, Norsett & Wanner, Table II.5.2).
-const C: [f64; 7] = [0.0, 1.0 / 5.0, 3.0 / 10.0, 4.0 / 5.0, 8.0 / 9.0, 1.0, 1.0];
-const A: [[f64; 6]; 7] = [
-    [0.0; 6],
-    [1.0 / 5.0, 0.0, 0.0, 0.0, 0.0, 0.0],
-    [3.0 / 40.0, 9.0 / 40.0, 0.0, 0.0, 0.0, 0.0],
-    [44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0, 0.0, 0.0, 0.0],
-    [19372.0 / 6561.0, -25360.0 / 2187.0, 64448.0 / 6561.0, -212.0 / 729.0, 0.0, 0.0],
-    [9017.0 / 3168.0, -355.0 / 33.0, 46732.0 / 5247.0, 49.0 / 176.0, -5103.0 / 18656.0, 0.0],
-    [35.0 / 384.0, 0.0, 500.0 / 1113.0, 125.0 / 192.0, -2187.0 / 6784.0, 11.0 / 84.0],
-];
-const B5: [f64; 7] = [35.0 / 384.0, 0.0, 500.0 / 1113.0, 125.0 / 192.0, -2187.0 / 6784.0, 11.0 / 84.0, 0.0];
-const B4: [f64; 7] = [5179.0 / 57600.0, 0.0, 7571.0 / 16695.0, 393.0 / 640.0, -92097.0 / 339200.0, 187.0 / 2100.0, 1.0 / 40.0];
+pub(super) const MAX_STEPS: u64 = 10_000_000;
 
 impl Sphere {
+    pub fn new(mass: f64, gravity: f64, contact: Contact, solver: Solver, tolerance: f64) -> Sphere {
+        Sphere { mass, gravity, contact, solver, tolerance, last_step: 0.0, steps: 0, events: 0 }
+    }
+
+    /// Advances the state from `t` to `t_end` with the wall moving as `wall`.
+    pub fn advance(&mut self, wall: &Wall, t: f64, t_end: f64, y: &mut State) -> Result<(), StepError> {
+        self.follow_jump(wall, t, y);
+        match self.solver {
+            Solver::Exact => self.advance_exact(wall, t, t_end, y),
+            Solver::Adaptive => self.advance_adaptive(wall, t, t_end, y),
+            Solver::Verlet { step } => self.advance_verlet(step, wall, t, t_end, y),
+        }
+    }
+
+    /// A wall the master moved between steps: the contact walks from the accepted overlap to the new one
+    /// along a straight path (the sphere cannot move in no time), adding that path's work.
+    fn follow_jump(&mut self, wall: &Wall, t: f64, y: &mut State) {
+        let (alpha, rate) = self.overlap(wall, t, y);
+        let from = self.contact.accepted_alpha;
+        if from.is_finite() && (alpha - from).abs() > 2.0 * NUDGE * self.contact.alpha_nominal {
+            y[2] += self.contact.follow(alpha);
+            self.contact.accept(alpha, rate);
+        }
+    }
+
     /// Overlap and overlap rate of a state at time t.
     pub fn overlap(&self, wall: &Wall, t: f64, y: &State) -> (f64, f64) {
         (wall.at(t) - y[0], wall.velocity - y[1])
@@ -106,139 +139,5 @@ impl Sphere {
         let (alpha, rate) = self.overlap(wall, t, y);
         let (before, after) = self.contact.accept(alpha, rate);
         before != after
-    }
-
-    /// One Dormand-Prince step: the 5th-order solution and the error estimate.
-    fn dp_step(&self, wall: &Wall, t: f64, y: &State, h: f64) -> (State, State) {
-        let mut k = [[0.0; 3]; 7];
-        for s in 0..7 {
-            let mut ys = *y;
-            for (j, kj) in k.iter().enumerate().take(s) {
-                for i in 0..3 {
-                    ys[i] += h * A[s][j] * kj[i];
-                }
-            }
-            k[s] = self.derivatives(wall, t + C[s] * h, &ys);
-        }
-        let mut y5 = *y;
-        let mut err = [0.0; 3];
-        for s in 0..7 {
-            for i in 0..3 {
-                y5[i] += h * B5[s] * k[s][i];
-                err[i] += h * (B5[s] - B4[s]) * k[s][i];
-            }
-        }
-        (y5, err)
-    }
-
-    fn error_norm(&self, y0: &State, y1: &State, err: &State) -> f64 {
-        let tol = self.tolerance;
-        let scale_z = tol * (self.contact.alpha_nominal + y0[0].abs().max(y1[0].abs()));
-        let scale_v = tol * (self.contact.rate_nominal + y0[1].abs().max(y1[1].abs()));
-        let ez = err[0] / scale_z;
-        let ev = err[1] / scale_v;
-        ((ez * ez + ev * ev) / 2.0).sqrt()
-    }
-
-    /// Advances the state from `t` to `t_end` with the wall moving as `wall`, landing on branch switches.
-    pub fn advance(&mut self, wall: &Wall, t: f64, t_end: f64, y: &mut State) -> Result<(), StepError> {
-        let mut t = t;
-        let mut h = if self.last_step > 0.0 { self.last_step } else { self.initial_step(y) };
-        let mut steps = 0u64;
-        while t < t_end {
-            // A rounding leftover of the communication step is no step at all.
-            if t_end - t <= 4.0 * f64::EPSILON * t_end.abs() {
-                break;
-            }
-            steps += 1;
-            if steps > MAX_STEPS {
-                return Err(StepError::TooManySteps { t, limit: MAX_STEPS });
-            }
-            let last = h >= t_end - t;
-            let h_try = if last { t_end - t } else { h };
-            if h_try <= f64::EPSILON * t.abs() * 4.0 && !last {
-                return Err(StepError::StepTooSmall { t });
-            }
-            let (y1, err) = self.dp_step(wall, t, y, h_try);
-            if !y1.iter().all(|x| x.is_finite()) {
-                if h_try < 1e-300 {
-                    return Err(StepError::NotFinite { t });
-                }
-                h = h_try * 0.1;
-                continue;
-            }
-            let e = self.error_norm(y, &y1, &err);
-            if e > 1.0 {
-                h = h_try * (0.9 * e.powf(-0.2)).max(0.1);
-                continue;
-            }
-            // Accepted by error control. Did the branch change inside the step?
-            let g0 = self.indicators(wall, t, y);
-            let g1 = self.indicators(wall, t + h_try, &y1);
-            let crossed: [bool; 3] = std::array::from_fn(|i| g0[i] > 0.0 && g1[i] <= 0.0);
-            let any_crossed = crossed.contains(&true);
-            let (t_new, y_new) = if !any_crossed {
-                (if last { t_end } else { t + h_try }, y1)
-            } else {
-                let tau = self.locate(wall, t, y, h_try, &crossed);
-                let (y_tau, _) = self.dp_step(wall, t, y, tau);
-                self.events += 1;
-                (t + tau, y_tau)
-            };
-            self.steps += 1;
-            *y = y_new;
-            t = t_new;
-            self.accept(wall, t, y);
-            // The shortened last step of a communication step says nothing about the step size the
-            // dynamics allows: it is not kept for the next call.
-            if !any_crossed && !last {
-                self.last_step = h_try;
-                h = h_try * (0.9 * e.max(1e-10).powf(-0.2)).min(5.0);
-            }
-        }
-        Ok(())
-    }
-
-    /// The smallest step in (0, h] after which one of the `crossed` indicators has changed sign, to 1e-13 h.
-    fn locate(&self, wall: &Wall, t: f64, y: &State, h: f64, crossed: &[bool; 3]) -> f64 {
-        let g = |tau: f64| -> f64 {
-            let (y_tau, _) = self.dp_step(wall, t, y, tau);
-            let z = self.indicators(wall, t + tau, &y_tau);
-            (0..3).filter(|&i| crossed[i]).map(|i| z[i]).fold(f64::INFINITY, f64::min)
-        };
-        let (mut lo, mut hi) = (0.0, h);
-        let (mut g_lo, mut g_hi) = (g(0.0), g(h));
-        let mut side = 0i8;
-        for _ in 0..200 {
-            if hi - lo <= 1e-13 * h {
-                break;
-            }
-            let mut tau = (lo * g_hi - hi * g_lo) / (g_hi - g_lo);
-            if !(tau > lo && tau < hi) {
-                tau = 0.5 * (lo + hi);
-            }
-            let g_tau = g(tau);
-            if g_tau > 0.0 {
-                lo = tau;
-                g_lo = g_tau;
-                if side == 1 {
-                    g_hi *= 0.5;
-                }
-                side = 1;
-            } else {
-                hi = tau;
-                g_hi = g_tau;
-                if side == -1 {
-                    g_lo *= 0.5;
-                }
-                side = -1;
-            }
-        }
-        hi
-    }
-
-    fn initial_step(&self, y: &State) -> f64 {
-        let speed = y[1].abs().max(self.contact.rate_nominal);
-        1e-2 * self.contact.alpha_nominal / speed
     }
 }

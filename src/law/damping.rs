@@ -55,8 +55,13 @@ impl NormalDamping {
 
     /// Damping force [N], positive repulsive, for an approach rate d alpha/dt [m/s].
     pub fn force(&self, stiffness: f64, yielded: bool, approach_rate: f64) -> f64 {
+        self.coefficient(stiffness, yielded) * approach_rate
+    }
+
+    /// The damping coefficient of a branch of stiffness `stiffness` [N s/m].
+    pub fn coefficient(&self, stiffness: f64, yielded: bool) -> f64 {
         let beta = if yielded { self.beta_plastic } else { self.beta_elastic };
-        coefficient(self.restitution, beta, self.mass, stiffness) * approach_rate
+        coefficient(self.restitution, beta, self.mass, stiffness)
     }
 }
 

@@ -171,6 +171,12 @@ impl AnyLaw {
         })
     }
 
+    /// Whether every branch is a straight line in the overlap for a fixed history (the laws the `exact`
+    /// integrator solves in closed form): nan, pasha, pasha_simplified, luding, linear, walton_braun.
+    pub fn is_piecewise_linear(&self) -> bool {
+        self.model().is_piecewise_linear()
+    }
+
     pub fn model(&self) -> ModelKind {
         match self {
             AnyLaw::Nan(_) => ModelKind::Nan,

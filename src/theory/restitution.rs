@@ -2,11 +2,13 @@
 //! form for the piecewise-linear laws (`000` Eqs. 76-79 and App. A; `004` App. II-III).
 //! `energy_balance` computes the same for any law by integrating its force; the tests hold the two equal.
 
+use crate::law::linear::Linear;
 use crate::law::luding::Luding;
 use crate::law::nan::Nan;
 use crate::law::pasha::Pasha;
 use crate::law::pasha_simplified::PashaSimplified;
 use crate::law::walton_braun::WaltonBraun;
+use crate::law::AnyLaw;
 
 /// The outcome of one undamped impact at speed `impact_velocity`.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -94,4 +96,23 @@ pub fn walton_braun(law: &WaltonBraun, mass: f64, v: f64) -> ImpactOutcome {
     let f_max = law.k_p * alpha_max;
     let k_e = law.unloading_stiffness(alpha_max);
     ImpactOutcome::from_rebound_energy(mass, v, alpha_max, f_max, f_max * f_max / (2.0 * k_e))
+}
+
+/// The linear spring: perfectly elastic, alpha_max = v sqrt(m / k).
+pub fn linear(law: &Linear, mass: f64, v: f64) -> ImpactOutcome {
+    let alpha_max = v * (mass / law.stiffness).sqrt();
+    ImpactOutcome::from_rebound_energy(mass, v, alpha_max, law.stiffness * alpha_max, 0.5 * mass * v * v)
+}
+
+/// The closed form of an undamped impact for the piecewise-linear laws; `None` for the others.
+pub fn closed_form(law: &AnyLaw, mass: f64, v: f64) -> Option<ImpactOutcome> {
+    Some(match law {
+        AnyLaw::Nan(l) => nan(l, mass, v),
+        AnyLaw::Pasha(l) => pasha(l, mass, v),
+        AnyLaw::PashaSimplified(l) => pasha_simplified(l, mass, v),
+        AnyLaw::Luding(l) => luding(l, mass, v),
+        AnyLaw::WaltonBraun(l) => walton_braun(l, mass, v),
+        AnyLaw::Linear(l) => linear(l, mass, v),
+        _ => return None,
+    })
 }

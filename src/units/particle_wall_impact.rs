@@ -10,8 +10,10 @@ use super::scene_params;
 use super::variables::{Causality, Role, Value, VarType, Variable};
 use super::{Model, UnitInfo};
 use crate::impact::contact::Memory;
-use crate::impact::{Sphere, State, Wall};
+use crate::impact::{Solver, Sphere, State, Wall};
+use crate::law::AnyLaw;
 use crate::scene::Partner;
+use crate::theory::time_step;
 use serde::{Deserialize, Serialize};
 
 pub const MODEL_IDENTIFIER: &str = "ParticleWallImpact";
@@ -52,8 +54,16 @@ fn own_variables() -> Vec<Variable> {
             .with_range(Some(0.0), None),
         Variable::parameter("initial_velocity", Value::Real(1.0), "m/s", "approach speed of the sphere at the start, positive toward the wall"),
         Variable::parameter("gravity", Value::Real(0.0), "m/s2", "gravitational acceleration toward the wall"),
-        Variable::parameter("tolerance", Value::Real(1e-10), "", "relative tolerance of the Co-Simulation integrator, in [1e-14, 1e-2]")
+        Variable::parameter(
+            "solver",
+            Value::String("auto".into()),
+            "",
+            "Co-Simulation integrator: exact (closed form per branch; nan, pasha, pasha_simplified, luding, linear, walton_braun), adaptive (Dormand-Prince 5(4) with event location; every law), verlet (fixed-step velocity Verlet at rayleigh_fraction of the Rayleigh time step, as DEM codes), auto (exact where it applies, else adaptive)",
+        ),
+        Variable::parameter("tolerance", Value::Real(1e-10), "", "relative tolerance of the adaptive integrator, in [1e-14, 1e-2]")
             .with_range(Some(1e-14), Some(1e-2)),
+        Variable::parameter("rayleigh_fraction", Value::Real(0.2), "", "step of the verlet integrator as a fraction of the Rayleigh time step (000 Eq. 71), in (0, 1]")
+            .with_range(Some(0.0), Some(1.0)),
     ]
 }
 
@@ -89,7 +99,9 @@ struct Refs {
     initial_gap: usize,
     initial_velocity: usize,
     gravity: usize,
+    solver: usize,
     tolerance: usize,
+    rayleigh_fraction: usize,
 }
 
 pub struct ParticleWallImpact {
@@ -135,7 +147,9 @@ impl ParticleWallImpact {
                 initial_gap: r("initial_gap"),
                 initial_velocity: r("initial_velocity"),
                 gravity: r("gravity"),
+                solver: r("solver"),
                 tolerance: r("tolerance"),
+                rayleigh_fraction: r("rayleigh_fraction"),
             },
             variables: u.variables.clone(),
             radius: 0.0,
@@ -161,11 +175,33 @@ impl ParticleWallImpact {
             return Err(format!("parameter `tolerance` = {tol:e} is out of range: allowed [1e-14, 1e-2]"));
         }
         finite(values, refs.wall_velocity, "wall_velocity", "m/s")?;
-        Ok((Sphere { mass: eff.mass, gravity: g, contact, tolerance: tol, last_step: 0.0, steps: 0, events: 0 }, scene.particle_radius))
+        let fraction = finite(values, refs.rayleigh_fraction, "rayleigh_fraction", "")?;
+        if !(fraction > 0.0 && fraction <= 1.0) {
+            return Err(format!("parameter `rayleigh_fraction` = {fraction:e} is out of range: allowed (0, 1]"));
+        }
+        let rayleigh =
+            time_step::rayleigh_time_step(scene.particle_radius, scene.particle_density, eff.particle_shear_modulus, scene.particle_poisson_ratio);
+        let solver = solver(values[refs.solver].as_str(), &contact.law, fraction * rayleigh)?;
+        Ok((Sphere::new(eff.mass, g, contact, solver, tol), scene.particle_radius))
     }
 
     fn wall(&self, values: &[Value]) -> Wall {
         Wall { t0: self.t, position: real(values, self.refs.wall_displacement), velocity: real(values, self.refs.wall_velocity) }
+    }
+}
+
+/// The integrator the `solver` parameter names for this law.
+fn solver(name: &str, law: &AnyLaw, verlet_step: f64) -> Result<Solver, String> {
+    match name {
+        "auto" if law.is_piecewise_linear() => Ok(Solver::Exact),
+        "auto" | "adaptive" => Ok(Solver::Adaptive),
+        "exact" if law.is_piecewise_linear() => Ok(Solver::Exact),
+        "exact" => Err(format!(
+            "parameter `solver` = \"exact\" needs a piecewise-linear contact_model (nan, pasha, pasha_simplified, luding, linear, walton_braun), not \"{}\"; use \"adaptive\" or \"auto\"",
+            law.model().name()
+        )),
+        "verlet" => Ok(Solver::Verlet { step: verlet_step }),
+        other => Err(format!("parameter `solver` = \"{other}\" is not one of {}", Solver::NAMES.join(", "))),
     }
 }
 

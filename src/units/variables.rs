@@ -89,6 +89,14 @@ impl Value {
         }
     }
 
+    /// The text of a String value ("" for the other types).
+    pub fn as_str(&self) -> &str {
+        match self {
+            Value::String(s) => s,
+            _ => "",
+        }
+    }
+
     pub fn as_real(&self) -> f64 {
         match self {
             Value::Real(x) => *x,

@@ -31,7 +31,7 @@ from fmpy.model_description import ModelDescription
 REPO = Path(__file__).resolve().parents[2]
 
 # Parameters of the units that are not scene keys of `powderfmu analyze`.
-OWN_PARAMETERS = frozenset({"initial_gap", "initial_velocity", "gravity", "tolerance"})
+OWN_PARAMETERS = frozenset({"initial_gap", "initial_velocity", "gravity", "solver", "tolerance", "rayleigh_fraction"})
 
 
 def fmu_dir() -> Path:
