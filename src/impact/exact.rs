@@ -81,6 +81,18 @@ impl Segment {
         }
     }
 
+    /// The longest span one closed-form evaluation may cover: where the motion grows exponentially
+    /// (negative stiffness, an adhesive line), e^30 of growth, so nothing overflows; else unbounded.
+    pub fn safe_span(&self) -> f64 {
+        let d = self.a * self.a - self.q;
+        let growth = if d > 0.0 { d.sqrt() - self.a } else { 0.0 };
+        if growth > 0.0 {
+            30.0 / growth
+        } else {
+            f64::INFINITY
+        }
+    }
+
     /// y' at the state y.
     pub fn rate(&self, y: [f64; 2]) -> [f64; 2] {
         [y[1], -self.q * y[0] - 2.0 * self.a * y[1] + self.b]
@@ -148,9 +160,9 @@ impl Segment {
             };
             let g0 = line.at(y0[0], y0[1]);
             let slope0 = line.overlap * eta[0] + line.rate * eta[1];
-            // Outside already, or on a bound moving out: an event now. A rate indicator just below zero is
-            // the turning point that was the last event, not a new one.
-            if g0 < -OUTSIDE || (line.overlap != 0.0 && g0 <= 0.0 && slope0 < 0.0) {
+            // Outside a bound already, or on it moving out: an event now. A rate indicator below zero is a
+            // turning point already passed (as for `adaptive`, only a change from + to - is an event).
+            if line.overlap != 0.0 && (g0 < -OUTSIDE || (g0 <= 0.0 && slope0 < 0.0)) {
                 return Some((0.0, i));
             }
             let limit = best.map_or(horizon, |b| b.0);
@@ -187,6 +199,8 @@ impl Sphere {
         let u = wall.velocity;
         let mut t = t;
         let mut x = [wall.at(t) - y[0], u - y[1]];
+        // The branch the motion goes into now: the master may have turned the wall around.
+        self.contact.accept(x[0], x[1]);
         let (mut segments, mut stalls) = (0u64, 0u32);
         // A rounding leftover of the communication step is no step at all.
         while t_end - t > 4.0 * f64::EPSILON * t_end.abs() {
@@ -195,8 +209,11 @@ impl Sphere {
                 return Err(StepError::TooManySteps { t, limit: MAX_STEPS });
             }
             let segment = Segment::new(self.contact.branch_line(), self.mass, self.gravity);
-            let crossing = segment.first_crossing(x, &self.contact.indicator_lines(), t_end - t);
-            let tau = crossing.map_or(t_end - t, |c| c.0);
+            let span = segment.safe_span();
+            let rest = t_end - t;
+            let horizon = rest.min(span);
+            let crossing = segment.first_crossing(x, &self.contact.indicator_lines(), horizon);
+            let tau = crossing.map_or(horizon, |c| c.0);
             let x1 = segment.at(tau, x);
             if !(x1[0].is_finite() && x1[1].is_finite()) {
                 return Err(StepError::NotFinite { t });
@@ -211,8 +228,10 @@ impl Sphere {
                 if stalls > MAX_STALLS {
                     return Err(StepError::NoProgress { t });
                 }
-            } else {
+            } else if horizon == rest {
                 t = t_end;
+            } else {
+                t += horizon;
             }
             self.contact.accept(x[0], x[1]);
         }
