@@ -123,15 +123,28 @@ impl Contact {
     }
 
     /// Force at overlap `alpha` and overlap rate `rate` with the accepted history (a trial: nothing kept).
+    ///
+    /// At the accepted point itself (within the nudge) the branch is the one the motion goes into: the
+    /// law evaluated exactly at a branch point answers for the branch behind it (the elastic end of the
+    /// line at alpha_max, where plastic loading goes on), and its damping there differs. Every step that
+    /// starts at an accepted point would then see a jump in the damping force, and an error-controlled
+    /// integrator would shrink its steps to nothing. There the accepted branch is extended linearly.
     pub fn force(&self, alpha: f64, rate: f64) -> ContactForce {
         let e = self.law.evaluate(alpha, &self.history);
+        let a = &self.accepted;
+        let at_accepted = (alpha - self.accepted_alpha).abs() <= 2.0 * NUDGE * self.alpha_nominal;
+        let (e, law_force) = if at_accepted && e.branch != a.branch && a.stiffness.is_finite() {
+            (*a, a.force + a.stiffness * (alpha - self.accepted_alpha))
+        } else {
+            (e, e.force)
+        };
         let damping = if e.branch.in_contact() {
             let k = self.law.damping_stiffness(alpha, &e.history, e.stiffness);
             self.damping.force(k, self.law.has_yielded(&e.history), rate)
         } else {
             0.0
         };
-        ContactForce { law: e.force, damping, branch: e.branch }
+        ContactForce { law: law_force, damping, branch: e.branch }
     }
 
     /// The branch at `alpha`: the trial branch, except at the accepted point itself, where it is the branch
