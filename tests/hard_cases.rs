@@ -88,7 +88,7 @@ fn adhesion_induced_plasticity_and_impacts_within_1e_6_of_the_sticking_velocity(
         let v_ys = sticking_velocities(&law, mass(&s)).sticking_velocity.unwrap();
         let below = v_ys * (1.0 - 1e-6);
         let above = v_ys * (1.0 + 1e-6);
-        let (y, sp) = impact(&s, below, Solver::Exact, 1e-7, 2e-6);
+        let (_, sp) = impact(&s, below, Solver::Exact, 1e-7, 2e-6);
         assert!(sp.contact.accepted.branch.in_contact(), "{below} m/s (V_ys {v_ys}) must stick, branch {:?}", sp.contact.accepted.branch);
         let (y, _) = impact(&s, above, Solver::Exact, 1e-7, 2e-6);
         let want = closed_form(&s, above).rebound_velocity;

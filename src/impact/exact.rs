@@ -176,7 +176,7 @@ impl Segment {
                 let g_b = g(tb);
                 if g_lo >= 0.0 && g_b < 0.0 {
                     let t = refine(&g, lo, g_lo, tb, g_b);
-                    if best.is_none_or(|b| t < b.0) {
+                    if best.map_or(true, |b| t < b.0) {
                         best = Some((t, i));
                     }
                     break;
