@@ -281,6 +281,26 @@ fn wall_driven_into_the_sphere_at_100_m_per_s() {
     }
 }
 
+/// A second, harder impact inside one long communication step on a law without a branch bound at the
+/// first peak (the linear spring): the deeper peak is landed on, and `max_overlap` is the second impact's.
+#[test]
+fn a_deeper_second_impact_within_one_step_updates_the_largest_overlap() {
+    let mut s = Scene::new(ModelKind::Linear, 1e-3, 2500.0, 63e9, 0.25);
+    s.linear_stiffness = Some(1e6);
+    let m = mass(&s);
+    for (solver, tol) in [(Solver::Exact, 1e-12), (Solver::Adaptive, 1e-7)] {
+        let (mut y, mut sp) = impact(&s, 1.0, solver, 1e-3, 1e-3);
+        assert!(rel(sp.contact.max_overlap, (m / 1e6f64).sqrt()) < tol, "{solver:?}: first impact");
+        // The wall chases the sphere (leaving at 1 m/s) at 3 m/s: a second impact at 2 m/s relative, twice
+        // as deep, in one 1 ms step.
+        let wall = Wall { t0: 1e-3, position: 0.0, velocity: 3.0 };
+        sp.advance(&wall, 1e-3, 2e-3, &mut y).unwrap();
+        let want = 2.0 * (m / 1e6f64).sqrt();
+        assert!(rel(sp.contact.max_overlap, want) < tol, "{solver:?}: max overlap {:e} vs {want:e}", sp.contact.max_overlap);
+        assert!(rel(y[1] - 3.0, 2.0) < tol, "{solver:?}: leaves at 2 m/s relative to the wall, not {}", y[1] - 3.0);
+    }
+}
+
 /// The bouncing ball on a vibrating plate: a linear spring-dashpot (restitution e = 0.5, independent of
 /// the speed) on a plate w = A sin(omega t + phi) with Gamma = A omega^2 / g = 1.2. The period-1 orbit
 /// (one bounce per period T, take-off at V = g T / 2, impact where the plate moves at V (1-e)/(1+e)) is
@@ -304,7 +324,7 @@ fn bouncing_ball_on_a_vibrating_plate_stays_on_the_period_one_orbit() {
     let mut y = [plate(0.0) + 1e-12, v_orbit, 0.0];
     sp.accept(&Wall { t0: 0.0, position: plate(0.0), velocity: 0.0 }, 0.0, &y);
     let periods = 10_000;
-    let (mut bounces, mut v_flight) = (0, 0.0f64);
+    let (mut bounces, mut takeoffs, mut pending) = (0, Vec::new(), false);
     for k in 0..periods * per_period {
         let t = k as f64 * dt;
         // The master's linear interpolation: position now, velocity the secant to the next sample.
@@ -315,15 +335,24 @@ fn bouncing_ball_on_a_vibrating_plate_stays_on_the_period_one_orbit() {
             // A bounce turns the fall into a rise (once, even where a step ends inside the contact).
             if v_before < 0.0 && y[1] > 0.0 {
                 bounces += 1;
+                pending = true;
             }
-            if sp.contact.accepted.branch == Branch::Separated {
-                v_flight = v_flight.max(y[1]);
+            // The first free-flight sample after a bounce, at most one step g dt = 0.5 % after take-off.
+            if pending && sp.contact.accepted.branch == Branch::Separated {
+                takeoffs.push(y[1]);
+                pending = false;
             }
         }
     }
     assert_eq!(bounces, 100, "one bounce per period over the last 100 periods");
-    // The fastest free-flight sample comes at most one step g dt = 0.5 % after take-off.
-    assert!(rel(v_flight, v_orbit) < 0.01, "take-off at {v_flight} m/s, period-1 orbit {v_orbit} m/s");
+    assert_eq!(takeoffs.len(), 100, "one take-off per period");
+    // The take-offs alternate by about 1 % about the orbit (a slowly decaying period-2 component; the
+    // plate is sampled, so its velocity kinks at every sample): each within 1.5 % of V.
+    for v in &takeoffs {
+        assert!(rel(*v, v_orbit) < 0.015, "take-off at {v} m/s, period-1 orbit {v_orbit} m/s");
+    }
+    let mean = takeoffs.iter().sum::<f64>() / takeoffs.len() as f64;
+    assert!(rel(mean, v_orbit) < 0.01, "mean take-off {mean} m/s, period-1 orbit {v_orbit} m/s");
 }
 
 /// Extreme parameters: k_p/k_el from 0.01 to 1, no surface energy, a yield pressure so high the contact
@@ -337,13 +366,15 @@ fn extreme_ratios_radii_and_no_adhesion_against_the_closed_forms() {
         let (y, sp) = impact(s, v, Solver::Exact, dt, 5000.0 * dt);
         if want.sticks {
             assert!(sp.contact.accepted.branch.in_contact(), "{what}: must stick");
+            return 0.0;
         } else {
             assert!(rel(y[1], want.rebound_velocity) < 1e-11, "{what}: exact {} vs {}", y[1], want.rebound_velocity);
             let (ya, _) = impact(s, v, Solver::Adaptive, dt, 5000.0 * dt);
             // Error control acts on the whole motion: the error is relative to the impact speed.
             assert!((ya[1] - want.rebound_velocity).abs() < 1e-7 * v, "{what}: adaptive {} vs {}", ya[1], want.rebound_velocity);
         }
-        want
+        // The simulated restitution (0 where the sphere stuck).
+        y[1] / v
     };
     let base = table5(ModelKind::Nan, 2.45e-6, 30e6);
     let AnyLaw::Nan(law) = AnyLaw::from_scene(&base).unwrap() else { unreachable!() };
@@ -351,7 +382,7 @@ fn extreme_ratios_radii_and_no_adhesion_against_the_closed_forms() {
     for ratio in [1.0, 0.5, 0.1, 0.01] {
         let mut s = base.clone();
         s.plastic_stiffness = Some(ratio * law.p.k_el);
-        let e = check(&s, 5.0, &format!("k_p/k_el = {ratio}")).restitution;
+        let e = check(&s, 5.0, &format!("k_p/k_el = {ratio}"));
         // More plastic work as k_p falls, until the sphere sticks (e = 0).
         assert!(e < last || e == 0.0, "restitution must fall as k_p/k_el falls: {e} at {ratio} after {last}");
         last = e;
@@ -359,8 +390,8 @@ fn extreme_ratios_radii_and_no_adhesion_against_the_closed_forms() {
     let mut no_adhesion = base.clone();
     no_adhesion.surface_energy = 0.0;
     for v in [1e-3, 0.1, 5.0] {
-        let out = check(&no_adhesion, v, &format!("surface energy 0 at {v} m/s"));
-        assert!(!out.sticks, "without adhesion nothing sticks");
+        let e = check(&no_adhesion, v, &format!("surface energy 0 at {v} m/s"));
+        assert!(e > 0.0, "without adhesion nothing sticks: restitution {e} at {v} m/s");
     }
     let mut hard = base.clone();
     hard.particle_yield_pressure = Some(1e12);
@@ -376,13 +407,31 @@ fn extreme_ratios_radii_and_no_adhesion_against_the_closed_forms() {
 
 /// Verlet, what DEM codes do, converges toward the closed form as its step shrinks, but only at first
 /// order: the Nan force jumps to -f_0 when contact forms and the step does not land on it (an error of
-/// about f_0 h / (m v)).
+/// about f_0 h / (m v)). The slope of log error against log step, each error averaged over four start
+/// gaps (the error depends on where the steps fall), is about one.
 #[test]
 fn verlet_converges_at_first_order_to_the_closed_form() {
     let s = table5(ModelKind::Nan, 2.45e-6, 30e6);
-    let want = closed_form(&s, 5.0).rebound_velocity;
-    let err = |step: f64| rel(impact(&s, 5.0, Solver::Verlet { step }, 1e-8, 1e-6).0[1], want);
-    let (coarse, fine) = (err(1e-10), err(1e-12));
-    assert!(fine < coarse / 30.0, "a hundredfold finer step: {coarse:e} -> {fine:e}");
-    assert!(fine < 1e-5 && coarse > 1e-4, "{coarse:e}, {fine:e}");
+    let v = 5.0;
+    let want = closed_form(&s, v).rebound_velocity;
+    let error = |step: f64| -> f64 {
+        let gaps = [1.0e-9, 1.13e-9, 1.29e-9, 1.41e-9];
+        gaps.iter()
+            .map(|&gap| {
+                let mut sp = sphere_at(&s, Solver::Verlet { step }, 0.0, v);
+                let wall = Wall { t0: 0.0, position: 0.0, velocity: 0.0 };
+                let mut y = [gap, -v, 0.0];
+                sp.accept(&wall, 0.0, &y);
+                sp.advance(&wall, 0.0, 2e-7, &mut y).unwrap();
+                rel(y[1], want)
+            })
+            .sum::<f64>()
+            / gaps.len() as f64
+    };
+    let steps: [f64; 5] = [1e-10, 3e-11, 1e-11, 3e-12, 1e-12];
+    let points: Vec<(f64, f64)> = steps.iter().map(|&h| (h.ln(), error(h).ln())).collect();
+    let n = points.len() as f64;
+    let (mx, my) = (points.iter().map(|p| p.0).sum::<f64>() / n, points.iter().map(|p| p.1).sum::<f64>() / n);
+    let slope = points.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum::<f64>() / points.iter().map(|p| (p.0 - mx).powi(2)).sum::<f64>();
+    assert!((0.7..1.5).contains(&slope), "order {slope}: errors {:?}", points.iter().map(|p| p.1.exp()).collect::<Vec<_>>());
 }

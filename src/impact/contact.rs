@@ -179,7 +179,8 @@ impl Contact {
     }
 
     /// The event indicators at `alpha`, `rate`: the lower and upper bound of the accepted branch (positive
-    /// while it holds), and the overlap rate, whose sign change is a turning point (the largest overlap).
+    /// while it holds), and the overlap rate, whose sign change is a turning point (the largest overlap),
+    /// or, below the largest overlap so far, the distance to it.
     /// Each active indicator carries the hysteresis.
     pub fn indicators(&self, alpha: f64, rate: f64) -> [f64; 3] {
         self.indicator_lines().map(|l| if l.is_active() { l.at(alpha, rate) + HYSTERESIS } else { l.at(alpha, rate) })
@@ -206,9 +207,12 @@ impl Contact {
         };
         // Turning points matter where the overlap is the largest so far (max_overlap, and the end of
         // plastic loading); elsewhere (a sphere oscillating in its adhesive well, at rest under gravity)
-        // watching the rate would only make events.
+        // watching the rate would only make events. There the indicator watches max_overlap itself, so
+        // that a deeper peak (a second impact on a branch without a bound there) is landed on too.
         let turning = if self.accepted_alpha >= self.max_overlap - 2.0 * NUDGE * self.alpha_nominal {
             Line { constant: 0.0, overlap: 0.0, rate: r }
+        } else if self.max_overlap.is_finite() {
+            Line { constant: self.max_overlap * a, overlap: -a, rate: 0.0 }
         } else {
             Line::INACTIVE
         };

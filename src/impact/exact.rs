@@ -98,13 +98,13 @@ impl Segment {
         [y[1], -self.q * y[0] - 2.0 * self.a * y[1] + self.b]
     }
 
-    /// The first times in (0, horizon) where the indicator `line` turns (its derivative changes sign), in
-    /// increasing order; at most two are needed (see the module note). `eta` is y' at t = 0.
-    fn turning_times(&self, line: &Line, eta: [f64; 2], horizon: f64) -> ([f64; 2], usize) {
+    /// The first (up to three) times in (0, horizon) where the indicator `line` turns (its derivative
+    /// changes sign), in increasing order. `eta` is y' at t = 0.
+    fn turning_times(&self, line: &Line, eta: [f64; 2], horizon: f64) -> ([f64; 3], usize) {
         // g'(t) = line . Phi(t) eta = e^{-at} (P C(t) + Q S(t)).
         let p = line.overlap * eta[0] + line.rate * eta[1];
         let q = line.overlap * (eta[1] + self.a * eta[0]) - line.rate * (self.q * eta[0] + self.a * eta[1]);
-        let mut out = [0.0; 2];
+        let mut out = [0.0; 3];
         let mut n = 0;
         let d = self.a * self.a - self.q;
         if p == 0.0 && q == 0.0 {
@@ -115,7 +115,7 @@ impl Segment {
             let mu = (-d).sqrt();
             let phi = (q / mu).atan2(p);
             let first = (phi + 0.5 * PI).rem_euclid(PI);
-            for k in 0..2 {
+            for k in 0..3 {
                 let t = (first + k as f64 * PI) / mu;
                 if t > 0.0 && t < horizon {
                     out[n] = t;
@@ -168,10 +168,14 @@ impl Segment {
             let limit = best.map_or(horizon, |b| b.0);
             let (turns, n) = self.turning_times(line, eta, limit);
             let (mut lo, mut g_lo) = (0.0, g0);
-            // Two turning points cover a whole period: the later extremes lie closer to the equilibrium.
-            let mut ends = [limit; 2];
+            // From an extreme on, two turning points cover a whole period and the later extremes lie
+            // closer to the equilibrium, so nothing crosses after them. A start at or above zero counts as
+            // an extreme (g only moves away from zero on the first piece, or it crosses there); a start
+            // below zero (a rate indicator just past its turning point) needs one turning point more.
+            let needed = if g0 >= 0.0 { 2 } else { 3 };
+            let mut ends = [limit; 4];
             ends[..n].copy_from_slice(&turns[..n]);
-            let pieces = if n == 2 { 2 } else { n + 1 };
+            let pieces = if n >= needed { needed } else { n + 1 };
             for &tb in &ends[..pieces] {
                 let g_b = g(tb);
                 if g_lo >= 0.0 && g_b < 0.0 {

@@ -110,7 +110,9 @@ impl Sphere {
     fn follow_jump(&mut self, wall: &Wall, t: f64, y: &mut State) {
         let (alpha, rate) = self.overlap(wall, t, y);
         let from = self.contact.accepted_alpha;
-        if from.is_finite() && (alpha - from).abs() > 2.0 * NUDGE * self.contact.alpha_nominal {
+        // Beyond the nudge and the rounding of the absolute positions the overlap is made of.
+        let resolution = 2.0 * NUDGE * self.contact.alpha_nominal + 8.0 * f64::EPSILON * (wall.at(t).abs() + y[0].abs());
+        if from.is_finite() && (alpha - from).abs() > resolution {
             y[2] += self.contact.follow(alpha);
             self.contact.accept(alpha, rate);
         }
