@@ -232,7 +232,7 @@ fn model_exchange_run_with_a_simple_importer_integrator() {
 }
 
 #[test]
-fn bad_calls_return_fmi2error_with_a_message_and_the_instance_stays_usable() {
+fn bad_calls_return_fmi2error_with_a_message_and_the_instance_stays_usable_or_resets() {
     let lib = library();
     let api = Api { lib: &lib };
     let log = Log::default();
@@ -251,8 +251,14 @@ fn bad_calls_return_fmi2error_with_a_message_and_the_instance_stays_usable() {
     api.call0(b"fmi2EnterInitializationMode", c);
     assert_eq!(api.call0(b"fmi2ExitInitializationMode", c), fmi2Error);
     assert!(last(&log).2.contains("particle_radius"), "{:?}", last(&log));
-    // Fixed: still in Initialization Mode, the run goes on.
+    // A failed initialization is a failed computation: the instance is in the Error state, where only
+    // gets, states, fmi2Reset and fmi2FreeInstance are allowed. fmi2Reset brings back the start values.
+    assert!(last(&log).2.contains("Error state"), "{:?}", last(&log));
+    assert_eq!(api.call0(b"fmi2ExitInitializationMode", c), fmi2Error);
+    assert!(last(&log).2.contains("must not be called in Error"), "{:?}", last(&log));
+    assert_eq!(api.call0(b"fmi2Reset", c), fmi2OK);
     assert_eq!(api.set(c, PWI, "particle_radius", 2.45e-6), fmi2OK);
+    api.call0(b"fmi2EnterInitializationMode", c);
     assert_eq!(api.call0(b"fmi2ExitInitializationMode", c), fmi2OK);
     assert_eq!(unsafe { step(c, 0.0, -1e-9, fmi2True) }, fmi2Error);
     assert!(last(&log).2.contains("communicationStepSize"));

@@ -61,11 +61,16 @@ fn call(c: fmi2Component, function: &'static str, modes: u32, f: impl FnOnce(&mu
     }));
     match result {
         Ok(Ok(())) => fmi2OK,
-        Ok(Err(Failure { status, message })) => {
+        Ok(Err(Failure { status, message, enters_error_state })) => {
             let category = if status == fmi2Fatal { "logStatusFatal" } else { "logStatusError" };
-            inst.log(status, category, &message);
             if status == fmi2Fatal {
                 inst.mode = Mode::Fatal;
+                inst.log(status, category, &message);
+            } else if enters_error_state {
+                inst.mode = Mode::Error;
+                inst.log(status, category, &format!("{message} (the instance is now in the Error state: fmi2Reset, fmi2SetFMUstate or fmi2FreeInstance)"));
+            } else {
+                inst.log(status, category, &message);
             }
             status
         }
@@ -112,7 +117,7 @@ unsafe fn c_str(p: fmi2String, function: &str, name: &str) -> Call<String> {
     CStr::from_ptr(p)
         .to_str()
         .map(str::to_owned)
-        .map_err(|_| Failure { status: fmi2Error, message: format!("{function}: argument `{name}` is not UTF-8") })
+        .map_err(|_| Failure { status: fmi2Error, message: format!("{function}: argument `{name}` is not UTF-8"), enters_error_state: false })
 }
 
 fn out<T>(p: *mut T, function: &str, name: &str) -> Call<*mut T> {

@@ -90,17 +90,26 @@ pub enum Kind {
     CoSimulation,
 }
 
-/// A failed call: the status to return and the message to log.
+/// A failed call: the status to return, the message to log, and whether the instance enters the Error
+/// state (docs/robustness.md): a computation that failed does; a call refused for its arguments or its
+/// place in the calling sequence changed nothing, and leaves the instance as it was.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Failure {
     pub status: fmi2Status,
     pub message: String,
+    pub enters_error_state: bool,
 }
 
 pub type Call<T = ()> = Result<T, Failure>;
 
+/// A refused call: fmi2Error, nothing changed.
 pub fn error<T>(message: impl Into<String>) -> Call<T> {
-    Err(Failure { status: fmi2Error, message: message.into() })
+    Err(Failure { status: fmi2Error, message: message.into(), enters_error_state: false })
+}
+
+/// A computation that failed: fmi2Error, and the instance is in the Error state.
+pub fn failed<T>(message: impl Into<String>) -> Call<T> {
+    Err(Failure { status: fmi2Error, message: message.into(), enters_error_state: true })
 }
 
 /// The host's logger and which categories are switched on.
@@ -236,7 +245,7 @@ impl Instance {
             }
             Err(message) => {
                 self.model_ready = false;
-                error(format!("{function}: {message}"))
+                failed(format!("{function}: {message}"))
             }
         }
     }
@@ -414,7 +423,7 @@ impl Instance {
                 self.time = t + h;
                 Ok(())
             }
-            Err(message) => error(format!("fmi2DoStep from t = {t:e} s by {h:e} s failed, the state is unchanged: {message}")),
+            Err(message) => failed(format!("fmi2DoStep from t = {t:e} s by {h:e} s failed, the state is that of t = {t:e} s: {message}")),
         }
     }
 
@@ -423,7 +432,7 @@ impl Instance {
     }
 
     pub fn restore(&mut self, bytes: &[u8]) -> Call {
-        let s = snapshot::read(self.unit, bytes).map_err(|m| Failure { status: fmi2Error, message: format!("FMU state rejected: {m}") })?;
+        let s = snapshot::read(self.unit, bytes).map_err(|m| Failure { status: fmi2Error, message: format!("FMU state rejected: {m}"), enters_error_state: false })?;
         let kind = if s.kind == 0 { Kind::ModelExchange } else { Kind::CoSimulation };
         if kind != self.kind {
             return error("FMU state rejected: it was saved by an instance of the other interface (Model Exchange vs Co-Simulation)");
@@ -432,7 +441,7 @@ impl Instance {
         let Some(mode) = mode else { return error("FMU state rejected: it records an invalid mode") };
         // Model first: if it refuses, nothing of this instance has changed.
         let mut model = (self.unit.new_model)(self.unit);
-        model.restore(&s.values, &s.model).map_err(|m| Failure { status: fmi2Error, message: format!("FMU state rejected: {m}") })?;
+        model.restore(&s.values, &s.model).map_err(|m| Failure { status: fmi2Error, message: format!("FMU state rejected: {m}"), enters_error_state: false })?;
         model.set_time(s.time);
         self.model = model;
         self.values = s.values;
