@@ -44,6 +44,12 @@ struct SavedState {
 
 /// Runs `f` on the instance behind `c` if `c` is live and the mode allows `function`.
 fn call(c: fmi2Component, function: &'static str, modes: u32, f: impl FnOnce(&mut Instance) -> Call) -> fmi2Status {
+    call_for(c, function, None, modes, f)
+}
+
+/// `call` for a function of one interface (`kind`), or of both (`None`): the interface is checked before
+/// the calling sequence, so a function of the other interface is refused as such in every state.
+fn call_for(c: fmi2Component, function: &'static str, kind: Option<Kind>, modes: u32, f: impl FnOnce(&mut Instance) -> Call) -> fmi2Status {
     if c.is_null() || !live(&INSTANCES, c as usize) {
         return fmi2Error;
     }
@@ -52,6 +58,9 @@ fn call(c: fmi2Component, function: &'static str, modes: u32, f: impl FnOnce(&mu
     let result = catch_unwind(AssertUnwindSafe(|| {
         if inst.mode == Mode::Fatal {
             return error(format!("{function}: the instance is in the Fatal state after an earlier internal error; free it"));
+        }
+        if let Some(kind) = kind {
+            inst.check_kind(function, kind)?;
         }
         inst.check_mode(function, modes)?;
         if inst.logger.enabled("logAll") {
@@ -68,7 +77,11 @@ fn call(c: fmi2Component, function: &'static str, modes: u32, f: impl FnOnce(&mu
                 inst.log(status, category, &message);
             } else if enters_error_state {
                 inst.mode = Mode::Error;
-                inst.log(status, category, &format!("{message} (the instance is now in the Error state: fmi2Reset, fmi2SetFMUstate or fmi2FreeInstance)"));
+                inst.log(
+                    status,
+                    category,
+                    &format!("{message} (the instance is now in the Error state: fmi2Reset, fmi2SetFMUstate or fmi2FreeInstance)"),
+                );
             } else {
                 inst.log(status, category, &message);
             }
@@ -114,10 +127,11 @@ unsafe fn c_str(p: fmi2String, function: &str, name: &str) -> Call<String> {
     if p.is_null() {
         return error(format!("{function}: argument `{name}` is NULL"));
     }
-    CStr::from_ptr(p)
-        .to_str()
-        .map(str::to_owned)
-        .map_err(|_| Failure { status: fmi2Error, message: format!("{function}: argument `{name}` is not UTF-8"), enters_error_state: false })
+    CStr::from_ptr(p).to_str().map(str::to_owned).map_err(|_| Failure {
+        status: fmi2Error,
+        message: format!("{function}: argument `{name}` is not UTF-8"),
+        enters_error_state: false,
+    })
 }
 
 fn out<T>(p: *mut T, function: &str, name: &str) -> Call<*mut T> {
@@ -526,10 +540,7 @@ pub unsafe extern "C" fn fmi2GetDirectionalDerivative(
 // Model Exchange
 
 fn me(c: fmi2Component, function: &'static str, modes: u32, f: impl FnOnce(&mut Instance) -> Call) -> fmi2Status {
-    call(c, function, modes, |inst| {
-        inst.check_kind(function, Kind::ModelExchange)?;
-        f(inst)
-    })
+    call_for(c, function, Some(Kind::ModelExchange), modes, f)
 }
 
 #[no_mangle]
@@ -624,10 +635,7 @@ pub unsafe extern "C" fn fmi2GetNominalsOfContinuousStates(c: fmi2Component, x_n
 // Co-Simulation
 
 fn cs(c: fmi2Component, function: &'static str, modes: u32, f: impl FnOnce(&mut Instance) -> Call) -> fmi2Status {
-    call(c, function, modes, |inst| {
-        inst.check_kind(function, Kind::CoSimulation)?;
-        f(inst)
-    })
+    call_for(c, function, Some(Kind::CoSimulation), modes, f)
 }
 
 #[no_mangle]

@@ -432,7 +432,11 @@ impl Instance {
     }
 
     pub fn restore(&mut self, bytes: &[u8]) -> Call {
-        let s = snapshot::read(self.unit, bytes).map_err(|m| Failure { status: fmi2Error, message: format!("FMU state rejected: {m}"), enters_error_state: false })?;
+        let s = snapshot::read(self.unit, bytes).map_err(|m| Failure {
+            status: fmi2Error,
+            message: format!("FMU state rejected: {m}"),
+            enters_error_state: false,
+        })?;
         let kind = if s.kind == 0 { Kind::ModelExchange } else { Kind::CoSimulation };
         if kind != self.kind {
             return error("FMU state rejected: it was saved by an instance of the other interface (Model Exchange vs Co-Simulation)");
@@ -441,7 +445,11 @@ impl Instance {
         let Some(mode) = mode else { return error("FMU state rejected: it records an invalid mode") };
         // Model first: if it refuses, nothing of this instance has changed.
         let mut model = (self.unit.new_model)(self.unit);
-        model.restore(&s.values, &s.model).map_err(|m| Failure { status: fmi2Error, message: format!("FMU state rejected: {m}"), enters_error_state: false })?;
+        model.restore(&s.values, &s.model).map_err(|m| Failure {
+            status: fmi2Error,
+            message: format!("FMU state rejected: {m}"),
+            enters_error_state: false,
+        })?;
         model.set_time(s.time);
         self.model = model;
         self.values = s.values;
