@@ -79,7 +79,21 @@ pub fn check_non_negative(name: &'static str, value: f64, unit: &str) -> Result<
 
 fn range_text(lo: f64, hi: f64, closed_low: bool, unit: &str) -> String {
     let left = if closed_low { "[" } else { "(" };
-    let hi_text = if hi.is_infinite() { "inf".to_string() } else { format!("{hi}") };
     let unit = if unit.is_empty() { String::new() } else { format!(" {unit}") };
-    format!("{left}{lo}, {hi_text}){unit}")
+    format!("{left}{}, {}){unit}", bound(lo), bound(hi))
+}
+
+/// A range bound as a reader writes it: 0.5, 1000, 1e-9, 1e13, inf.
+fn bound(x: f64) -> String {
+    if x.is_infinite() {
+        if x > 0.0 {
+            "inf".into()
+        } else {
+            "-inf".into()
+        }
+    } else if x != 0.0 && (x.abs() < 1e-3 || x.abs() >= 1e6) {
+        format!("{x:e}")
+    } else {
+        format!("{x}")
+    }
 }

@@ -421,19 +421,23 @@ impl Scene {
 
     /// Range checks on every value given. Cross-checks that need derived values live in `law::params`.
     pub fn validate(&self) -> Result<(), ParamError> {
-        check_positive("particle_radius", self.particle_radius, "m")?;
-        check_positive("particle_density", self.particle_density, "kg/m^3")?;
-        check_positive("particle_youngs_modulus", self.particle_youngs_modulus, "Pa")?;
+        // Physical ranges, wide enough for every powder and every wall, narrow enough that no value
+        // makes the dynamics degenerate (a mass of 1e-130 kg oscillates 1e60 times in a nanosecond).
+        check_closed_low("particle_radius", self.particle_radius, 1e-9, 1.0, "m")?;
+        check_closed_low("particle_density", self.particle_density, 1.0, 1e5, "kg/m^3")?;
+        check_closed_low("particle_youngs_modulus", self.particle_youngs_modulus, 1e3, 1e13, "Pa")?;
         check_open("particle_poisson_ratio", self.particle_poisson_ratio, -1.0, 0.5, "")?;
         opt_positive("particle_yield_pressure", self.particle_yield_pressure, "Pa")?;
         opt_positive("particle_yield_stress", self.particle_yield_stress, "Pa")?;
         check_non_negative("yield_stress_rate_coefficient", self.yield_stress_rate_coefficient, "")?;
         opt_positive("strain_rate", self.strain_rate, "1/s")?;
         opt_positive("reference_strain_rate", self.reference_strain_rate, "1/s")?;
-        opt_positive("wall_youngs_modulus", self.wall_youngs_modulus, "Pa")?;
+        if let Some(v) = self.wall_youngs_modulus {
+            check_closed_low("wall_youngs_modulus", v, 1e3, 1e13, "Pa")?;
+        }
         check_open("wall_poisson_ratio", self.wall_poisson_ratio, -1.0, 0.5, "")?;
         opt_positive("wall_yield_pressure", self.wall_yield_pressure, "Pa")?;
-        check_non_negative("surface_energy", self.surface_energy, "J/m^2")?;
+        check_closed_low("surface_energy", self.surface_energy, 0.0, 1e3, "J/m^2")?;
         check_open("restitution_coefficient", self.restitution_coefficient, 0.0, 1.0 + f64::EPSILON, "")?;
         check_non_negative("damping_factor_elastic", self.damping_factor_elastic, "")?;
         if let Some(v) = self.damping_factor_plastic {

@@ -110,9 +110,10 @@ fn bad_input_fails_naming_the_parameter_and_its_range() {
         s[k] = v;
         s
     };
-    expect_error("neg_radius.json", with("particle_radius", json!(-1e-6)), &["particle_radius", "(0, inf) m"]);
-    expect_error("zero_radius.json", with("particle_radius", json!(0.0)), &["particle_radius", "(0, inf) m"]);
-    expect_error("zero_modulus.json", with("particle_youngs_modulus", json!(0.0)), &["particle_youngs_modulus", "(0, inf) Pa"]);
+    expect_error("neg_radius.json", with("particle_radius", json!(-1e-6)), &["particle_radius", "[1e-9, 1) m"]);
+    expect_error("zero_radius.json", with("particle_radius", json!(0.0)), &["particle_radius", "[1e-9, 1) m"]);
+    expect_error("zero_modulus.json", with("particle_youngs_modulus", json!(0.0)), &["particle_youngs_modulus", "[1000, 1e13) Pa"]);
+    expect_error("light.json", with("particle_density", json!(1e-100)), &["particle_density", "[1, 100000) kg/m^3"]);
     expect_error("neg_density.json", with("particle_density", json!(-1350.0)), &["particle_density", "kg/m^3"]);
     expect_error("nu_half.json", with("particle_poisson_ratio", json!(0.5)), &["particle_poisson_ratio", "(-1, 0.5)"]);
     expect_error("nu_minus1.json", with("particle_poisson_ratio", json!(-1.0)), &["particle_poisson_ratio", "(-1, 0.5)"]);

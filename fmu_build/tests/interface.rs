@@ -43,8 +43,9 @@ fn every_scene_key_is_a_parameter_of_both_units_and_names_are_unique() {
 fn guids_differ_between_units_and_change_with_the_interface() {
     let all = units::all();
     assert_ne!(all[0].guid(), all[1].guid());
+    let before = units::particle_wall_impact::info().guid();
+    // A fresh description with one changed word (the GUID is cached per description).
     let mut changed = units::particle_wall_impact::info();
-    let before = changed.guid();
     changed.variables[0].description.push('!');
     assert_ne!(changed.guid(), before);
 }

@@ -54,6 +54,7 @@ pub fn info() -> UnitInfo {
         stop_time: 1.0,
         step_size: 1e-3,
         new_model: |u| Box::new(ContactElement::new(u)),
+        guid_cache: std::sync::OnceLock::new(),
     }
 }
 

@@ -56,6 +56,8 @@ pub struct UnitInfo {
     pub stop_time: f64,
     pub step_size: f64,
     pub new_model: fn(&UnitInfo) -> Box<dyn Model>,
+    /// The GUID, computed once (it hashes the whole model description).
+    pub guid_cache: OnceLock<String>,
 }
 
 impl UnitInfo {
@@ -71,10 +73,14 @@ impl UnitInfo {
 
     /// The GUID: a hash of the model description without it, so it changes exactly when the interface does.
     pub fn guid(&self) -> String {
-        let text = model_description::xml(self, "");
-        let a = fnv1a64(text.as_bytes(), 0xcbf2_9ce4_8422_2325);
-        let b = fnv1a64(text.as_bytes(), 0x6c62_272e_07bb_0142);
-        format!("{{{:08x}-{:04x}-{:04x}-{:04x}-{:012x}}}", a >> 32, (a >> 16) & 0xffff, a & 0xffff, b >> 48, b & 0xffff_ffff_ffff)
+        self.guid_cache
+            .get_or_init(|| {
+                let text = model_description::xml(self, "");
+                let a = fnv1a64(text.as_bytes(), 0xcbf2_9ce4_8422_2325);
+                let b = fnv1a64(text.as_bytes(), 0x6c62_272e_07bb_0142);
+                format!("{{{:08x}-{:04x}-{:04x}-{:04x}-{:012x}}}", a >> 32, (a >> 16) & 0xffff, a & 0xffff, b >> 48, b & 0xffff_ffff_ffff)
+            })
+            .clone()
     }
 
     pub fn model_description(&self) -> String {

@@ -80,6 +80,7 @@ pub fn info() -> UnitInfo {
         stop_time: 2e-7,
         step_size: 1e-9,
         new_model: |u| Box::new(ParticleWallImpact::new(u)),
+        guid_cache: std::sync::OnceLock::new(),
     }
 }
 
