@@ -110,10 +110,33 @@ impl Contact {
         Memory { history: self.history, accepted: self.accepted, accepted_alpha: self.accepted_alpha, max_overlap: self.max_overlap }
     }
 
-    /// Takes back a saved memory; refuses one of another law.
+    /// Takes back a saved memory; refuses one of another law, and one no contact of these parameters
+    /// can have been in (a corrupted state whose checksum was repaired): overlaps beyond a thousand
+    /// radii, or a force a thousand times the force of crushing the sphere to half its radius.
     pub fn remember(&mut self, m: Memory) -> Result<(), String> {
+        // The indicator scale is a thousandth of R* (units::contact_parts::build).
+        let radius = 1e3 * self.alpha_nominal;
         if std::mem::discriminant(&m.history) != std::mem::discriminant(&self.law.initial_history()) {
             return Err("the saved state belongs to another contact_model than the parameters".into());
+        }
+        let fresh = self.law.initial_history();
+        let crush = self.law.evaluate(0.5 * radius, &fresh).force.abs().max(self.law.evaluate(0.0, &fresh).force.abs());
+        let force_limit = 1e3 * crush.max(f64::MIN_POSITIVE);
+        let overlap_limit = 1e3 * radius;
+        let force = self.law.evaluate(m.accepted_alpha, &m.history).force;
+        let plausible = m.accepted_alpha.is_finite()
+            && m.accepted_alpha.abs() <= overlap_limit
+            && m.max_overlap <= overlap_limit
+            && !m.max_overlap.is_nan()
+            && force.is_finite()
+            && force.abs() <= force_limit
+            && m.accepted.force.is_finite()
+            && m.accepted.force.abs() <= force_limit;
+        if !plausible {
+            return Err(format!(
+                "the saved contact is not one these parameters allow (overlap {:e} m, force {force:e} N; limits {overlap_limit:e} m, {force_limit:e} N)",
+                m.accepted_alpha
+            ));
         }
         self.history = m.history;
         self.accepted = m.accepted;

@@ -339,6 +339,9 @@ impl Model for ParticleWallImpact {
         }
         let snap: Snapshot = super::decode(bytes)?;
         let (mut sphere, radius) = self.build(values)?;
+        if !(snap.y.iter().all(|x| x.is_finite()) && snap.t.is_finite() && snap.last_step.is_finite() && snap.last_step >= 0.0) {
+            return Err("the saved sphere state is not finite".into());
+        }
         sphere.contact.remember(snap.contact)?;
         sphere.last_step = snap.last_step;
         self.sphere = Some(sphere);

@@ -165,3 +165,38 @@ def test_non_finite_time_in_model_exchange(impact, log):
     fmu.exitInitializationMode()
     assert_error(lambda: fmu.setTime(math.nan), log, "fmi2SetTime")
     fmu.freeInstance()
+
+
+def test_out_of_sequence_call_changes_nothing(impact, log):
+    fmu = impact.slave("sequence", log)
+    impact.initialize(fmu, {"initial_velocity": 3.0})
+    assert_error(lambda: fmu.setupExperiment(startTime=0.0), log, "fmi2SetupExperiment", "must not be called in Step Complete")
+    assert_error(fmu.enterInitializationMode, log, "fmi2EnterInitializationMode", "Step Complete")
+    # Refused calls left the instance as it was: the impact runs on.
+    fmu.doStep(currentCommunicationPoint=0.0, communicationStepSize=2e-7)
+    assert fmu.getReal([impact.vr["sphere_velocity"]])[0] > 0
+    fmu.freeInstance()
+
+
+def test_fixed_parameter_after_initialization_is_refused(impact, log):
+    fmu = impact.slave("fixed", log)
+    impact.initialize(fmu)
+    assert_error(lambda: fmu.setReal([impact.vr["particle_radius"]], [1e-6]), log, "`particle_radius`", "fixed")
+    fmu.doStep(currentCommunicationPoint=0.0, communicationStepSize=1e-9)
+    fmu.freeInstance()
+
+
+def test_failed_step_enters_the_error_state_and_a_saved_state_recovers(impact, log):
+    """A step that cannot be computed (Verlet at 1e-12 of the Rayleigh step over 1 ms needs more than
+    the 1e7 steps allowed) fails; the instance is in the Error state; a state saved before restores it."""
+    fmu = impact.slave("recover", log)
+    impact.initialize(fmu, {"initial_velocity": 3.0, "solver": "verlet", "rayleigh_fraction": 1e-12})
+    saved = fmu.getFMUstate()
+    assert_error(lambda: fmu.doStep(currentCommunicationPoint=0.0, communicationStepSize=1e-3), log, "fmi2DoStep", "Error state")
+    assert_error(lambda: fmu.doStep(currentCommunicationPoint=0.0, communicationStepSize=1e-9), log, "must not be called in Error")
+    # Getters still answer in the Error state; the saved state brings the instance back.
+    assert math.isfinite(fmu.getReal([impact.vr["sphere_velocity"]])[0])
+    fmu.setFMUstate(saved)
+    fmu.doStep(currentCommunicationPoint=0.0, communicationStepSize=1e-14)  # 7e5 Verlet steps: allowed
+    fmu.freeFMUstate(saved)
+    fmu.freeInstance()
