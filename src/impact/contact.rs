@@ -124,7 +124,13 @@ impl Contact {
         let force_limit = 1e3 * crush.max(f64::MIN_POSITIVE);
         let overlap_limit = 1e3 * radius;
         let force = self.law.evaluate(m.accepted_alpha, &m.history).force;
+        let pull_off = self.law.pull_off_force(&m.history);
+        let plastic = self.law.plastic_overlap(&m.history);
         let plausible = m.accepted_alpha.is_finite()
+            && pull_off.is_finite()
+            && pull_off.abs() <= force_limit
+            && plastic.is_finite()
+            && plastic.abs() <= overlap_limit
             && m.accepted_alpha.abs() <= overlap_limit
             && m.max_overlap <= overlap_limit
             && !m.max_overlap.is_nan()

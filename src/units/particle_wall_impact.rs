@@ -18,6 +18,9 @@ use serde::{Deserialize, Serialize};
 
 pub const MODEL_IDENTIFIER: &str = "ParticleWallImpact";
 
+/// The largest sphere speed a saved state may hold [m/s].
+const MAX_SPEED: f64 = 1e5;
+
 /// The unit's own variables (the scene keys follow them).
 fn own_variables() -> Vec<Variable> {
     let [max_overlap, plastic_overlap, pull_off_force] = contact_parts::history_outputs();
@@ -339,8 +342,11 @@ impl Model for ParticleWallImpact {
         }
         let snap: Snapshot = super::decode(bytes)?;
         let (mut sphere, radius) = self.build(values)?;
-        if !(snap.y.iter().all(|x| x.is_finite()) && snap.t.is_finite() && snap.last_step.is_finite() && snap.last_step >= 0.0) {
-            return Err("the saved sphere state is not finite".into());
+        // Finite, and a speed no impact of powder reaches (a corrupted state that passed the checksum).
+        if !(snap.y.iter().all(|x| x.is_finite()) && snap.t.is_finite() && snap.last_step.is_finite() && snap.last_step >= 0.0)
+            || snap.y[1].abs() > MAX_SPEED
+        {
+            return Err(format!("the saved sphere state is not plausible (velocity {:e} m/s; allowed finite and at most {MAX_SPEED:e})", snap.y[1]));
         }
         sphere.contact.remember(snap.contact)?;
         sphere.last_step = snap.last_step;
