@@ -4,7 +4,7 @@
 //! `KEYS` is the one table of every key: its unit, default and meaning. The CLI help, the unknown-key
 //! check and the docs all read it.
 
-use crate::error::{check_closed_low, check_non_negative, check_open, check_positive, ParamError};
+use crate::error::{check_closed_low, check_open, ParamError};
 use serde_json::{Map, Value};
 
 /// One scene key: name, unit, default (as text) and what it means (with its seed reference).
@@ -427,40 +427,40 @@ impl Scene {
         check_closed_low("particle_density", self.particle_density, 1.0, 1e5, "kg/m^3")?;
         check_closed_low("particle_youngs_modulus", self.particle_youngs_modulus, 1e3, 1e13, "Pa")?;
         check_open("particle_poisson_ratio", self.particle_poisson_ratio, -1.0, 0.5, "")?;
-        opt_positive("particle_yield_pressure", self.particle_yield_pressure, "Pa")?;
-        opt_positive("particle_yield_stress", self.particle_yield_stress, "Pa")?;
-        check_non_negative("yield_stress_rate_coefficient", self.yield_stress_rate_coefficient, "")?;
-        opt_positive("strain_rate", self.strain_rate, "1/s")?;
-        opt_positive("reference_strain_rate", self.reference_strain_rate, "1/s")?;
+        opt_below("particle_yield_pressure", self.particle_yield_pressure, 1e13, "Pa")?;
+        opt_below("particle_yield_stress", self.particle_yield_stress, 1e13, "Pa")?;
+        check_closed_low("yield_stress_rate_coefficient", self.yield_stress_rate_coefficient, 0.0, 1e3, "")?;
+        opt_below("strain_rate", self.strain_rate, 1e12, "1/s")?;
+        opt_below("reference_strain_rate", self.reference_strain_rate, 1e12, "1/s")?;
         if let Some(v) = self.wall_youngs_modulus {
             check_closed_low("wall_youngs_modulus", v, 1e3, 1e13, "Pa")?;
         }
         check_open("wall_poisson_ratio", self.wall_poisson_ratio, -1.0, 0.5, "")?;
-        opt_positive("wall_yield_pressure", self.wall_yield_pressure, "Pa")?;
+        opt_below("wall_yield_pressure", self.wall_yield_pressure, 1e13, "Pa")?;
         check_closed_low("surface_energy", self.surface_energy, 0.0, 1e3, "J/m^2")?;
         check_open("restitution_coefficient", self.restitution_coefficient, 0.0, 1.0 + f64::EPSILON, "")?;
-        check_non_negative("damping_factor_elastic", self.damping_factor_elastic, "")?;
+        check_closed_low("damping_factor_elastic", self.damping_factor_elastic, 0.0, 1e3, "")?;
         if let Some(v) = self.damping_factor_plastic {
-            check_non_negative("damping_factor_plastic", v, "")?;
+            check_closed_low("damping_factor_plastic", v, 0.0, 1e3, "")?;
         }
-        check_non_negative("friction_coefficient", self.friction_coefficient, "")?;
-        opt_positive("elastic_stiffness", self.elastic_stiffness, "N/m")?;
-        opt_positive("unloading_stiffness_reference", self.unloading_stiffness_reference, "N/m")?;
-        opt_positive("unloading_overlap_reference", self.unloading_overlap_reference, "m")?;
-        opt_positive("plastic_stiffness", self.plastic_stiffness, "N/m")?;
-        opt_positive("pasha_max_elastic_stiffness", self.pasha_max_elastic_stiffness, "N/m")?;
-        check_non_negative("pasha_pull_off_stiffness", self.pasha_pull_off_stiffness, "N/m")?;
+        check_closed_low("friction_coefficient", self.friction_coefficient, 0.0, 1e3, "")?;
+        opt_below("elastic_stiffness", self.elastic_stiffness, 1e12, "N/m")?;
+        opt_below("unloading_stiffness_reference", self.unloading_stiffness_reference, 1e12, "N/m")?;
+        opt_below("unloading_overlap_reference", self.unloading_overlap_reference, 1.0, "m")?;
+        opt_below("plastic_stiffness", self.plastic_stiffness, 1e12, "N/m")?;
+        opt_below("pasha_max_elastic_stiffness", self.pasha_max_elastic_stiffness, 1e12, "N/m")?;
+        check_closed_low("pasha_pull_off_stiffness", self.pasha_pull_off_stiffness, 0.0, 1e12, "N/m")?;
         if let Some(v) = self.pasha_pull_off_intercept {
-            check_non_negative("pasha_pull_off_intercept", v, "N")?;
+            check_closed_low("pasha_pull_off_intercept", v, 0.0, 1e6, "N")?;
         }
-        opt_positive("luding_loading_stiffness", self.luding_loading_stiffness, "N/m")?;
-        opt_positive("luding_max_unloading_stiffness", self.luding_max_unloading_stiffness, "N/m")?;
-        check_non_negative("luding_adhesion_stiffness", self.luding_adhesion_stiffness, "N/m")?;
+        opt_below("luding_loading_stiffness", self.luding_loading_stiffness, 1e12, "N/m")?;
+        opt_below("luding_max_unloading_stiffness", self.luding_max_unloading_stiffness, 1e12, "N/m")?;
+        check_closed_low("luding_adhesion_stiffness", self.luding_adhesion_stiffness, 0.0, 1e12, "N/m")?;
         check_open("luding_plasticity_depth", self.luding_plasticity_depth, 0.0, 0.5, "")?;
         if let Some(v) = self.luding_contact_adhesion_force {
-            check_non_negative("luding_contact_adhesion_force", v, "N")?;
+            check_closed_low("luding_contact_adhesion_force", v, 0.0, 1e6, "N")?;
         }
-        opt_positive("tomas_yield_strength", self.tomas_yield_strength, "Pa")?;
+        opt_below("tomas_yield_strength", self.tomas_yield_strength, 1e13, "Pa")?;
         check_closed_low("tomas_area_coefficient", self.tomas_area_coefficient, 2.0 / 3.0, 1.0 + f64::EPSILON, "")?;
         check_closed_low(
             "tomas_repulsion_coefficient",
@@ -470,11 +470,11 @@ impl Scene {
             "(below tomas_area_coefficient)",
         )?;
         if let Some(v) = self.tomas_contact_adhesion_force {
-            check_non_negative("tomas_contact_adhesion_force", v, "N")?;
+            check_closed_low("tomas_contact_adhesion_force", v, 0.0, 1e6, "N")?;
         }
-        check_positive("tomas_separation", self.tomas_separation, "m")?;
-        opt_positive("linear_stiffness", self.linear_stiffness, "N/m")?;
-        check_non_negative("walton_braun_stiffening_slope", self.walton_braun_stiffening_slope, "1/m")?;
+        check_open("tomas_separation", self.tomas_separation, 0.0, 1.0, "m")?;
+        opt_below("linear_stiffness", self.linear_stiffness, 1e12, "N/m")?;
+        check_closed_low("walton_braun_stiffening_slope", self.walton_braun_stiffening_slope, 0.0, 1e12, "1/m")?;
         if self.unloading_stiffness_reference.is_some() != self.unloading_overlap_reference.is_some() {
             return Err(ParamError::Inconsistent {
                 name: "unloading_stiffness_reference",
@@ -497,9 +497,10 @@ impl Scene {
     }
 }
 
-fn opt_positive(name: &'static str, v: Option<f64>, unit: &str) -> Result<(), ParamError> {
+/// An optional value in (0, max): positive, and below where the dynamics would degenerate.
+fn opt_below(name: &'static str, v: Option<f64>, max: f64, unit: &str) -> Result<(), ParamError> {
     match v {
-        Some(x) => check_positive(name, x, unit).map(|_| ()),
+        Some(x) => check_open(name, x, 0.0, max, unit).map(|_| ()),
         None => Ok(()),
     }
 }

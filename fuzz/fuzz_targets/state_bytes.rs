@@ -76,7 +76,8 @@ fuzz_target!(|data: &[u8]| {
                 let mut t = 0.0;
                 fmi2GetRealStatus(c, fmi2LastSuccessfulTime, &mut t);
                 if t.is_finite() {
-                    not_fatal(fmi2DoStep(c, t, 1e-9, fmi2True), "fmi2DoStep");
+                    // A short step: what matters is that the restored state steps, not how far.
+                    not_fatal(fmi2DoStep(c, t, 1e-12, fmi2True), "fmi2DoStep");
                 }
                 let mut v = 0.0;
                 not_fatal(fmi2GetReal(c, &vr("sphere_velocity"), 1, &mut v), "fmi2GetReal");

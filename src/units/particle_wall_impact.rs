@@ -18,15 +18,19 @@ use serde::{Deserialize, Serialize};
 
 pub const MODEL_IDENTIFIER: &str = "ParticleWallImpact";
 
-/// The largest sphere speed a saved state may hold [m/s].
+/// The largest speed of the sphere and the wall [m/s]: far beyond any impact of powder, and a bound
+/// that keeps one step of the dynamics finite work.
 const MAX_SPEED: f64 = 1e5;
+/// The largest gravity (an ultracentrifuge's 1e6 m/s^2) [m/s^2].
+const MAX_GRAVITY: f64 = 1e6;
 
 /// The unit's own variables (the scene keys follow them).
 fn own_variables() -> Vec<Variable> {
     let [max_overlap, plastic_overlap, pull_off_force] = contact_parts::history_outputs();
     vec![
         Variable::input("wall_displacement", "m", "position of the wall plane along the normal (z of the wall)"),
-        Variable::input("wall_velocity", "m/s", "velocity of the wall along the normal (positive toward the sphere's side)"),
+        Variable::input("wall_velocity", "m/s", "velocity of the wall along the normal (positive toward the sphere's side)")
+            .with_range(Some(-MAX_SPEED), Some(MAX_SPEED)),
         Variable::output("force", VarType::Real, "N", "normal contact force on the sphere (law plus damping), positive pushes it away from the wall"),
         Variable::output(
             "overlap",
@@ -55,8 +59,10 @@ fn own_variables() -> Vec<Variable> {
         Variable::local("der(dissipated_energy)", "W", "power of the contact force on the overlap rate", Role::Derivative(2)),
         Variable::parameter("initial_gap", Value::Real(1e-8), "m", "gap between the sphere surface and the wall at the start")
             .with_range(Some(0.0), None),
-        Variable::parameter("initial_velocity", Value::Real(1.0), "m/s", "approach speed of the sphere at the start, positive toward the wall"),
-        Variable::parameter("gravity", Value::Real(0.0), "m/s2", "gravitational acceleration toward the wall"),
+        Variable::parameter("initial_velocity", Value::Real(1.0), "m/s", "approach speed of the sphere at the start, positive toward the wall")
+            .with_range(Some(-MAX_SPEED), Some(MAX_SPEED)),
+        Variable::parameter("gravity", Value::Real(0.0), "m/s2", "gravitational acceleration toward the wall")
+            .with_range(Some(-MAX_GRAVITY), Some(MAX_GRAVITY)),
         Variable::parameter(
             "solver",
             Value::String("auto".into()),
@@ -172,13 +178,13 @@ impl ParticleWallImpact {
         if scene.contact_partner != Partner::Wall {
             return Err("parameter `contact_partner` = \"particle\" is not allowed in ParticleWallImpact: the sphere hits a wall; use \"wall\" (two identical particles: use ContactElement)".into());
         }
-        finite(values, refs.initial_velocity, "initial_velocity", "m/s")?;
-        let g = finite(values, refs.gravity, "gravity", "m/s2")?;
+        within(values, refs.initial_velocity, "initial_velocity", MAX_SPEED, "m/s")?;
+        let g = within(values, refs.gravity, "gravity", MAX_GRAVITY, "m/s2")?;
         let tol = finite(values, refs.tolerance, "tolerance", "")?;
         if !(1e-14..=1e-2).contains(&tol) {
             return Err(format!("parameter `tolerance` = {tol:e} is out of range: allowed [1e-14, 1e-2]"));
         }
-        finite(values, refs.wall_velocity, "wall_velocity", "m/s")?;
+        within(values, refs.wall_velocity, "wall_velocity", MAX_SPEED, "m/s")?;
         let fraction = finite(values, refs.rayleigh_fraction, "rayleigh_fraction", "")?;
         if !(fraction > 0.0 && fraction <= 1.0) {
             return Err(format!("parameter `rayleigh_fraction` = {fraction:e} is out of range: allowed (0, 1]"));
@@ -207,6 +213,15 @@ fn solver(name: &str, law: &AnyLaw, verlet_step: f64) -> Result<Solver, String> 
         "verlet" => Ok(Solver::Verlet { step: verlet_step }),
         other => Err(format!("parameter `solver` = \"{other}\" is not one of {}", Solver::NAMES.join(", "))),
     }
+}
+
+/// A real parameter or input with |x| <= max, or an error naming it and the range.
+fn within(values: &[Value], vr: usize, name: &str, max: f64, unit: &str) -> Result<f64, String> {
+    let x = finite(values, vr, name, unit)?;
+    if x.abs() > max {
+        return Err(format!("`{name}` = {x:e} {unit} is out of range: allowed [-{max:e}, {max:e}] {unit}"));
+    }
+    Ok(x)
 }
 
 /// A finite real parameter or input, or an error naming it.
@@ -315,6 +330,7 @@ impl Model for ParticleWallImpact {
                 wall.position = wall_end;
             }
         }
+        within(values, self.refs.wall_velocity, "wall_velocity", MAX_SPEED, "m/s")?;
         let sphere = self.sphere.as_mut().ok_or("the unit is not initialized")?;
         let saved = (sphere.clone(), self.y);
         let mut y = self.y;
