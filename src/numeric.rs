@@ -109,6 +109,46 @@ pub fn tanh_sinh<F: FnMut(f64) -> f64>(mut f: F, a: f64, b: f64) -> f64 {
     half * h * sum
 }
 
+/// One bracket [lo, hi] with the inside at `lo` and the outside at `hi`, narrowed by Illinois regula
+/// falsi (bisection where the secant leaves the bracket) until `narrow(lo, hi)`; returns `hi`, the first
+/// point found outside. `inside(g)` says which side a value of `g` is on. The event location of both
+/// impact integrators.
+pub fn first_outside(
+    g: impl Fn(f64) -> f64,
+    inside: impl Fn(f64) -> bool,
+    (mut lo, mut g_lo): (f64, f64),
+    (mut hi, mut g_hi): (f64, f64),
+    narrow: impl Fn(f64, f64) -> bool,
+) -> f64 {
+    let mut side = 0i8;
+    for _ in 0..200 {
+        if narrow(lo, hi) {
+            break;
+        }
+        let mut t = (lo * g_hi - hi * g_lo) / (g_hi - g_lo);
+        if !(t > lo && t < hi) {
+            t = 0.5 * (lo + hi);
+        }
+        let g_t = g(t);
+        if inside(g_t) {
+            lo = t;
+            g_lo = g_t;
+            if side == 1 {
+                g_hi *= 0.5;
+            }
+            side = 1;
+        } else {
+            hi = t;
+            g_hi = g_t;
+            if side == -1 {
+                g_lo *= 0.5;
+            }
+            side = -1;
+        }
+    }
+    hi
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -23,13 +23,6 @@ fn sphere_at(s: &Scene, solver: Solver, gravity: f64, speed: f64) -> Sphere {
     Sphere::new(eff.mass, gravity, contact, solver, ADAPTIVE_TOLERANCE)
 }
 
-fn sphere(s: &Scene, solver: Solver, gravity: f64) -> Sphere {
-    let law = AnyLaw::from_scene(s).unwrap();
-    let eff = Effective::from_scene(s).unwrap();
-    let contact = Contact::new(law, NormalDamping::from_scene(s, eff.mass), 1e-3 * s.particle_radius, 1.0);
-    Sphere::new(eff.mass, gravity, contact, solver, ADAPTIVE_TOLERANCE)
-}
-
 fn mass(s: &Scene) -> f64 {
     Effective::from_scene(s).unwrap().mass
 }
@@ -178,7 +171,7 @@ fn sphere_comes_to_rest_under_gravity_without_chatter_or_drift() {
         let mut s = table5(ModelKind::Nan, 1e-3, 30e6);
         s.restitution_coefficient = 0.5;
         let g = 9.81;
-        let mut sp = sphere(&s, solver, g);
+        let mut sp = sphere_at(&s, solver, g, 1.0);
         let wall = Wall { t0: 0.0, position: 0.0, velocity: 0.0 };
         let mut y = [1e-6, -0.05, 0.0];
         sp.accept(&wall, 0.0, &y);
@@ -264,7 +257,7 @@ fn wall_driven_into_the_sphere_at_100_m_per_s() {
     let s = table5(ModelKind::Nan, 2.45e-6, 30e6);
     let want = closed_form(&s, 100.0);
     for (solver, tol) in [(Solver::Exact, 1e-12), (Solver::Adaptive, 1e-8)] {
-        let mut sp = sphere(&s, solver, 0.0);
+        let mut sp = sphere_at(&s, solver, 0.0, 1.0);
         let u = 100.0;
         let wall = Wall { t0: 0.0, position: -1e-9, velocity: u };
         let mut y = [0.0, 0.0, 0.0];
@@ -318,7 +311,7 @@ fn bouncing_ball_on_a_vibrating_plate_stays_on_the_period_one_orbit() {
     // Impact phase: plate velocity A omega cos(phi) = V (1-e)/(1+e), plate decelerating.
     let phi = (v_orbit * (1.0 - e) / (1.0 + e) / (a * omega)).acos();
     let plate = |t: f64| a * (omega * t + phi).sin();
-    let mut sp = sphere(&s, Solver::Exact, g);
+    let mut sp = sphere_at(&s, Solver::Exact, g, 1.0);
     let per_period = 200;
     let dt = 1.0 / f / per_period as f64;
     let mut y = [plate(0.0) + 1e-12, v_orbit, 0.0];

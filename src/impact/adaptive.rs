@@ -5,6 +5,7 @@
 //! Tomas) need it.
 
 use super::sphere::{Sphere, State, StepError, Wall, MAX_STEPS};
+use crate::numeric::first_outside;
 
 // Dormand-Prince 5(4) coefficients (Hairer, Norsett & Wanner, Table II.5.2).
 const C: [f64; 7] = [0.0, 1.0 / 5.0, 3.0 / 10.0, 4.0 / 5.0, 8.0 / 9.0, 1.0, 1.0];
@@ -119,35 +120,8 @@ impl Sphere {
             let z = self.indicators(wall, t + tau, &y_tau);
             (0..3).filter(|&i| crossed[i]).map(|i| z[i]).fold(f64::INFINITY, f64::min)
         };
-        let (mut lo, mut hi) = (0.0, h);
-        let (mut g_lo, mut g_hi) = (g(0.0), g(h));
-        let mut side = 0i8;
-        for _ in 0..200 {
-            if hi - lo <= 1e-13 * h {
-                break;
-            }
-            let mut tau = (lo * g_hi - hi * g_lo) / (g_hi - g_lo);
-            if !(tau > lo && tau < hi) {
-                tau = 0.5 * (lo + hi);
-            }
-            let g_tau = g(tau);
-            if g_tau > 0.0 {
-                lo = tau;
-                g_lo = g_tau;
-                if side == 1 {
-                    g_hi *= 0.5;
-                }
-                side = 1;
-            } else {
-                hi = tau;
-                g_hi = g_tau;
-                if side == -1 {
-                    g_lo *= 0.5;
-                }
-                side = -1;
-            }
-        }
-        hi
+        let (g_lo, g_hi) = (g(0.0), g(h));
+        first_outside(g, |v| v > 0.0, (0.0, g_lo), (h, g_hi), |lo, hi| hi - lo <= 1e-13 * h)
     }
 
     fn initial_step(&self, y: &State) -> f64 {

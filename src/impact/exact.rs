@@ -14,6 +14,7 @@
 
 use super::contact::{BranchLine, Line};
 use super::sphere::{Sphere, State, StepError, Wall, MAX_STEPS};
+use crate::numeric::first_outside;
 use std::f64::consts::PI;
 
 /// x'' = -q x - 2 a x' + b for the state y = [x, x'].
@@ -179,7 +180,7 @@ impl Segment {
             for &tb in &ends[..pieces] {
                 let g_b = g(tb);
                 if g_lo >= 0.0 && g_b < 0.0 {
-                    let t = refine(&g, lo, g_lo, tb, g_b);
+                    let t = first_outside(g, |v| v >= 0.0, (lo, g_lo), (tb, g_b), |lo, hi| hi - lo <= 2.0 * f64::EPSILON * hi);
                     if best.map_or(true, |b| t < b.0) {
                         best = Some((t, i));
                     }
@@ -243,38 +244,6 @@ impl Sphere {
         y[1] = u - x[1];
         Ok(())
     }
-}
-
-/// The first point outside (g < 0) of a monotone bracket [lo, hi] with g(lo) >= 0 > g(hi), to the
-/// resolution of time: Illinois regula falsi with bisection as the fallback.
-fn refine(g: &impl Fn(f64) -> f64, mut lo: f64, mut g_lo: f64, mut hi: f64, mut g_hi: f64) -> f64 {
-    let mut side = 0i8;
-    for _ in 0..200 {
-        if hi - lo <= 2.0 * f64::EPSILON * hi {
-            break;
-        }
-        let mut t = (lo * g_hi - hi * g_lo) / (g_hi - g_lo);
-        if !(t > lo && t < hi) {
-            t = 0.5 * (lo + hi);
-        }
-        let g_t = g(t);
-        if g_t >= 0.0 {
-            lo = t;
-            g_lo = g_t;
-            if side == 1 {
-                g_hi *= 0.5;
-            }
-            side = 1;
-        } else {
-            hi = t;
-            g_hi = g_t;
-            if side == -1 {
-                g_lo *= 0.5;
-            }
-            side = -1;
-        }
-    }
-    hi
 }
 
 #[cfg(test)]

@@ -330,7 +330,6 @@ impl Model for ParticleWallImpact {
                 wall.position = wall_end;
             }
         }
-        within(values, self.refs.wall_velocity, "wall_velocity", MAX_SPEED, "m/s")?;
         let sphere = self.sphere.as_mut().ok_or("the unit is not initialized")?;
         let saved = (sphere.clone(), self.y);
         let mut y = self.y;
