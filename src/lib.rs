@@ -5,6 +5,7 @@
 //! `theory` (closed-form results) -> `analysis` (the report of the command-line tool).
 
 pub mod analysis;
+pub mod bed;
 pub mod curves;
 pub mod error;
 pub mod fmi2;

@@ -5,20 +5,27 @@ use powderfmu::curves::{force_overlap_csv, restitution_csv};
 use powderfmu::scene::{Scene, KEYS};
 use std::process::ExitCode;
 
+mod bed_cli;
+
 const USAGE: &str = "usage:
   powderfmu analyze SCENE.json [--velocity V]          derived parameters and closed-form results (JSON)
   powderfmu curve SCENE.json --path A1,A2,.. [--points N]  force along a quasi-static overlap path (CSV)
   powderfmu restitution SCENE.json --velocities V1,V2,..   undamped impacts on the wall (CSV)
-  powderfmu analyze --help                              every scene key with its unit and default";
+  powderfmu analyze --help                              every scene key with its unit and default
+";
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
     match args.first().map(String::as_str) {
         Some("analyze") => run_analyze(&args[1..]),
         Some("curve") => run_csv(&args[1..], "--path", |scene, list, points| force_overlap_csv(scene, list, points)),
+        Some("bed") => match bed_cli::run(&args[1..]) {
+            Ok(()) => ExitCode::SUCCESS,
+            Err(e) => fail(&e),
+        },
         Some("restitution") => run_csv(&args[1..], "--velocities", |scene, list, _| restitution_csv(scene, list)),
         Some("--help") | Some("-h") | Some("help") => {
-            println!("powderfmu: contact mechanics of elasto-plastic adhesive spheres\n\n{USAGE}");
+            println!("powderfmu: contact mechanics of elasto-plastic adhesive spheres\n\n{USAGE}{}", bed_cli::USAGE);
             ExitCode::SUCCESS
         }
         Some("--version") => {
@@ -26,7 +33,7 @@ fn main() -> ExitCode {
             ExitCode::SUCCESS
         }
         Some(other) => fail(&format!("unknown subcommand `{other}`\n{USAGE}")),
-        None => fail(USAGE),
+        None => fail(&format!("{USAGE}{}", bed_cli::USAGE)),
     }
 }
 

@@ -53,4 +53,12 @@ impl NormalLaw for Hertz {
     fn contact_radius(&self, alpha: f64, _h: &()) -> Option<f64> {
         Some((self.radius * alpha.max(0.0)).sqrt())
     }
+
+    /// One square root for force, stiffness, damping and Mindlin.
+    #[inline(always)]
+    fn evaluate_with_radius(&self, alpha: f64, h: &()) -> (Evaluation<()>, f64, Option<f64>) {
+        let ev = self.evaluate(alpha, h);
+        let a = ev.stiffness / (2.0 * self.youngs_modulus); // 2 E* a = 2 E* sqrt(R* alpha)
+        (ev, ev.stiffness, Some(a))
+    }
 }

@@ -156,7 +156,11 @@ impl Jkr {
 
 /// Force on the JKR curve at an overlap, split at the pull-off point into elastic and adhesive branches.
 pub(crate) fn on_curve<H>(curve: &JkrCurve, offset: f64, alpha: f64, history: H) -> Evaluation<H> {
-    let a = curve.contact_radius(alpha - offset);
+    on_curve_at(curve, offset, curve.contact_radius(alpha - offset), history)
+}
+
+/// `on_curve` with the contact radius `a` of `alpha` already solved.
+pub(crate) fn on_curve_at<H>(curve: &JkrCurve, offset: f64, a: f64, history: H) -> Evaluation<H> {
     let a_c = curve.pull_off_radius();
     let alpha_c = offset + curve.pull_off_overlap();
     let adhesive = curve.surface_energy > 0.0 && a < a_c;
@@ -208,5 +212,16 @@ impl NormalLaw for Jkr {
     /// 2 E* a: the Hertz stiffness at the JKR contact radius (the JKR slope is infinite at detachment).
     fn damping_stiffness(&self, alpha: f64, h: &JkrHistory, _branch_stiffness: f64) -> f64 {
         2.0 * self.curve.youngs_modulus * self.contact_radius(alpha, h).unwrap_or(0.0)
+    }
+
+    /// One contact-radius solve for force, stiffness, damping and Mindlin (same numbers as the three
+    /// separate calls).
+    fn evaluate_with_radius(&self, alpha: f64, h: &JkrHistory) -> (Evaluation<JkrHistory>, f64, Option<f64>) {
+        if (!h.established && alpha < 0.0) || alpha < self.curve.detach_overlap() {
+            return (Evaluation::separated(0.0, JkrHistory { established: false }), 0.0, None);
+        }
+        let a = self.curve.contact_radius(alpha);
+        let ev = on_curve_at(&self.curve, 0.0, a, JkrHistory { established: true });
+        (ev, 2.0 * self.curve.youngs_modulus * a, Some(a))
     }
 }

@@ -2,7 +2,7 @@
 //! At contact the force drops to -8/9 f_c as in JKR; on unloading the contact breaks as soon as the
 //! overlap is zero, so the extra adhesion work of JKR below alpha = 0 is never done. No history.
 
-use super::jkr::{on_curve, JkrCurve};
+use super::jkr::{on_curve_at, JkrCurve};
 use super::{Branch, Evaluation, NormalLaw};
 
 #[derive(Debug, Clone, PartialEq)]
@@ -16,6 +16,18 @@ impl JkrModified {
     }
 }
 
+impl JkrModified {
+    /// The curve at alpha > 0 with its contact radius a solved.
+    fn elastic_at(&self, a: f64) -> Evaluation<()> {
+        let mut e = on_curve_at(&self.curve, 0.0, a, ());
+        // For alpha > 0 the JKR contact radius is above a_c: always the elastic branch.
+        e.branch = Branch::Elastic;
+        e.lower = 0.0;
+        e.upper = f64::INFINITY;
+        e
+    }
+}
+
 impl NormalLaw for JkrModified {
     type History = ();
 
@@ -25,12 +37,7 @@ impl NormalLaw for JkrModified {
         if alpha <= 0.0 {
             return Evaluation::separated(0.0, ());
         }
-        let mut e = on_curve(&self.curve, 0.0, alpha, ());
-        // For alpha > 0 the JKR contact radius is above a_c: always the elastic branch.
-        e.branch = Branch::Elastic;
-        e.lower = 0.0;
-        e.upper = f64::INFINITY;
-        e
+        self.elastic_at(self.curve.contact_radius(alpha))
     }
 
     fn has_yielded(&self, _h: &()) -> bool {
@@ -58,5 +65,14 @@ impl NormalLaw for JkrModified {
     /// 2 E* a: the Hertz stiffness at the JKR contact radius (the JKR slope is infinite at detachment).
     fn damping_stiffness(&self, alpha: f64, h: &(), _branch_stiffness: f64) -> f64 {
         2.0 * self.curve.youngs_modulus * self.contact_radius(alpha, h).unwrap_or(0.0)
+    }
+
+    /// One contact-radius solve for force, stiffness, damping and Mindlin.
+    fn evaluate_with_radius(&self, alpha: f64, _h: &()) -> (Evaluation<()>, f64, Option<f64>) {
+        if alpha <= 0.0 {
+            return (Evaluation::separated(0.0, ()), 0.0, None);
+        }
+        let a = self.curve.contact_radius(alpha);
+        (self.elastic_at(a), 2.0 * self.curve.youngs_modulus * a, Some(a))
     }
 }

@@ -112,6 +112,17 @@ pub trait NormalLaw {
         None
     }
 
+    /// The DEM force loop's one call per contact and step: the evaluation, the damping stiffness and the
+    /// contact radius together. The JKR laws override it so that their contact radius (a Newton solve)
+    /// is found once instead of three times.
+    #[inline(always)]
+    fn evaluate_with_radius(&self, alpha: f64, history: &Self::History) -> (Evaluation<Self::History>, f64, Option<f64>) {
+        let ev = self.evaluate(alpha, history);
+        let k_damp = self.damping_stiffness(alpha, &ev.history, ev.stiffness);
+        let a = self.contact_radius(alpha, &ev.history);
+        (ev, k_damp, a)
+    }
+
     /// The stiffness k_n of the viscous damping 2 gamma sqrt(m* k_n) (000 Eqs. 24-25) [N/m]: by default the
     /// magnitude of the branch stiffness. The JKR curves use 2 E* a, because their branch stiffness is
     /// infinite at detachment.

@@ -1,0 +1,235 @@
+//! The bed file: a prepared bed, compact and versioned.
+//!
+//! Layout: the magic `PFBED\0\0\0`, the format version (u32 little-endian), the payload length (u64),
+//! the payload (bincode of `BedFile`), and the FNV-1a checksum of the payload (u64). The reader checks
+//! each in turn and names what is wrong. The writer writes a temporary file beside the target and
+//! renames it, so a bed file is either whole or absent.
+
+use super::any::{AnyEngine, BedError};
+use super::engine::{Engine, WallContacts};
+use super::interaction::BedLaw;
+use super::particles::Particles;
+use super::scene::BedScene;
+use super::walls::Wall;
+use super::Vec3;
+use crate::fmi2::snapshot::fnv1a;
+use crate::with_engine;
+use std::io::Write;
+use std::path::Path;
+
+pub const MAGIC: &[u8; 8] = b"PFBED\0\0\0";
+pub const VERSION: u32 = 1;
+
+/// What a bed file holds.
+#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
+pub struct BedFile {
+    /// The bed scene (JSON text) the bed was made with.
+    pub scene: String,
+    pub time: f64,
+    pub position: Vec<Vec3>,
+    pub velocity: Vec<Vec3>,
+    pub angular_velocity: Vec<Vec3>,
+    pub species: Vec<u16>,
+    pub walls: Vec<Wall>,
+    /// bincode of the particle contacts `Vec<(i, j, history, spring)>` of the scene's law.
+    pub contacts: Vec<u8>,
+    /// bincode of the wall contacts `Vec<Vec<(i, history, spring)>>`, one list per wall.
+    pub wall_contacts: Vec<u8>,
+    /// The forces, torques and rolling loads of the last step: a loaded bed continues exactly where it
+    /// was saved (velocity Verlet's next half kick uses them).
+    pub force: Vec<Vec3>,
+    pub torque: Vec<Vec3>,
+    pub rolling: Vec<f64>,
+}
+
+impl<L: BedLaw> Engine<L> {
+    /// The contacts that remember something (history changed or spring loaded).
+    fn saved_contacts(&self) -> (Vec<u8>, Vec<u8>) {
+        let mut pairs = Vec::new();
+        for i in 0..self.list.rows() {
+            let si = self.particles.species[i] as usize;
+            for (k, &j) in (self.list.start[i] as usize..).zip(self.list.row(i)) {
+                let init = self.pairs[si * self.species + self.particles.species[j as usize] as usize].initial;
+                if self.normal[k] != init || self.spring[k] != [0.0; 3] {
+                    pairs.push((i as u32, j, self.normal[k], self.spring[k]));
+                }
+            }
+        }
+        let walls: Vec<Vec<(u32, L::History, Vec3)>> = self
+            .wall_contacts
+            .iter()
+            .enumerate()
+            .map(|(w, wc)| {
+                (0..wc.particle.len())
+                    .filter(|&k| wc.normal[k] != self.wall_pairs[w][self.particles.species[wc.particle[k] as usize] as usize].initial || wc.spring[k] != [0.0; 3])
+                    .map(|k| (wc.particle[k], wc.normal[k], wc.spring[k]))
+                    .collect()
+            })
+            .collect();
+        (bincode::serialize(&pairs).unwrap_or_default(), bincode::serialize(&walls).unwrap_or_default())
+    }
+
+    /// Puts saved contacts back into the current lists (they are within range: they were in contact).
+    fn restore_contacts(&mut self, pairs: &[u8], walls: &[u8]) -> Result<(), BedError> {
+        let pairs: Vec<(u32, u32, L::History, Vec3)> =
+            bincode::deserialize(pairs).map_err(|e| BedError::Setup(format!("bed file: contacts unreadable ({e})")))?;
+        let walls: Vec<Vec<(u32, L::History, Vec3)>> =
+            bincode::deserialize(walls).map_err(|e| BedError::Setup(format!("bed file: wall contacts unreadable ({e})")))?;
+        // Every slot starts as a pair that has never touched (the engine's first force pass may have
+        // loaded springs); the file then says which remember something.
+        for i in 0..self.list.rows() {
+            let a = self.particles.species[i] as usize;
+            for k in self.list.start[i] as usize..self.list.start[i + 1] as usize {
+                let b = self.particles.species[self.list.partner[k] as usize] as usize;
+                self.normal[k] = self.pairs[a * self.species + b].initial;
+                self.spring[k] = [0.0; 3];
+            }
+        }
+        for (w, wc) in self.wall_contacts.iter_mut().enumerate() {
+            for k in 0..wc.particle.len() {
+                wc.normal[k] = self.wall_pairs[w][self.particles.species[wc.particle[k] as usize] as usize].initial;
+                wc.spring[k] = [0.0; 3];
+            }
+        }
+        let n = self.particles.len() as u32;
+        for (i, j, h, s) in pairs {
+            if i >= n || j >= n {
+                return Err(BedError::Setup(format!("bed file: contact ({i}, {j}) names a particle beyond {n}")));
+            }
+            let row = self.list.row(i as usize);
+            let k = row.binary_search(&j).map_err(|_| BedError::Setup(format!("bed file: contact ({i}, {j}) is not within range of the positions")))?;
+            let slot = self.list.start[i as usize] as usize + k;
+            self.normal[slot] = h;
+            self.spring[slot] = s;
+        }
+        if walls.len() != self.wall_contacts.len() {
+            return Err(BedError::Setup("bed file: wall contact lists do not match the walls".into()));
+        }
+        for (w, list) in walls.into_iter().enumerate() {
+            let wc: &mut WallContacts<L::History> = &mut self.wall_contacts[w];
+            for (i, h, s) in list {
+                let k = wc.particle.binary_search(&i).map_err(|_| BedError::Setup(format!("bed file: wall contact of particle {i} is not within range")))?;
+                wc.normal[k] = h;
+                wc.spring[k] = s;
+            }
+        }
+        self.compute_forces_without_increment();
+        Ok(())
+    }
+}
+
+impl AnyEngine {
+    pub fn to_file(&self, scene: &BedScene) -> BedFile {
+        with_engine!(self, e => {
+            let (contacts, wall_contacts) = e.saved_contacts();
+            BedFile {
+                scene: scene.to_json().to_string(),
+                time: e.time,
+                position: e.particles.position.clone(),
+                velocity: e.particles.velocity.clone(),
+                angular_velocity: e.particles.angular_velocity.clone(),
+                species: e.particles.species.clone(),
+                walls: e.walls.clone(),
+                contacts,
+                wall_contacts,
+                force: e.totals().force.clone(),
+                torque: e.totals().torque.clone(),
+                rolling: e.totals().rolling.clone(),
+            }
+        })
+    }
+
+    /// Rebuilds the engine of a bed file (with `threads` threads, or the scene's).
+    pub fn from_file(file: &BedFile, threads: Option<usize>) -> Result<(AnyEngine, BedScene), BedError> {
+        let mut scene = BedScene::from_json(&file.scene)?;
+        if let Some(t) = threads {
+            scene.threads = t;
+        }
+        let n = file.position.len();
+        if file.velocity.len() != n || file.angular_velocity.len() != n || file.species.len() != n {
+            return Err(BedError::Setup("bed file: particle arrays of different lengths".into()));
+        }
+        let sp = scene.species();
+        let mut p = Particles::default();
+        for k in 0..n {
+            let s = file.species[k] as usize;
+            let &(r, _) = sp.get(s).ok_or_else(|| BedError::Setup(format!("bed file: particle {k} has species {s} beyond the {} classes", sp.len())))?;
+            p.push(file.position[k], r, scene.density, s as u16);
+            p.velocity[k] = file.velocity[k];
+            p.angular_velocity[k] = file.angular_velocity[k];
+        }
+        let mut e = AnyEngine::build(&scene, p, file.walls.clone())?;
+        with_engine!(&mut e, inner => {
+            inner.time = file.time;
+            inner.restore_contacts(&file.contacts, &file.wall_contacts)?;
+            if file.force.len() == n && file.torque.len() == n && file.rolling.len() == n {
+                inner.set_totals(&file.force, &file.torque, &file.rolling);
+            }
+        });
+        Ok((e, scene))
+    }
+}
+
+/// Encodes a bed file.
+pub fn encode(file: &BedFile) -> Vec<u8> {
+    let payload = bincode::serialize(file).unwrap_or_default();
+    let mut out = Vec::with_capacity(payload.len() + 28);
+    out.extend_from_slice(MAGIC);
+    out.extend_from_slice(&VERSION.to_le_bytes());
+    out.extend_from_slice(&(payload.len() as u64).to_le_bytes());
+    out.extend_from_slice(&payload);
+    out.extend_from_slice(&fnv1a(&payload).to_le_bytes());
+    out
+}
+
+/// Decodes a bed file, naming what is wrong with a bad one.
+pub fn decode(bytes: &[u8]) -> Result<BedFile, BedError> {
+    let bad = |why: String| BedError::Setup(format!("not a usable bed file: {why}"));
+    if bytes.len() < 20 || &bytes[..8] != MAGIC {
+        return Err(bad("it does not start with the bed file magic `PFBED`".into()));
+    }
+    let version = u32::from_le_bytes(bytes[8..12].try_into().unwrap_or([0; 4]));
+    if version != VERSION {
+        return Err(bad(format!("format version {version}, this powderfmu reads version {VERSION}; prepare the bed again with `powderfmu bed prepare`")));
+    }
+    let len = u64::from_le_bytes(bytes[12..20].try_into().unwrap_or([0; 8]));
+    let want = 20u64.saturating_add(len).saturating_add(8);
+    if (bytes.len() as u64) < want {
+        return Err(bad(format!("truncated: {} bytes, the header promises {want}", bytes.len())));
+    }
+    if (bytes.len() as u64) > want {
+        return Err(bad(format!("{} bytes, the header promises {want}: trailing data", bytes.len())));
+    }
+    let payload = &bytes[20..20 + len as usize];
+    let sum = u64::from_le_bytes(bytes[20 + len as usize..].try_into().unwrap_or([0; 8]));
+    if sum != fnv1a(payload) {
+        return Err(bad("checksum mismatch: the file is corrupt".into()));
+    }
+    bincode::deserialize(payload).map_err(|e| bad(format!("payload unreadable ({e})")))
+}
+
+/// Writes `bytes` to `path` atomically: a temporary file in the same folder, synced, then renamed.
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    let dir = path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_else(|| "bed".into());
+    let tmp = dir.join(format!(".{name}.tmp-{}", std::process::id()));
+    let result = (|| {
+        let mut f = std::fs::File::create(&tmp)?;
+        f.write_all(bytes)?;
+        f.sync_all()?;
+        std::fs::rename(&tmp, path)
+    })();
+    if result.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    result
+}
+
+pub fn save(path: &Path, engine: &AnyEngine, scene: &BedScene) -> std::io::Result<()> {
+    write_atomic(path, &encode(&engine.to_file(scene)))
+}
+
+pub fn load(path: &Path, threads: Option<usize>) -> Result<(AnyEngine, BedScene), BedError> {
+    let bytes = std::fs::read(path).map_err(|e| BedError::Setup(format!("cannot read bed file `{}`: {e}", path.display())))?;
+    AnyEngine::from_file(&decode(&bytes)?, threads)
+}

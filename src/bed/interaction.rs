@@ -1,0 +1,163 @@
+//! What each pair of species (and each species against each wall) needs in the force loop: the normal
+//! law with its parameters for that pair's R* and m*, the damping coefficients (`000` Eqs. 24-26), the
+//! tangential stiffness model and Coulomb limit (`000` Eqs. 22-23), and the rolling friction coefficient
+//! (`004` Table 5.3).
+//!
+//! A pair of unequal spheres (R1, m1), (R2, m2) is built as the scene of two equal spheres of radius
+//! 2 R* and mass 2 m*: every law and correlation of the seeds depends on the radii only through
+//! R* = R1 R2 / (R1 + R2) and on the masses only through m* (000 Sec. 3; 004 Eq. 3.15), so this gives
+//! each law exactly its pair parameters without a second constructor per law.
+
+use crate::error::ParamError;
+use crate::law::damping::{gamma, NormalDamping};
+use crate::law::tangential::TangentialStiffness;
+use crate::law::{self, AnyLaw, Branch, NormalLaw};
+use crate::scene::Scene;
+use serde::{de::DeserializeOwned, Serialize};
+use serde_json::{Map, Value};
+use std::f64::consts::PI;
+
+/// A normal law the bed can step: every law of the core.
+pub trait BedLaw: NormalLaw<History: Send + Sync + Serialize + DeserializeOwned> + Clone + Send + Sync + 'static {
+    fn from_any(law: AnyLaw) -> Option<Self>;
+}
+
+macro_rules! bed_law {
+    ($($variant:ident => $ty:ty),* $(,)?) => {
+        $(impl BedLaw for $ty {
+            fn from_any(law: AnyLaw) -> Option<Self> {
+                match law {
+                    AnyLaw::$variant(l) => Some(l),
+                    _ => None,
+                }
+            }
+        })*
+    };
+}
+
+bed_law!(
+    Nan => law::nan::Nan,
+    Pasha => law::pasha::Pasha,
+    PashaSimplified => law::pasha_simplified::PashaSimplified,
+    Luding => law::luding::Luding,
+    ThorntonNing => law::thornton_ning::ThorntonNing,
+    Tomas => law::tomas::Tomas,
+    Hertz => law::hertz::Hertz,
+    Jkr => law::jkr::Jkr,
+    JkrModified => law::jkr_modified::JkrModified,
+    Linear => law::linear::Linear,
+    WaltonBraun => law::walton_braun::WaltonBraun,
+);
+
+/// The parameters of one pair of species, or of one species against one wall.
+#[derive(Debug, Clone)]
+pub struct Interaction<L: BedLaw> {
+    pub law: L,
+    /// The history of a contact that has never touched.
+    pub initial: L::History,
+    /// The largest separation (negative overlap) at which a contact of this pair can still carry force
+    /// [m]: the JKR and Nan necks, the Tomas attraction range. Beyond it the force loop skips the pair.
+    pub reach: f64,
+    /// 2 gamma(e, beta) sqrt(m*) before and after yield: the damping coefficient is this times sqrt(k_n)
+    /// (000 Eqs. 24-26) [sqrt(kg)].
+    pub damping_elastic: f64,
+    pub damping_plastic: f64,
+    pub tangential: TangentialStiffness,
+    /// Sliding friction coefficient mu [-].
+    pub friction: f64,
+    /// Rolling friction coefficient mu_r [-] (constant directional torque mu_r |F_n| R, EDEM's model).
+    pub rolling_friction: f64,
+    /// m* [kg] and R* [m], for the stability limit and the docs.
+    pub mass: f64,
+    pub radius: f64,
+}
+
+impl<L: BedLaw> Interaction<L> {
+    /// Builds the interaction of a scene whose radius and mass are already the pair's (see module doc).
+    fn from_scene(scene: &Scene, radius: f64, mass: f64, rolling_friction: f64) -> Result<Interaction<L>, ParamError> {
+        let any = AnyLaw::from_scene(scene)?;
+        let model = any.model();
+        let law = L::from_any(any).ok_or_else(|| ParamError::Inconsistent {
+            name: "contact_model",
+            why: format!("the particle-wall law must be of the same kind as the particle-particle law ({model:?} given)"),
+        })?;
+        let eff = law::params::Effective::from_scene(scene)?;
+        let damping = NormalDamping::from_scene(scene, mass);
+        let initial = law.initial_history();
+        let mut it = Interaction {
+            law,
+            initial,
+            reach: 0.0,
+            damping_elastic: 2.0 * gamma(damping.restitution, damping.beta_elastic) * mass.sqrt(),
+            damping_plastic: 2.0 * gamma(damping.restitution, damping.beta_plastic) * mass.sqrt(),
+            tangential: TangentialStiffness::for_model(model, eff.shear_modulus, eff.youngs_modulus, eff.radius),
+            friction: scene.friction_coefficient,
+            rolling_friction,
+            mass,
+            radius,
+        };
+        it.reach = it.probe_reach();
+        Ok(it)
+    }
+
+    /// The interaction of two particles of radii and masses (r1, m1), (r2, m2), from a particle-particle
+    /// scene map (any scene key; `particle_radius` is set here).
+    pub fn particle_pair(map: &Map<String, Value>, r1: f64, m1: f64, r2: f64, m2: f64, rolling: f64) -> Result<Interaction<L>, ParamError> {
+        let radius = r1 * r2 / (r1 + r2);
+        let mass = m1 * m2 / (m1 + m2);
+        let mut map = map.clone();
+        map.insert("contact_partner".into(), Value::from("particle"));
+        map.insert("particle_radius".into(), Value::from(2.0 * radius));
+        map.insert("particle_density".into(), Value::from(2.0 * mass / (4.0 / 3.0 * PI * (2.0 * radius).powi(3))));
+        let scene = Scene::from_map(&map)?;
+        Interaction::from_scene(&scene, radius, mass, rolling)
+    }
+
+    /// The interaction of a particle (r, m) with a wall whose surface has radius of curvature
+    /// `wall_radius` (convex, the indenter) or none (plane, and the die's inside, whose curvature
+    /// 1/19.5 mm is neglected beside the particle's).
+    pub fn particle_wall(map: &Map<String, Value>, r: f64, m: f64, wall_radius: Option<f64>, rolling: f64) -> Result<Interaction<L>, ParamError> {
+        let radius = match wall_radius {
+            Some(rw) => r * rw / (r + rw),
+            None => r,
+        };
+        let mut map = map.clone();
+        map.insert("contact_partner".into(), Value::from("wall"));
+        map.insert("particle_radius".into(), Value::from(radius));
+        map.insert("particle_density".into(), Value::from(m / (4.0 / 3.0 * PI * radius.powi(3))));
+        let scene = Scene::from_map(&map)?;
+        Interaction::from_scene(&scene, radius, m, rolling)
+    }
+
+    /// Follows the law along loading to a set of peak overlaps and back along its unloading branches
+    /// (each evaluation names the lower end of its branch) until the contact lets go; the reach is the
+    /// largest separation at which any of these paths still carried force, with a 10 % margin.
+    fn probe_reach(&self) -> f64 {
+        let mut reach: f64 = 0.0;
+        for peak in [1e-6, 1e-4, 1e-3, 1e-2, 5e-2] {
+            let alpha_peak = peak * self.radius;
+            let mut h = self.initial;
+            for k in 1..=50 {
+                h = self.law.evaluate(alpha_peak * k as f64 / 50.0, &h).history;
+            }
+            let mut alpha = alpha_peak;
+            for _ in 0..64 {
+                let ev = self.law.evaluate(alpha, &h);
+                h = ev.history;
+                let acts = ev.branch.in_contact() || ev.branch == Branch::Attraction;
+                if !acts || !ev.lower.is_finite() {
+                    break;
+                }
+                reach = reach.max(-ev.lower);
+                alpha = ev.lower - 1e-9 * self.radius;
+            }
+        }
+        1.1 * reach.max(0.0)
+    }
+
+    /// The normal damping coefficient for a branch of stiffness `k` [N s/m] (000 Eqs. 24-26).
+    #[inline(always)]
+    pub fn damping(&self, k: f64, yielded: bool) -> f64 {
+        (if yielded { self.damping_plastic } else { self.damping_elastic }) * k.abs().sqrt()
+    }
+}

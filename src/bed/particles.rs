@@ -1,0 +1,92 @@
+//! The spheres of a bed in structure-of-arrays form: each quantity is one contiguous vector, so the
+//! force loop streams only what it reads.
+
+use super::Vec3;
+use std::f64::consts::PI;
+
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Particles {
+    /// Centre position [m].
+    pub position: Vec<Vec3>,
+    /// Velocity [m/s].
+    pub velocity: Vec<Vec3>,
+    /// Angular velocity [rad/s].
+    pub angular_velocity: Vec<Vec3>,
+    /// Radius [m].
+    pub radius: Vec<f64>,
+    /// Mass [kg].
+    pub mass: Vec<f64>,
+    /// 1 / mass [1/kg].
+    pub inv_mass: Vec<f64>,
+    /// 1 / moment of inertia 2/5 m R^2 [1/(kg m^2)].
+    pub inv_inertia: Vec<f64>,
+    /// Species: the size class of the distribution, which selects the interaction of each pair.
+    pub species: Vec<u16>,
+}
+
+impl Particles {
+    pub fn len(&self) -> usize {
+        self.position.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.position.is_empty()
+    }
+
+    /// Adds a sphere at rest.
+    pub fn push(&mut self, position: Vec3, radius: f64, density: f64, species: u16) {
+        let mass = 4.0 / 3.0 * PI * radius.powi(3) * density;
+        self.position.push(position);
+        self.velocity.push([0.0; 3]);
+        self.angular_velocity.push([0.0; 3]);
+        self.radius.push(radius);
+        self.mass.push(mass);
+        self.inv_mass.push(1.0 / mass);
+        self.inv_inertia.push(1.0 / (0.4 * mass * radius * radius));
+        self.species.push(species);
+    }
+
+    /// Reorders every array by `order` (new index k holds old particle `order[k]`).
+    pub fn permute(&mut self, order: &[usize]) {
+        fn apply<T: Copy>(v: &mut Vec<T>, order: &[usize]) {
+            *v = order.iter().map(|&k| v[k]).collect();
+        }
+        apply(&mut self.position, order);
+        apply(&mut self.velocity, order);
+        apply(&mut self.angular_velocity, order);
+        apply(&mut self.radius, order);
+        apply(&mut self.mass, order);
+        apply(&mut self.inv_mass, order);
+        apply(&mut self.inv_inertia, order);
+        apply(&mut self.species, order);
+    }
+
+    /// Total kinetic energy, translational plus rotational [J].
+    pub fn kinetic_energy(&self) -> f64 {
+        let mut e = 0.0;
+        for k in 0..self.len() {
+            let v = self.velocity[k];
+            let w = self.angular_velocity[k];
+            e += 0.5 * self.mass[k] * super::dot(v, v) + 0.5 / self.inv_inertia[k] * super::dot(w, w);
+        }
+        e
+    }
+
+    /// Total momentum [kg m/s].
+    pub fn momentum(&self) -> Vec3 {
+        let mut p = [0.0; 3];
+        for k in 0..self.len() {
+            for c in 0..3 {
+                p[c] += self.mass[k] * self.velocity[k][c];
+            }
+        }
+        p
+    }
+
+    /// Bytes held by the arrays.
+    pub fn memory_bytes(&self) -> usize {
+        self.position.capacity() * 24 * 3
+            + self.radius.capacity() * 8 * 4
+            + self.species.capacity() * 2
+    }
+}

@@ -1,0 +1,286 @@
+//! Bed preparation (`004` Sec. 5.1.3): random non-overlapping fill of the die, settling under gravity
+//! until the kinetic energy is negligible, consolidation by the piston at a constant strain rate to the
+//! target stress (10 kPa), unloading at the same speed, and relaxation.
+
+use super::any::{AnyEngine, BedError};
+use super::particles::Particles;
+use super::random::Random;
+use super::scene::BedScene;
+use super::stress::{bagi, Region, Stress};
+use super::walls::Wall;
+use std::f64::consts::PI;
+
+/// Progress of a long preparation, for a progress bar.
+#[derive(Debug, Clone)]
+pub struct Progress {
+    pub phase: &'static str,
+    /// Estimated fraction of the whole preparation done, in [0, 1].
+    pub fraction: f64,
+    /// Simulated time [s] and steps so far.
+    pub time: f64,
+    pub steps: u64,
+    /// A short reading of the phase's own measure (kinetic energy, piston stress).
+    pub detail: String,
+}
+
+/// What each phase did.
+#[derive(Debug, Clone, Default)]
+pub struct Report {
+    /// (phase, simulated time [s], steps).
+    pub phases: Vec<(&'static str, f64, u64)>,
+    /// Piston stress when consolidation stopped, averaged over the last 100 steps [Pa].
+    pub consolidation_stress: f64,
+    /// Bagi's stress (004 Eq. 5.1) in the middle half of the bed's height at that moment, over the whole
+    /// cross-section of the die (where static equilibrium makes its sigma_zz the piston's stress plus
+    /// the weight above).
+    pub stress_at_target: Option<Stress>,
+    pub time_step: f64,
+}
+
+/// Phase weights of the progress estimate (settling dominates).
+const WEIGHTS: [(&str, f64); 5] = [("fill", 0.01), ("settle", 0.55), ("consolidate", 0.2), ("unload", 0.1), ("relax", 0.14)];
+
+fn overall(phase: &str, within: f64) -> f64 {
+    let mut before = 0.0;
+    for (name, w) in WEIGHTS {
+        if name == phase {
+            return before + w * within.clamp(0.0, 1.0);
+        }
+        before += w;
+    }
+    1.0
+}
+
+/// Random sequential insertion of the scene's spheres in the die, from the largest class down, in a
+/// column whose height gives the scene's fill solid fraction. Particles come out in spatial order (cells
+/// from the bottom up), which keeps the force loop's memory access local.
+pub fn fill(scene: &BedScene) -> Result<Particles, BedError> {
+    let psd = &scene.size_distribution;
+    let n = scene.particle_count;
+    let die_r = 0.5 * scene.die_diameter;
+    let d_max = psd.max_diameter();
+    if die_r <= d_max {
+        return Err(BedError::Param(crate::ParamError::OutOfRange {
+            name: "die_diameter",
+            value: scene.die_diameter,
+            allowed: format!("above twice the largest sphere diameter, {:.4e} m", 2.0 * d_max),
+        }));
+    }
+    let height = psd.solid_volume(n) / (scene.fill_solid_fraction * PI * die_r * die_r) + d_max;
+    if height > scene.die_height {
+        return Err(BedError::Setup(format!(
+            "insertion impossible: {n} spheres at fill_solid_fraction {} need a column {:.4} m high, above die_height = {} m; lower particle_count, or raise die_diameter or die_height",
+            scene.fill_solid_fraction, height, scene.die_height
+        )));
+    }
+    let counts = psd.class_counts(n);
+    let mut order: Vec<usize> = (0..psd.diameters.len()).collect();
+    order.sort_by(|&a, &b| psd.diameters[b].total_cmp(&psd.diameters[a]));
+    let mut rng = Random::new(scene.seed);
+    // A grid of cells of the largest diameter: a sphere can only overlap spheres in the 27 cells around it.
+    let cell = d_max;
+    let nx = ((2.0 * die_r) / cell).ceil() as usize + 1;
+    let nz = (height / cell).ceil() as usize + 1;
+    let mut grid: Vec<Vec<u32>> = vec![Vec::new(); nx * nx * nz];
+    let key = |x: [f64; 3]| -> (usize, usize, usize) {
+        (((x[0] + die_r) / cell) as usize, ((x[1] + die_r) / cell) as usize, (x[2] / cell) as usize)
+    };
+    let mut placed: Vec<([f64; 3], f64, u16)> = Vec::with_capacity(n);
+    for &s in &order {
+        let r = 0.5 * psd.diameters[s];
+        for _ in 0..counts[s] {
+            let mut ok = false;
+            for _attempt in 0..5000 {
+                let rho = (die_r - r) * rng.uniform().sqrt();
+                let th = 2.0 * PI * rng.uniform();
+                let x = [rho * th.cos(), rho * th.sin(), r + (height - 2.0 * r) * rng.uniform()];
+                let (cx, cy, cz) = key(x);
+                let mut free = true;
+                'search: for z in cz.saturating_sub(1)..(cz + 2).min(nz) {
+                    for y in cy.saturating_sub(1)..(cy + 2).min(nx) {
+                        for xx in cx.saturating_sub(1)..(cx + 2).min(nx) {
+                            for &k in &grid[(z * nx + y) * nx + xx] {
+                                let (p, rp, _) = placed[k as usize];
+                                let d = super::sub(p, x);
+                                if super::dot(d, d) < (r + rp) * (r + rp) {
+                                    free = false;
+                                    break 'search;
+                                }
+                            }
+                        }
+                    }
+                }
+                if free {
+                    grid[(cz * nx + cy) * nx + cx].push(placed.len() as u32);
+                    placed.push((x, r, s as u16));
+                    ok = true;
+                    break;
+                }
+            }
+            if !ok {
+                return Err(BedError::Setup(format!(
+                    "insertion impossible: placed {} of {n} spheres without overlap in the die ({} m wide, fill {height:.4} m high, fill_solid_fraction {}); lower fill_solid_fraction or particle_count",
+                    placed.len(),
+                    scene.die_diameter,
+                    scene.fill_solid_fraction
+                )));
+            }
+        }
+    }
+    // Spatial order: by cell, bottom up.
+    let mut idx: Vec<usize> = (0..placed.len()).collect();
+    idx.sort_by_key(|&k| {
+        let (x, y, z) = key(placed[k].0);
+        ((z * nx + y) * nx + x, k)
+    });
+    let mut p = Particles::default();
+    for k in idx {
+        let (x, r, s) = placed[k];
+        p.push(x, r, scene.density, s);
+    }
+    Ok(p)
+}
+
+/// The die: floor at z = 0, the cylinder, and the piston parked at the top of the die.
+pub fn die(scene: &BedScene) -> Vec<Wall> {
+    vec![
+        Wall::plane("floor", [0.0; 3], [0.0, 0.0, 1.0]),
+        Wall::cylinder("die", [0.0; 3], 0.5 * scene.die_diameter),
+        Wall::plane("piston", [0.0, 0.0, scene.die_height], [0.0, 0.0, -1.0]),
+    ]
+}
+
+pub const FLOOR: usize = 0;
+pub const DIE: usize = 1;
+pub const PISTON: usize = 2;
+
+/// Height of the bed: the highest sphere top [m].
+pub fn bed_height(p: &Particles) -> f64 {
+    p.position.iter().zip(&p.radius).map(|(x, r)| x[2] + r).fold(0.0, f64::max)
+}
+
+/// Kinetic energy over sum(m g d_mean): the settling measure.
+fn energy_ratio(e: &AnyEngine, scene: &BedScene) -> f64 {
+    let p = e.particles();
+    let scale: f64 = p.mass.iter().sum::<f64>() * scene.gravity.max(1e-3) * scene.size_distribution.mean_diameter();
+    p.kinetic_energy() / scale
+}
+
+/// Runs until the kinetic energy is negligible (and at least `min_time`), reporting progress.
+fn calm(e: &mut AnyEngine, scene: &BedScene, phase: &'static str, min_time: f64, max_time: f64, progress: &mut dyn FnMut(&Progress)) -> Result<(f64, u64), BedError> {
+    let t0 = e.time();
+    let chunk = ((2e-4 / e.dt()) as u64).clamp(50, 5000);
+    let mut steps = 0;
+    // The ratio when min_time is reached: the start of the log scale of the progress estimate.
+    let mut first: Option<f64> = None;
+    loop {
+        e.run(chunk);
+        steps += chunk;
+        let t = e.time() - t0;
+        let ratio = energy_ratio(e, scene);
+        if !ratio.is_finite() {
+            return Err(BedError::Setup(format!("{phase}: the bed blew up (kinetic energy not finite) after {t:.4e} s; lower rayleigh_fraction or time_step")));
+        }
+        // Progress: time towards min_time, then kinetic energy towards the threshold on a log scale.
+        let within = if t < min_time {
+            0.5 * t / min_time
+        } else {
+            let f = *first.get_or_insert(ratio.max(10.0 * scene.settle_energy_ratio));
+            0.5 + 0.5 * ((f / ratio.max(1e-300)).ln() / (f / scene.settle_energy_ratio).ln()).clamp(0.0, 1.0)
+        };
+        progress(&Progress { phase, fraction: overall(phase, within), time: e.time(), steps: steps, detail: format!("kinetic energy ratio {ratio:.2e}") });
+        if t >= min_time && ratio < scene.settle_energy_ratio {
+            return Ok((t, steps));
+        }
+        if t > max_time {
+            return Err(BedError::Setup(format!(
+                "{phase}: the bed did not come to rest within {max_time:.3} s (kinetic energy ratio {ratio:.2e} > settle_energy_ratio {})",
+                scene.settle_energy_ratio
+            )));
+        }
+    }
+}
+
+/// The piston's stress on the bed [Pa] (compressive positive).
+pub fn piston_stress(e: &AnyEngine, scene: &BedScene) -> f64 {
+    e.walls()[PISTON].force[2] / (PI * 0.25 * scene.die_diameter * scene.die_diameter)
+}
+
+/// The whole protocol, from an empty die to a relaxed, pre-consolidated bed.
+pub fn prepare(scene: &BedScene, progress: &mut dyn FnMut(&Progress)) -> Result<(AnyEngine, Report), BedError> {
+    let particles = fill(scene)?;
+    let fill_height = bed_height(&particles);
+    let mut e = AnyEngine::build(scene, particles, die(scene))?;
+    let mut report = Report { time_step: e.dt(), ..Default::default() };
+    progress(&Progress { phase: "fill", fraction: overall("fill", 1.0), time: 0.0, steps: 0, detail: format!("{} spheres, fill {fill_height:.4} m high", scene.particle_count) });
+
+    let fall = (2.0 * fill_height / scene.gravity.max(1e-3)).sqrt();
+    let (t, s) = calm(&mut e, scene, "settle", fall, 50.0 * fall + 0.1, progress)?;
+    report.phases.push(("settle", t, s));
+
+    // Consolidate: the piston comes down from just above the bed at v = strain_rate x height.
+    let h0 = bed_height(e.particles());
+    let speed = scene.strain_rate * h0;
+    {
+        let piston = &mut e.walls_mut()[PISTON];
+        piston.position[2] = h0 + 0.02 * scene.size_distribution.mean_diameter();
+        piston.velocity = [0.0, 0.0, -speed];
+    }
+    let t0 = e.time();
+    let mut steps = 0u64;
+    let mut window = std::collections::VecDeque::with_capacity(100);
+    let mut last_report = std::time::Instant::now();
+    loop {
+        e.step();
+        steps += 1;
+        if window.len() == 100 {
+            window.pop_front();
+        }
+        window.push_back(piston_stress(&e, scene));
+        let mean = window.iter().sum::<f64>() / window.len() as f64;
+        if window.len() == 100 && mean >= scene.consolidation_stress {
+            report.consolidation_stress = mean;
+            let top = e.walls()[PISTON].position[2];
+            let region = Region { radius: 0.5 * scene.die_diameter, z_low: 0.25 * top, z_high: 0.75 * top };
+            report.stress_at_target = Some(bagi(&mut e, &region));
+            break;
+        }
+        let travel = h0 - e.walls()[PISTON].position[2];
+        if travel > 0.5 * h0 {
+            return Err(BedError::Setup(format!(
+                "consolidate: the piston travelled half the bed height without reaching {} Pa (reached {mean:.4e} Pa)",
+                scene.consolidation_stress
+            )));
+        }
+        if last_report.elapsed().as_millis() > 200 {
+            last_report = std::time::Instant::now();
+            progress(&Progress { phase: "consolidate", fraction: overall("consolidate", mean / scene.consolidation_stress), time: e.time(), steps, detail: format!("piston stress {mean:.4e} Pa") });
+        }
+    }
+    report.phases.push(("consolidate", e.time() - t0, steps));
+
+    // Unload at the same speed until the piston has carried no force for 100 steps; then it is parked
+    // one mean diameter higher, out of reach.
+    let t0 = e.time();
+    e.walls_mut()[PISTON].velocity = [0.0, 0.0, speed];
+    let mut steps = 0u64;
+    let mut free_steps = 0;
+    while free_steps < 100 {
+        e.step();
+        steps += 1;
+        free_steps = if e.walls()[PISTON].force == [0.0; 3] { free_steps + 1 } else { 0 };
+        if last_report.elapsed().as_millis() > 200 {
+            last_report = std::time::Instant::now();
+            let sigma = piston_stress(&e, scene);
+            progress(&Progress { phase: "unload", fraction: overall("unload", 1.0 - sigma / report.consolidation_stress), time: e.time(), steps, detail: format!("piston stress {sigma:.4e} Pa") });
+        }
+    }
+    e.walls_mut()[PISTON].position[2] += scene.size_distribution.mean_diameter();
+    e.walls_mut()[PISTON].velocity = [0.0; 3];
+    report.phases.push(("unload", e.time() - t0, steps));
+
+    let (t, s) = calm(&mut e, scene, "relax", 1e-3, 5.0 * fall + 0.1, progress)?;
+    report.phases.push(("relax", t, s));
+    progress(&Progress { phase: "relax", fraction: 1.0, time: e.time(), steps: s, detail: "done".into() });
+    Ok((e, report))
+}

@@ -1,0 +1,248 @@
+//! The bed scene: materials, size distribution, die and preparation protocol, as one JSON object.
+//! Defaults are the indentation set-up of `004` Sec. 5.1.3 (Tables 5.1-5.3): glass beads of mean
+//! diameter 1 mm, Hertz with the modified JKR adhesion and Mindlin's tangential law (004 Sec. 5.1.1),
+//! in a steel die of 39 mm, consolidated at 1/s to 10 kPa.
+//!
+//! `particle_particle` holds scene keys of the contact-law core (`Scene`): the law and its parameters
+//! between particles. `particle_wall` holds the keys that differ against the die, the floor and the
+//! piston (Table 5.3's second column); every other key is taken from `particle_particle`.
+
+use super::psd::SizeDistribution;
+use crate::error::{check_closed_low, check_open, ParamError};
+use crate::scene::{ModelKind, Scene};
+use serde_json::{json, Map, Value};
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct BedScene {
+    pub particle_particle: Map<String, Value>,
+    /// `particle_particle` with the `particle_wall` keys laid over it.
+    pub particle_wall: Map<String, Value>,
+    pub model: ModelKind,
+    pub density: f64,
+    pub rolling_friction: f64,
+    pub wall_rolling_friction: f64,
+    pub size_distribution: SizeDistribution,
+    pub particle_count: usize,
+    pub die_diameter: f64,
+    pub die_height: f64,
+    pub gravity: f64,
+    /// Fixed step [s], or None to derive it from `rayleigh_fraction`.
+    pub time_step: Option<f64>,
+    pub rayleigh_fraction: f64,
+    /// Verlet skin [m], or None for a tenth of the mean diameter.
+    pub skin: Option<f64>,
+    /// Solid fraction of the loose random fill.
+    pub fill_solid_fraction: f64,
+    /// Settling ends when the kinetic energy falls below this fraction of sum(m g d_mean).
+    pub settle_energy_ratio: f64,
+    pub consolidation_stress: f64,
+    pub strain_rate: f64,
+    pub seed: u64,
+    pub threads: usize,
+}
+
+/// The keys of a bed scene, with their defaults and units, for the docs and for typo hints.
+pub const BED_KEYS: [(&str, &str, &str); 20] = [
+    ("particle_particle", "-", "scene keys of the particle-particle law (004 Tables 5.2-5.3, column 1)"),
+    ("particle_wall", "-", "scene keys that differ against the die, floor and piston (Table 5.3, column 2)"),
+    ("rolling_friction", "-", "particle-particle rolling friction coefficient mu_r (Table 5.3: 0.1)"),
+    ("wall_rolling_friction", "-", "particle-wall rolling friction coefficient (Table 5.3: 0)"),
+    ("size_distribution", "m, -", "{\"diameters\": [...], \"frequencies\": [...]} by number; default Table 5.1"),
+    ("size_scale", "-", "factor on every diameter (default 1)"),
+    ("particle_count", "-", "number of spheres (default 16000, 004 Sec. 5.1.3)"),
+    ("die_diameter", "m", "inner diameter of the die (default 0.039)"),
+    ("die_height", "m", "height of the die: the loose fill must fit in it (default 0.06)"),
+    ("gravity", "m/s^2", "gravitational acceleration, downward (default 9.81)"),
+    ("time_step", "s", "fixed time step; 0 derives rayleigh_fraction x the Rayleigh time of the smallest sphere"),
+    ("rayleigh_fraction", "-", "time step as a fraction of the Rayleigh time, 000 Eq. 71 (default 0.2)"),
+    ("skin", "m", "Verlet list skin; 0 derives a tenth of the mean diameter"),
+    ("fill_solid_fraction", "-", "solid fraction of the loose random fill (default 0.3)"),
+    ("settle_energy_ratio", "-", "settled when kinetic energy < this x sum(m g d_mean) (default 1e-6)"),
+    ("consolidation_stress", "Pa", "piston stress to consolidate to (default 10 kPa, 004 Sec. 5.1.3)"),
+    ("strain_rate", "1/s", "piston strain rate, loading and unloading (default 1)"),
+    ("seed", "-", "seed of the random fill (default 1)"),
+    ("threads", "-", "threads of the force loop (default 1)"),
+    ("comment", "-", "free text, ignored"),
+];
+
+impl Default for BedScene {
+    fn default() -> BedScene {
+        BedScene::from_json("{}").expect("the default bed scene is valid")
+    }
+}
+
+impl BedScene {
+    pub fn from_json(text: &str) -> Result<BedScene, ParamError> {
+        let value: Value = serde_json::from_str(text).map_err(|e| ParamError::Malformed { what: format!("not valid JSON: {e}") })?;
+        let map = value.as_object().ok_or_else(|| ParamError::Malformed { what: "the top level of a bed scene must be a JSON object".into() })?;
+        BedScene::from_map(map)
+    }
+
+    pub fn from_map(map: &Map<String, Value>) -> Result<BedScene, ParamError> {
+        for k in map.keys() {
+            if !BED_KEYS.iter().any(|key| key.0 == k) {
+                let known: Vec<&str> = BED_KEYS.iter().map(|k| k.0).collect();
+                return Err(ParamError::UnknownKey { name: k.clone(), hint: format!(" (bed scene keys: {})", known.join(", ")) });
+            }
+        }
+        let num = |name: &'static str, default: f64| -> Result<f64, ParamError> {
+            match map.get(name) {
+                None | Some(Value::Null) => Ok(default),
+                Some(Value::Number(n)) => Ok(n.as_f64().unwrap_or(f64::NAN)),
+                Some(other) => Err(ParamError::Malformed { what: format!("`{name}` must be a number, got {other}") }),
+            }
+        };
+        let object = |name: &'static str| -> Result<Map<String, Value>, ParamError> {
+            match map.get(name) {
+                None | Some(Value::Null) => Ok(Map::new()),
+                Some(Value::Object(m)) => Ok(m.clone()),
+                Some(other) => Err(ParamError::Malformed { what: format!("`{name}` must be an object of scene keys, got {other}") }),
+            }
+        };
+        // 004 Tables 5.2-5.3 and Sec. 5.1.1.
+        let mut pp = json!({
+            "contact_model": "jkr_modified",
+            "particle_density": 2456.0,
+            "particle_youngs_modulus": 55e9,
+            "particle_poisson_ratio": 0.25,
+            "surface_energy": 0.5,
+            "restitution_coefficient": 0.5,
+            "friction_coefficient": 0.15,
+        })
+        .as_object()
+        .cloned()
+        .unwrap_or_default();
+        let user_pp = object("particle_particle")?;
+        for (k, v) in &user_pp {
+            if k == "particle_radius" || k == "contact_partner" {
+                return Err(ParamError::Inconsistent {
+                    name: "particle_particle",
+                    why: format!("`{k}` is set by the bed (radii come from size_distribution, partners from the pair)"),
+                });
+            }
+            pp.insert(k.clone(), v.clone());
+        }
+        let mut pw = pp.clone();
+        for (k, v) in json!({
+            "wall_youngs_modulus": 182e9,
+            "wall_poisson_ratio": 0.3,
+            "surface_energy": 0.0,
+            "restitution_coefficient": 0.3,
+            "friction_coefficient": 0.0,
+        })
+        .as_object()
+        .cloned()
+        .unwrap_or_default()
+        {
+            pw.insert(k, v);
+        }
+        for (k, v) in object("particle_wall")? {
+            if k == "contact_model" && Some(&v) != pp.get("contact_model") {
+                return Err(ParamError::Inconsistent {
+                    name: "particle_wall",
+                    why: "the bed steps one law: give contact_model in particle_particle only".into(),
+                });
+            }
+            pw.insert(k, v);
+        }
+        // Check both maps now, at a representative radius, so errors name the key early.
+        let probe = |m: &Map<String, Value>, partner: &str| -> Result<Scene, ParamError> {
+            let mut m = m.clone();
+            m.insert("particle_radius".into(), Value::from(0.5e-3));
+            m.insert("contact_partner".into(), Value::from(partner));
+            Scene::from_map(&m)
+        };
+        let scene_pp = probe(&pp, "particle")?;
+        probe(&pw, "wall")?;
+        let scale = num("size_scale", 1.0)?;
+        check_open("size_scale", scale, 1e-4, 1e4, "-")?;
+        let size_distribution = match map.get("size_distribution") {
+            None | Some(Value::Null) => SizeDistribution::table_5_1(scale),
+            Some(Value::Object(d)) => {
+                let list = |k: &str| -> Result<Vec<f64>, ParamError> {
+                    d.get(k).and_then(Value::as_array).map(|a| a.iter().map(|x| x.as_f64().unwrap_or(f64::NAN)).collect()).ok_or_else(|| {
+                        ParamError::Malformed { what: format!("size_distribution needs a number list `{k}`") }
+                    })
+                };
+                let dia = list("diameters")?.iter().map(|d| d * scale).collect();
+                SizeDistribution::new(dia, list("frequencies")?)?
+            }
+            Some(other) => return Err(ParamError::Malformed { what: format!("`size_distribution` must be an object, got {other}") }),
+        };
+        let count = num("particle_count", 16000.0)?;
+        check_closed_low("particle_count", count, 2.0, 1e7 + 1.0, "")?;
+        if count.fract() != 0.0 {
+            return Err(ParamError::OutOfRange { name: "particle_count", value: count, allowed: "a whole number in [2, 1e7]".into() });
+        }
+        let time_step = num("time_step", 0.0)?;
+        check_closed_low("time_step", time_step, 0.0, 1.0, "s")?;
+        let skin = num("skin", 0.0)?;
+        check_closed_low("skin", skin, 0.0, 1.0, "m")?;
+        let threads = num("threads", 1.0)?;
+        check_closed_low("threads", threads, 1.0, 257.0, "")?;
+        Ok(BedScene {
+            model: scene_pp.contact_model,
+            density: scene_pp.particle_density,
+            particle_particle: pp,
+            particle_wall: pw,
+            rolling_friction: check_closed_low("rolling_friction", num("rolling_friction", 0.1)?, 0.0, 10.0, "-")?,
+            wall_rolling_friction: check_closed_low("wall_rolling_friction", num("wall_rolling_friction", 0.0)?, 0.0, 10.0, "-")?,
+            size_distribution,
+            particle_count: count as usize,
+            die_diameter: check_open("die_diameter", num("die_diameter", 0.039)?, 0.0, 100.0, "m")?,
+            die_height: check_open("die_height", num("die_height", 0.06)?, 0.0, 100.0, "m")?,
+            gravity: check_closed_low("gravity", num("gravity", 9.81)?, 0.0, 1e6, "m/s^2")?,
+            time_step: if time_step > 0.0 { Some(time_step) } else { None },
+            rayleigh_fraction: check_open("rayleigh_fraction", num("rayleigh_fraction", 0.2)?, 0.0, 1.0 + 1e-12, "-")?,
+            skin: if skin > 0.0 { Some(skin) } else { None },
+            fill_solid_fraction: check_open("fill_solid_fraction", num("fill_solid_fraction", 0.3)?, 0.0, 0.5, "-")?,
+            settle_energy_ratio: check_open("settle_energy_ratio", num("settle_energy_ratio", 1e-6)?, 0.0, 1.0, "-")?,
+            consolidation_stress: check_open("consolidation_stress", num("consolidation_stress", 10e3)?, 0.0, 1e9, "Pa")?,
+            strain_rate: check_open("strain_rate", num("strain_rate", 1.0)?, 0.0, 1e4, "1/s")?,
+            seed: num("seed", 1.0)? as u64,
+            threads: threads as usize,
+        })
+    }
+
+    /// The scene as JSON again (stored in bed files so a bed says how it was made).
+    pub fn to_json(&self) -> Value {
+        let d = &self.size_distribution;
+        json!({
+            "particle_particle": self.particle_particle,
+            "particle_wall": self.particle_wall,
+            "rolling_friction": self.rolling_friction,
+            "wall_rolling_friction": self.wall_rolling_friction,
+            "size_distribution": {"diameters": d.diameters, "frequencies": d.fractions},
+            "particle_count": self.particle_count,
+            "die_diameter": self.die_diameter,
+            "die_height": self.die_height,
+            "gravity": self.gravity,
+            "time_step": self.time_step.unwrap_or(0.0),
+            "rayleigh_fraction": self.rayleigh_fraction,
+            "skin": self.skin.unwrap_or(0.0),
+            "fill_solid_fraction": self.fill_solid_fraction,
+            "settle_energy_ratio": self.settle_energy_ratio,
+            "consolidation_stress": self.consolidation_stress,
+            "strain_rate": self.strain_rate,
+            "seed": self.seed,
+            "threads": self.threads,
+        })
+    }
+
+    /// Radius [m] and mass [kg] of each species (size class).
+    pub fn species(&self) -> Vec<(f64, f64)> {
+        self.size_distribution
+            .diameters
+            .iter()
+            .map(|d| (0.5 * d, std::f64::consts::PI / 6.0 * d.powi(3) * self.density))
+            .collect()
+    }
+
+    /// The Rayleigh time of the smallest sphere (000 Eq. 71) [s]: the stability limit of the step.
+    pub fn rayleigh_time(&self) -> f64 {
+        let e = self.particle_particle.get("particle_youngs_modulus").and_then(Value::as_f64).unwrap_or(55e9);
+        let nu = self.particle_particle.get("particle_poisson_ratio").and_then(Value::as_f64).unwrap_or(0.25);
+        let g = e / (2.0 * (1.0 + nu));
+        crate::theory::time_step::rayleigh_time_step(0.5 * self.size_distribution.min_diameter(), self.density, g, nu)
+    }
+}

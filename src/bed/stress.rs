@@ -1,0 +1,65 @@
+//! Bagi's stress tensor in a measurement volume (`004` Eq. 5.1):
+//! sigma_ij = -1/V sum_p sum_c |x^c - x^p| n_i F_j over the particles p whose centre is in the volume
+//! and their contacts c, with n the unit vector from the centre to the contact and F the contact force
+//! on p. With F = -f n for a compressed contact this makes compression positive. The hydrostatic and
+//! deviatoric stresses are 004 Eqs. 5.2 and 5.3.
+
+use super::any::AnyEngine;
+use crate::with_engine;
+
+/// A measurement volume: a vertical cylinder about the die axis between two heights.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Region {
+    pub radius: f64,
+    pub z_low: f64,
+    pub z_high: f64,
+}
+
+impl Region {
+    pub fn volume(&self) -> f64 {
+        std::f64::consts::PI * self.radius * self.radius * (self.z_high - self.z_low)
+    }
+
+    pub fn contains(&self, x: [f64; 3]) -> bool {
+        x[0] * x[0] + x[1] * x[1] <= self.radius * self.radius && x[2] >= self.z_low && x[2] < self.z_high
+    }
+}
+
+/// Stress tensor [Pa], row-major (sigma_xx, sigma_xy, ..., sigma_zz).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Stress(pub [f64; 9]);
+
+impl Stress {
+    pub fn get(&self, i: usize, j: usize) -> f64 {
+        self.0[3 * i + j]
+    }
+
+    /// 004 Eq. 5.2.
+    pub fn hydrostatic(&self) -> f64 {
+        (self.get(0, 0) + self.get(1, 1) + self.get(2, 2)) / 3.0
+    }
+
+    /// 004 Eq. 5.3.
+    pub fn deviatoric(&self) -> f64 {
+        let (xx, yy, zz) = (self.get(0, 0), self.get(1, 1), self.get(2, 2));
+        (((xx - yy).powi(2) + (xx - zz).powi(2) + (yy - zz).powi(2)) / 6.0).sqrt()
+    }
+}
+
+/// Bagi's stress in `region` for the forces of the bed's current state (one extra force evaluation
+/// that leaves the state unchanged, `Engine::measure_dipoles`).
+pub fn bagi(engine: &mut AnyEngine, region: &Region) -> Stress {
+    with_engine!(engine, e => {
+        let dip = e.measure_dipoles();
+        let mut s = [0.0; 9];
+        for (k, x) in e.particles.position.iter().enumerate() {
+            if region.contains(*x) {
+                for c in 0..9 {
+                    s[c] += dip[k][c];
+                }
+            }
+        }
+        let v = region.volume();
+        Stress(s.map(|c| -c / v))
+    })
+}

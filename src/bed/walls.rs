@@ -1,0 +1,98 @@
+//! Walls: a plane (the die's floor), a cylinder (the die), a sphere (the indenter) and the piston (a
+//! plane that moves). Each has a prescribed velocity, set by whoever drives the bed, and measures the
+//! force the particles exert on it.
+
+use super::{dot, Vec3};
+
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+pub enum Shape {
+    /// Plane through `position`; particles stay on the side `normal` (unit) points to.
+    Plane { normal: Vec3 },
+    /// Cylinder of this radius around the vertical axis through `position`; particles stay inside.
+    Cylinder { radius: f64 },
+    /// Sphere of this radius centred at `position`; particles stay outside.
+    Sphere { radius: f64 },
+}
+
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct Wall {
+    pub name: String,
+    pub shape: Shape,
+    /// A point of the plane, the axis point of the cylinder, the centre of the sphere [m].
+    pub position: Vec3,
+    /// Prescribed velocity [m/s].
+    pub velocity: Vec3,
+    /// Force of the particles on the wall during the last step [N].
+    pub force: Vec3,
+}
+
+/// Where a particle meets a wall: its overlap, the unit normal from the particle's centre towards the
+/// wall, and the wall's velocity there.
+#[derive(Debug, Clone, Copy)]
+pub struct WallTouch {
+    pub overlap: f64,
+    pub normal: Vec3,
+}
+
+impl Wall {
+    pub fn plane(name: &str, point: Vec3, normal: Vec3) -> Wall {
+        let l = super::norm(normal);
+        Wall { name: name.into(), shape: Shape::Plane { normal: super::scale(normal, 1.0 / l) }, position: point, velocity: [0.0; 3], force: [0.0; 3] }
+    }
+
+    pub fn cylinder(name: &str, axis_point: Vec3, radius: f64) -> Wall {
+        Wall { name: name.into(), shape: Shape::Cylinder { radius }, position: axis_point, velocity: [0.0; 3], force: [0.0; 3] }
+    }
+
+    pub fn sphere(name: &str, centre: Vec3, radius: f64) -> Wall {
+        Wall { name: name.into(), shape: Shape::Sphere { radius }, position: centre, velocity: [0.0; 3], force: [0.0; 3] }
+    }
+
+    /// The radius of curvature the contact law sees (the sphere's), or none for flat walls.
+    pub fn curvature_radius(&self) -> Option<f64> {
+        match self.shape {
+            Shape::Sphere { radius } => Some(radius),
+            _ => None,
+        }
+    }
+
+    /// Overlap and normal for a particle at `x` of radius `r`.
+    #[inline(always)]
+    pub fn touch(&self, x: Vec3, r: f64) -> WallTouch {
+        let d = super::sub(x, self.position);
+        match self.shape {
+            Shape::Plane { normal } => WallTouch { overlap: r - dot(d, normal), normal: super::scale(normal, -1.0) },
+            Shape::Cylinder { radius } => {
+                let rho = (d[0] * d[0] + d[1] * d[1]).sqrt();
+                let n = if rho > 0.0 { [d[0] / rho, d[1] / rho, 0.0] } else { [1.0, 0.0, 0.0] };
+                WallTouch { overlap: r - (radius - rho), normal: n }
+            }
+            Shape::Sphere { radius } => {
+                let dist = super::norm(d);
+                let n = if dist > 0.0 { super::scale(d, -1.0 / dist) } else { [0.0, 0.0, -1.0] };
+                WallTouch { overlap: r + radius - dist, normal: n }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn overlaps_and_normals() {
+        let floor = Wall::plane("floor", [0.0; 3], [0.0, 0.0, 1.0]);
+        let t = floor.touch([0.3, 0.0, 0.9e-3], 1e-3);
+        assert!((t.overlap - 0.1e-3).abs() < 1e-15);
+        assert_eq!(t.normal, [0.0, 0.0, -1.0]);
+        let die = Wall::cylinder("die", [0.0; 3], 0.02);
+        let t = die.touch([0.0, 0.0195, 0.01], 1e-3);
+        assert!((t.overlap - 0.5e-3).abs() < 1e-15);
+        assert!((t.normal[1] - 1.0).abs() < 1e-15);
+        let ball = Wall::sphere("ball", [0.0, 0.0, 0.01], 5e-3);
+        let t = ball.touch([0.0, 0.0, 0.01 - 5.5e-3], 1e-3);
+        assert!((t.overlap - 0.5e-3).abs() < 1e-15);
+        assert_eq!(t.normal, [0.0, 0.0, 1.0]);
+    }
+}
