@@ -19,6 +19,8 @@ pub struct WallContacts<H> {
     pub particle: Vec<u32>,
     pub normal: Vec<H>,
     pub spring: Vec<Vec3>,
+    /// Contact radius of the last step (the JKR laws' starting guess), 0 if none.
+    pub radius: Vec<f64>,
 }
 
 /// Forces accumulated by one part of the force loop.
@@ -30,9 +32,6 @@ pub struct Accum {
     /// Per particle sum of |x_c - x_p| n_i F_j over its contacts (Bagi, 004 Eq. 5.1), when recorded.
     pub dipole: Vec<[f64; 9]>,
     pub wall_force: Vec<Vec3>,
-    /// Particles this part writes: [lo, hi).
-    lo: usize,
-    hi: usize,
 }
 
 impl Accum {
@@ -45,14 +44,62 @@ impl Accum {
     }
 
     fn clear(&mut self) {
-        let (lo, hi) = (self.lo, self.hi);
-        self.force[lo..hi].fill([0.0; 3]);
-        self.torque[lo..hi].fill([0.0; 3]);
-        self.rolling[lo..hi].fill(0.0);
-        if !self.dipole.is_empty() {
-            self.dipole[lo..hi].fill([0.0; 9]);
-        }
+        self.force.fill([0.0; 3]);
+        self.torque.fill([0.0; 3]);
+        self.rolling.fill(0.0);
+        self.dipole.fill([0.0; 9]);
         self.wall_force.fill([0.0; 3]);
+    }
+}
+
+/// Where one part of the force loop writes: its own rows [base, split) straight into the totals, and
+/// partners beyond its rows, [split, split + spill length), into its spill buffer (j > i, so no partner
+/// is below `base`). The spills are added in part order after the loop.
+struct Sink<'a> {
+    base: usize,
+    split: usize,
+    force: &'a mut [Vec3],
+    torque: &'a mut [Vec3],
+    rolling: &'a mut [f64],
+    dipole: &'a mut [[f64; 9]],
+    spill: &'a mut Accum,
+}
+
+impl Sink<'_> {
+    #[inline(always)]
+    fn force(&mut self, i: usize) -> &mut Vec3 {
+        if i < self.split {
+            &mut self.force[i - self.base]
+        } else {
+            &mut self.spill.force[i - self.split]
+        }
+    }
+
+    #[inline(always)]
+    fn torque(&mut self, i: usize) -> &mut Vec3 {
+        if i < self.split {
+            &mut self.torque[i - self.base]
+        } else {
+            &mut self.spill.torque[i - self.split]
+        }
+    }
+
+    #[inline(always)]
+    fn rolling(&mut self, i: usize) -> &mut f64 {
+        if i < self.split {
+            &mut self.rolling[i - self.base]
+        } else {
+            &mut self.spill.rolling[i - self.split]
+        }
+    }
+
+    #[inline(always)]
+    fn dipole(&mut self, i: usize) -> &mut [f64; 9] {
+        if i < self.split {
+            &mut self.dipole[i - self.base]
+        } else {
+            &mut self.spill.dipole[i - self.split]
+        }
     }
 }
 
@@ -76,13 +123,17 @@ pub struct Engine<L: BedLaw> {
     /// Normal-law history and tangential spring of each list slot.
     pub normal: Vec<L::History>,
     pub spring: Vec<Vec3>,
+    /// Contact radius of each slot at the last step (the JKR laws' starting guess), 0 if none.
+    pub radius: Vec<f64>,
     pub wall_contacts: Vec<WallContacts<L::History>>,
     /// Wall positions at the last rebuild.
     wall_reference: Vec<Vec3>,
     /// Largest reach of any interaction [m].
     reach: f64,
-    acc: Vec<Accum>,
+    /// Forces, torques, rolling loads (and dipoles) of the last step.
     total: Accum,
+    /// Each part's spill buffer (see `Sink`).
+    spill: Vec<Accum>,
     /// First row of each part of the force loop (len parts + 1).
     parts: Vec<usize>,
     pool: Option<Pool>,
@@ -113,9 +164,10 @@ struct Part<'a, H> {
     slot0: usize,
     normal: &'a mut [H],
     spring: &'a mut [Vec3],
-    /// Per wall: first index in that wall's contact list, particles, memory.
-    walls: Vec<(usize, &'a [u32], &'a mut [H], &'a mut [Vec3])>,
-    acc: &'a mut Accum,
+    radius: &'a mut [f64],
+    /// Per wall: particles and their memory.
+    walls: Vec<(&'a [u32], &'a mut [H], &'a mut [Vec3], &'a mut [f64])>,
+    sink: Sink<'a>,
 }
 
 impl<L: BedLaw> Engine<L> {
@@ -150,7 +202,7 @@ impl<L: BedLaw> Engine<L> {
         let n_walls = walls.len();
         let mut e = Engine {
             particles,
-            wall_contacts: (0..n_walls).map(|_| WallContacts { particle: vec![], normal: vec![], spring: vec![] }).collect(),
+            wall_contacts: (0..n_walls).map(|_| WallContacts { particle: vec![], normal: vec![], spring: vec![], radius: vec![] }).collect(),
             wall_reference: walls.iter().map(|w| w.position).collect(),
             walls,
             pairs,
@@ -163,9 +215,10 @@ impl<L: BedLaw> Engine<L> {
             list: NeighborList::new(skin),
             normal: vec![],
             spring: vec![],
+            radius: vec![],
             reach,
-            acc: (0..threads).map(|_| Accum::default()).collect(),
             total: Accum::default(),
+            spill: (0..threads).map(|_| Accum::default()).collect(),
             parts: vec![],
             pool,
             threads,
@@ -182,16 +235,12 @@ impl<L: BedLaw> Engine<L> {
 
     /// The forces of the last step.
     pub fn totals(&self) -> &Accum {
-        if self.threads == 1 {
-            &self.acc[0]
-        } else {
-            &self.total
-        }
+        &self.total
     }
 
     /// Sets the forces of the last step (a bed loaded from a file continues exactly).
     pub fn set_totals(&mut self, force: &[Vec3], torque: &[Vec3], rolling: &[f64]) {
-        let t = if self.threads == 1 { &mut self.acc[0] } else { &mut self.total };
+        let t = &mut self.total;
         t.force.copy_from_slice(force);
         t.torque.copy_from_slice(torque);
         t.rolling.copy_from_slice(rolling);
@@ -216,100 +265,100 @@ impl<L: BedLaw> Engine<L> {
     pub fn compute_forces_without_increment(&mut self) {
         // The pass re-projects springs onto the tangent plane and the Coulomb limit, which moves them by
         // rounding; the memory is put back as it was so the pass leaves no trace.
-        let (normal, spring) = (self.normal.clone(), self.spring.clone());
-        let walls: Vec<_> = self.wall_contacts.iter().map(|w| (w.normal.clone(), w.spring.clone())).collect();
+        let (normal, spring, radius) = (self.normal.clone(), self.spring.clone(), self.radius.clone());
+        let walls: Vec<_> = self.wall_contacts.iter().map(|w| (w.normal.clone(), w.spring.clone(), w.radius.clone())).collect();
         let dt = self.dt;
         self.dt = 0.0;
         self.compute_forces();
         self.dt = dt;
         self.normal = normal;
         self.spring = spring;
-        for (w, (n, s)) in self.wall_contacts.iter_mut().zip(walls) {
+        self.radius = radius;
+        for (w, (n, s, r)) in self.wall_contacts.iter_mut().zip(walls) {
             w.normal = n;
             w.spring = s;
+            w.radius = r;
+        }
+    }
+
+    /// Runs `f` with the engine's workers ready: every parallel loop inside it runs on the engine's own
+    /// pool, in one `install` per call, so the workers do not fall asleep between the loops of a step.
+    fn with_pool<R: Send>(&mut self, f: impl FnOnce(&mut Self) -> R + Send) -> R {
+        match self.pool.take() {
+            Some(pool) => {
+                let r = pool.install(|| f(&mut *self));
+                self.pool = Some(pool);
+                r
+            }
+            None => f(self),
         }
     }
 
     /// One step of velocity Verlet.
     pub fn step(&mut self) {
-        let h = 0.5 * self.dt;
-        self.kick(h);
-        self.drift();
-        // Rebuild when a particle or a wall has moved half of (skin - reach): no pair can then have
-        // closed the whole margin unseen.
-        let limit = 0.5 * (self.list.skin - self.reach);
-        let wall_moved = self.walls.iter().zip(&self.wall_reference).any(|(w, r)| {
-            let d = sub(w.position, *r);
-            dot(d, d) > limit * limit
-        });
-        if wall_moved || self.list.stale(&self.particles.position, limit) {
-            self.rebuild();
-        }
-        self.compute_forces();
-        self.kick(h);
-        self.time += self.dt;
-        self.steps += 1;
+        self.with_pool(|e| e.step_inner());
     }
 
     /// Several steps.
     pub fn run(&mut self, steps: u64) {
-        for _ in 0..steps {
-            self.step();
-        }
+        self.with_pool(|e| {
+            for _ in 0..steps {
+                e.step_inner();
+            }
+        });
     }
 
-    /// Half a kick: v += (F/m + g) h, w += T/I h, and rolling friction against the spin.
-    fn kick(&mut self, h: f64) {
+    fn step_inner(&mut self) {
+        let h = 0.5 * self.dt;
+        // Rebuild when a particle or a wall has moved half of (skin - reach): no pair can then have
+        // closed the whole margin unseen.
+        let limit = 0.5 * (self.list.skin - self.reach);
+        let moved = self.kick(h, true);
+        self.move_walls();
+        let wall_moved = self.walls.iter().zip(&self.wall_reference).any(|(w, r)| {
+            let d = sub(w.position, *r);
+            dot(d, d) > limit * limit
+        });
+        if wall_moved || moved > limit * limit || self.list.rows() != self.particles.len() {
+            self.rebuild();
+        }
+        self.forces_inner();
+        self.kick(h, false);
+        self.time += self.dt;
+        self.steps += 1;
+    }
+
+    /// Half a kick: v += (F/m + g) h, w += T/I h, and rolling friction against the spin; with `drift`
+    /// also x += v dt. Returns the largest squared displacement since the last list build (with drift).
+    fn kick(&mut self, h: f64, drift: bool) -> f64 {
         let threads = self.threads;
-        let acc = if threads == 1 { &self.acc[0] } else { &self.total };
+        let acc = &self.total;
         let p = &mut self.particles;
+        let reference = self.list.reference();
+        let dt = if drift { self.dt } else { 0.0 };
         let g = self.gravity;
+        if threads == 1 {
+            return kick_range(0, &mut p.velocity, &mut p.angular_velocity, &mut p.position, &p.inv_mass, &p.inv_inertia, &p.radius, acc, reference, g, h, dt);
+        }
         let chunk = p.len().div_ceil(threads).max(1);
-        let work = |(k, ((v, w), ((im, ii), r))): (usize, ((&mut [Vec3], &mut [Vec3]), ((&[f64], &[f64]), &[f64])))| {
-            let base = k * chunk;
-            for q in 0..v.len() {
-                let i = base + q;
-                let f = acc.force[i];
-                let t = acc.torque[i];
-                for c in 0..3 {
-                    v[q][c] += (f[c] * im[q] + g[c]) * h;
-                    w[q][c] += t[c] * ii[q] * h;
-                }
-                // Constant directional rolling torque mu_r |f_n| R against the spin, limited so that it
-                // stops the spin but never reverses it within a step.
-                let load = acc.rolling[i];
-                if load > 0.0 {
-                    let spin = super::norm(w[q]);
-                    let brake = load * r[q] * ii[q] * h;
-                    let keep = if spin > brake { 1.0 - brake / spin } else { 0.0 };
-                    w[q] = super::scale(w[q], keep);
-                }
-            }
-        };
         let chunks: Vec<_> = p
             .velocity
             .chunks_mut(chunk)
             .zip(p.angular_velocity.chunks_mut(chunk))
+            .zip(p.position.chunks_mut(chunk))
             .zip(p.inv_mass.chunks(chunk).zip(p.inv_inertia.chunks(chunk)).zip(p.radius.chunks(chunk)))
             .enumerate()
             .collect();
-        match &self.pool {
-            Some(pool) => pool.install(|| chunks.into_par_iter().for_each(work)),
-            None => chunks.into_iter().for_each(work),
-        }
+        chunks
+            .into_par_iter()
+            .map(|(k, (((v, w), x), ((im, ii), r)))| kick_range(k * chunk, v, w, x, im, ii, r, acc, reference, g, h, dt))
+            .reduce(|| 0.0, f64::max)
     }
 
-    fn drift(&mut self) {
-        let dt = self.dt;
-        let p = &mut self.particles;
-        for (x, v) in p.position.iter_mut().zip(&p.velocity) {
-            for c in 0..3 {
-                x[c] += v[c] * dt;
-            }
-        }
+    fn move_walls(&mut self) {
         for w in &mut self.walls {
             for c in 0..3 {
-                w.position[c] += w.velocity[c] * dt;
+                w.position[c] += w.velocity[c] * self.dt;
             }
         }
     }
@@ -326,6 +375,7 @@ impl<L: BedLaw> Engine<L> {
         let s = self.species;
         let mut normal = Vec::with_capacity(from.len());
         let mut spring = Vec::with_capacity(from.len());
+        let mut radius = Vec::with_capacity(from.len());
         for i in 0..self.list.rows() {
             let a = self.particles.species[i] as usize;
             for k in self.list.start[i] as usize..self.list.start[i + 1] as usize {
@@ -333,18 +383,21 @@ impl<L: BedLaw> Engine<L> {
                     let b = self.particles.species[self.list.partner[k] as usize] as usize;
                     normal.push(self.pairs[a * s + b].initial);
                     spring.push([0.0; 3]);
+                    radius.push(0.0);
                 } else {
                     normal.push(self.normal[from[k] as usize]);
                     spring.push(self.spring[from[k] as usize]);
+                    radius.push(self.radius[from[k] as usize]);
                 }
             }
         }
         self.normal = normal;
         self.spring = spring;
+        self.radius = radius;
         let skin = self.list.skin;
         self.wall_reference = self.walls.iter().map(|w| w.position).collect();
         for (w, wall) in self.walls.iter().enumerate() {
-            let old = std::mem::replace(&mut self.wall_contacts[w], WallContacts { particle: vec![], normal: vec![], spring: vec![] });
+            let old = std::mem::replace(&mut self.wall_contacts[w], WallContacts { particle: vec![], normal: vec![], spring: vec![], radius: vec![] });
             let mut k_old = 0;
             let new = &mut self.wall_contacts[w];
             for i in 0..self.particles.len() {
@@ -357,9 +410,11 @@ impl<L: BedLaw> Engine<L> {
                     if k_old < old.particle.len() && old.particle[k_old] as usize == i {
                         new.normal.push(old.normal[k_old]);
                         new.spring.push(old.spring[k_old]);
+                        new.radius.push(old.radius[k_old]);
                     } else {
                         new.normal.push(self.wall_pairs[w][self.particles.species[i] as usize].initial);
                         new.spring.push([0.0; 3]);
+                        new.radius.push(0.0);
                     }
                 }
             }
@@ -368,7 +423,8 @@ impl<L: BedLaw> Engine<L> {
         self.resize_buffers();
     }
 
-    /// Splits the rows into `threads` parts of about equal work (list slots plus one per row).
+    /// Splits the rows into `threads` parts of about equal work (list slots plus one per row), and sizes
+    /// each part's spill buffer for the partners beyond its rows.
     fn partition(&mut self) {
         let n = self.particles.len();
         let t = self.threads;
@@ -384,33 +440,32 @@ impl<L: BedLaw> Engine<L> {
             self.parts.push(i);
         }
         self.parts.push(n);
-        for k in 0..t {
-            let (a, b) = (self.parts[k], self.parts[k + 1]);
-            let hi = (a..b).flat_map(|i| self.list.row(i).last().map(|&j| j as usize + 1)).max().unwrap_or(b).max(b);
-            self.acc[k].lo = a;
-            self.acc[k].hi = hi;
-        }
+        self.resize_buffers();
     }
 
     fn resize_buffers(&mut self) {
         let n = self.particles.len();
         let w = self.walls.len();
         let d = self.record_dipoles;
-        for a in &mut self.acc {
-            a.resize(n, w, d);
-        }
-        if self.threads > 1 {
-            self.total.resize(n, w, d);
-            self.total.lo = 0;
-            self.total.hi = n;
-        } else {
-            self.acc[0].lo = 0;
-            self.acc[0].hi = n;
+        self.total.resize(n, w, d);
+        for k in 0..self.threads {
+            let (a, b) = (self.parts[k], self.parts[k + 1]);
+            let hi = (a..b).filter_map(|i| self.list.row(i).last().map(|&j| j as usize + 1)).max().unwrap_or(b).max(b);
+            let spill = &mut self.spill[k];
+            spill.force.clear();
+            spill.torque.clear();
+            spill.rolling.clear();
+            spill.dipole.clear();
+            spill.resize(hi - b, w, d);
         }
     }
 
     /// The force loop over pairs and wall contacts, then (with threads) the ordered sum of the parts.
     pub fn compute_forces(&mut self) {
+        self.with_pool(|e| e.forces_inner());
+    }
+
+    fn forces_inner(&mut self) {
         let shared = Shared {
             p: &self.particles,
             list: &self.list,
@@ -424,90 +479,79 @@ impl<L: BedLaw> Engine<L> {
         let mut parts: Vec<Part<L::History>> = Vec::with_capacity(self.threads);
         let mut normal: &mut [L::History] = &mut self.normal;
         let mut spring: &mut [Vec3] = &mut self.spring;
-        let mut wall_rest: Vec<(usize, &[u32], &mut [L::History], &mut [Vec3])> = self
-            .wall_contacts
-            .iter_mut()
-            .map(|wc| (0usize, &wc.particle[..], &mut wc.normal[..], &mut wc.spring[..]))
-            .collect();
+        let mut radius: &mut [f64] = &mut self.radius;
+        let mut wall_rest: Vec<(&[u32], &mut [L::History], &mut [Vec3], &mut [f64])> =
+            self.wall_contacts.iter_mut().map(|wc| (&wc.particle[..], &mut wc.normal[..], &mut wc.spring[..], &mut wc.radius[..])).collect();
         let mut consumed = 0usize;
-        for (k, acc) in self.acc.iter_mut().enumerate() {
+        let record = self.record_dipoles;
+        let mut own_f: &mut [Vec3] = &mut self.total.force;
+        let mut own_t: &mut [Vec3] = &mut self.total.torque;
+        let mut own_r: &mut [f64] = &mut self.total.rolling;
+        let mut own_d: &mut [[f64; 9]] = &mut self.total.dipole;
+        for (k, spill) in self.spill.iter_mut().enumerate() {
             let (a, b) = (self.parts[k], self.parts[k + 1]);
-            let end = self.list.start[b] as usize;
-            let (mine, rest) = std::mem::take(&mut normal).split_at_mut(end - consumed);
+            let take = self.list.start[b] as usize - consumed;
+            let (mine_n, rest) = std::mem::take(&mut normal).split_at_mut(take);
             normal = rest;
-            let (mine_s, rest_s) = std::mem::take(&mut spring).split_at_mut(end - consumed);
-            spring = rest_s;
+            let (mine_s, rest) = std::mem::take(&mut spring).split_at_mut(take);
+            spring = rest;
+            let (mine_r, rest) = std::mem::take(&mut radius).split_at_mut(take);
+            radius = rest;
             let mut walls = Vec::with_capacity(wall_rest.len());
-            for (first, ps, ns, ss) in wall_rest.iter_mut() {
+            for (ps, ns, ss, rs) in wall_rest.iter_mut() {
                 let cut = ps.partition_point(|&i| (i as usize) < b);
                 let (p_mine, p_rest) = ps.split_at(cut);
                 let (n_mine, n_rest) = std::mem::take(ns).split_at_mut(cut);
                 let (s_mine, s_rest) = std::mem::take(ss).split_at_mut(cut);
-                walls.push((*first, p_mine, n_mine, s_mine));
-                *first += cut;
+                let (r_mine, r_rest) = std::mem::take(rs).split_at_mut(cut);
+                walls.push((p_mine, n_mine, s_mine, r_mine));
                 *ps = p_rest;
                 *ns = n_rest;
                 *ss = s_rest;
+                *rs = r_rest;
             }
-            parts.push(Part { rows: (a, b), slot0: consumed, normal: mine, spring: mine_s, walls, acc });
-            consumed = end;
-        }
-        match &self.pool {
-            Some(pool) => pool.install(|| parts.into_par_iter().for_each(|part| run_part(&shared, part))),
-            None => parts.into_iter().for_each(|part| run_part(&shared, part)),
+            let (f, rest) = std::mem::take(&mut own_f).split_at_mut(b - a);
+            own_f = rest;
+            let (t, rest) = std::mem::take(&mut own_t).split_at_mut(b - a);
+            own_t = rest;
+            let (r, rest) = std::mem::take(&mut own_r).split_at_mut(b - a);
+            own_r = rest;
+            let (d, rest) = std::mem::take(&mut own_d).split_at_mut(if record { b - a } else { 0 });
+            own_d = rest;
+            let sink = Sink { base: a, split: b, force: f, torque: t, rolling: r, dipole: d, spill };
+            parts.push(Part { rows: (a, b), slot0: consumed, normal: mine_n, spring: mine_s, radius: mine_r, walls, sink });
+            consumed += take;
         }
         if self.threads > 1 {
-            self.reduce();
+            parts.into_par_iter().for_each(|part| run_part(&shared, part));
+        } else {
+            parts.into_iter().for_each(|part| run_part(&shared, part));
         }
-        let totals = if self.threads == 1 { &self.acc[0] } else { &self.total };
+        self.add_spills();
         for (w, wall) in self.walls.iter_mut().enumerate() {
-            wall.force = totals.wall_force[w];
+            wall.force = self.total.wall_force[w];
         }
     }
 
-    /// total = sum of the parts' buffers, in part order, over particle ranges in parallel.
-    fn reduce(&mut self) {
-        let acc = &self.acc;
-        let chunk = self.particles.len().div_ceil(self.threads).max(1);
+    /// Adds each part's spill to the totals, in part order, and sums the wall reactions.
+    fn add_spills(&mut self) {
         let total = &mut self.total;
-        let work = |(k, ((f, tq), r)): (usize, ((&mut [Vec3], &mut [Vec3]), &mut [f64]))| {
-            let base = k * chunk;
-            for q in 0..f.len() {
-                let i = base + q;
-                let (mut sf, mut st, mut sr) = ([0.0; 3], [0.0; 3], 0.0);
-                for a in acc.iter().filter(|a| i >= a.lo && i < a.hi) {
-                    for c in 0..3 {
-                        sf[c] += a.force[i][c];
-                        st[c] += a.torque[i][c];
-                    }
-                    sr += a.rolling[i];
-                }
-                f[q] = sf;
-                tq[q] = st;
-                r[q] = sr;
-            }
-        };
-        let chunks: Vec<_> = total
-            .force
-            .chunks_mut(chunk)
-            .zip(total.torque.chunks_mut(chunk))
-            .zip(total.rolling.chunks_mut(chunk))
-            .enumerate()
-            .collect();
-        self.pool.as_ref().expect("threads > 1 have a pool").install(|| chunks.into_par_iter().for_each(work));
-        // Dipoles are recorded only on measuring steps: summed here without threads.
-        for i in 0..total.dipole.len() {
-            let mut sd = [0.0; 9];
-            for a in acc.iter().filter(|a| i >= a.lo && i < a.hi) {
-                for c in 0..9 {
-                    sd[c] += a.dipole[i][c];
-                }
-            }
-            total.dipole[i] = sd;
-        }
         total.wall_force.fill([0.0; 3]);
-        for a in acc {
-            for (w, f) in a.wall_force.iter().enumerate() {
+        for (k, spill) in self.spill.iter().enumerate() {
+            let b = self.parts[k + 1];
+            for q in 0..spill.force.len() {
+                for c in 0..3 {
+                    total.force[b + q][c] += spill.force[q][c];
+                    total.torque[b + q][c] += spill.torque[q][c];
+                }
+                total.rolling[b + q] += spill.rolling[q];
+            }
+            for q in 0..spill.dipole.len() {
+                for c in 0..9 {
+                    total.dipole[b + q][c] += spill.dipole[q][c];
+                }
+            }
+            for (w, f) in spill.wall_force.iter().enumerate() {
                 for c in 0..3 {
                     total.wall_force[w][c] += f[c];
                 }
@@ -523,8 +567,9 @@ impl<L: BedLaw> Engine<L> {
             + self.list.memory_bytes()
             + self.normal.capacity() * h
             + self.spring.capacity() * 24
-            + self.wall_contacts.iter().map(|w| w.particle.capacity() * 4 + w.normal.capacity() * h + w.spring.capacity() * 24).sum::<usize>()
-            + self.acc.iter().map(acc).sum::<usize>()
+            + self.radius.capacity() * 8
+            + self.wall_contacts.iter().map(|w| w.particle.capacity() * 4 + w.normal.capacity() * h + w.spring.capacity() * 24 + w.radius.capacity() * 8).sum::<usize>()
+            + self.spill.iter().map(acc).sum::<usize>()
             + acc(&self.total)
     }
 
@@ -572,12 +617,68 @@ impl<L: BedLaw> Engine<L> {
     }
 }
 
+/// Half a kick of the particles from `base` on (their slices), and the drift x += v dt (dt = 0: none).
+/// Returns the largest squared displacement from `reference` (the positions of the last list build).
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn kick_range(
+    base: usize,
+    v: &mut [Vec3],
+    w: &mut [Vec3],
+    x: &mut [Vec3],
+    im: &[f64],
+    ii: &[f64],
+    r: &[f64],
+    acc: &Accum,
+    reference: &[Vec3],
+    g: Vec3,
+    h: f64,
+    dt: f64,
+) -> f64 {
+    let n = v.len();
+    let (force, torque, rolling) = (&acc.force[base..base + n], &acc.torque[base..base + n], &acc.rolling[base..base + n]);
+    let (w, x, im, ii, r) = (&mut w[..n], &mut x[..n], &im[..n], &ii[..n], &r[..n]);
+    let mut moved: f64 = 0.0;
+    for q in 0..n {
+        let (f, t) = (force[q], torque[q]);
+        for c in 0..3 {
+            v[q][c] += (f[c] * im[q] + g[c]) * h;
+            w[q][c] += t[c] * ii[q] * h;
+        }
+        // Constant directional rolling torque mu_r |f_n| R against the spin, limited so that it stops the
+        // spin but never reverses it within a step.
+        let load = rolling[q];
+        if load > 0.0 {
+            let spin = super::norm(w[q]);
+            let brake = load * r[q] * ii[q] * h;
+            let keep = if spin > brake { 1.0 - brake / spin } else { 0.0 };
+            w[q] = super::scale(w[q], keep);
+        }
+        if dt != 0.0 {
+            for c in 0..3 {
+                x[q][c] += v[q][c] * dt;
+            }
+            if let Some(x0) = reference.get(base + q) {
+                let d = sub(x[q], *x0);
+                moved = moved.max(dot(d, d));
+            } else {
+                moved = f64::INFINITY;
+            }
+        }
+    }
+    moved
+}
+
 /// The force loop of one part.
 fn run_part<L: BedLaw>(s: &Shared<L>, part: Part<L::History>) {
-    let Part { rows, slot0, normal, spring, walls, acc } = part;
-    acc.clear();
+    let Part { rows, slot0, normal, spring, radius, walls, mut sink } = part;
+    sink.force.fill([0.0; 3]);
+    sink.torque.fill([0.0; 3]);
+    sink.rolling.fill(0.0);
+    sink.dipole.fill([0.0; 9]);
+    sink.spill.clear();
     let p = s.p;
-    let dipoles = !acc.dipole.is_empty();
+    let dipoles = !sink.dipole.is_empty();
     for i in rows.0..rows.1 {
         let xi = p.position[i];
         let vi = p.velocity[i];
@@ -601,31 +702,39 @@ fn run_part<L: BedLaw>(s: &Shared<L>, part: Part<L::History>) {
             let alpha = ri + rj - dist;
             let (li, lj) = (ri - 0.5 * alpha, rj - 0.5 * alpha);
             let v = surface_velocity(vi, wi, li, p.velocity[j], p.angular_velocity[j], lj, n);
-            if let Some(c) = contact(it, alpha, n, v, &mut normal[slot], &mut spring[slot], s.dt) {
-                for q in 0..3 {
-                    acc.force[i][q] += c.force[q];
-                    acc.force[j][q] -= c.force[q];
-                }
+            if let Some(c) = contact(it, alpha, n, v, &mut normal[slot], &mut spring[slot], &mut radius[slot], s.dt) {
                 let tq = super::cross(n, c.tangential);
+                let fi = sink.force(i);
                 for q in 0..3 {
-                    acc.torque[i][q] += li * tq[q];
-                    acc.torque[j][q] += lj * tq[q];
+                    fi[q] += c.force[q];
                 }
-                acc.rolling[i] += c.rolling_load;
-                acc.rolling[j] += c.rolling_load;
+                let fj = sink.force(j);
+                for q in 0..3 {
+                    fj[q] -= c.force[q];
+                }
+                let t_i = sink.torque(i);
+                for q in 0..3 {
+                    t_i[q] += li * tq[q];
+                }
+                let t_j = sink.torque(j);
+                for q in 0..3 {
+                    t_j[q] += lj * tq[q];
+                }
+                *sink.rolling(i) += c.rolling_load;
+                *sink.rolling(j) += c.rolling_load;
                 if dipoles {
                     // |x_c - x_p| n_i F_j for both particles (004 Eq. 5.1); the partner sees -n and -F.
                     for a in 0..3 {
                         for b in 0..3 {
-                            acc.dipole[i][3 * a + b] += li * n[a] * c.force[b];
-                            acc.dipole[j][3 * a + b] += lj * n[a] * c.force[b];
+                            sink.dipole(i)[3 * a + b] += li * n[a] * c.force[b];
+                            sink.dipole(j)[3 * a + b] += lj * n[a] * c.force[b];
                         }
                     }
                 }
             }
         }
     }
-    for (w, (_, particles, normal, spring)) in walls.into_iter().enumerate() {
+    for (w, (particles, normal, spring, radius)) in walls.into_iter().enumerate() {
         let wall = &s.walls[w];
         let table = &s.wall_pairs[w];
         for (slot, &i) in particles.iter().enumerate() {
@@ -638,20 +747,24 @@ fn run_part<L: BedLaw>(s: &Shared<L>, part: Part<L::History>) {
             }
             let li = ri - 0.5 * t.overlap;
             let v = surface_velocity(p.velocity[i], p.angular_velocity[i], li, wall.velocity, [0.0; 3], 0.0, t.normal);
-            if let Some(c) = contact(it, t.overlap, t.normal, v, &mut normal[slot], &mut spring[slot], s.dt) {
+            if let Some(c) = contact(it, t.overlap, t.normal, v, &mut normal[slot], &mut spring[slot], &mut radius[slot], s.dt) {
+                let fi = sink.force(i);
                 for q in 0..3 {
-                    acc.force[i][q] += c.force[q];
-                    acc.wall_force[w][q] -= c.force[q];
+                    fi[q] += c.force[q];
+                }
+                for q in 0..3 {
+                    sink.spill.wall_force[w][q] -= c.force[q];
                 }
                 let tq = super::cross(t.normal, c.tangential);
+                let t_i = sink.torque(i);
                 for q in 0..3 {
-                    acc.torque[i][q] += li * tq[q];
+                    t_i[q] += li * tq[q];
                 }
-                acc.rolling[i] += c.rolling_load;
+                *sink.rolling(i) += c.rolling_load;
                 if dipoles {
                     for a in 0..3 {
                         for b in 0..3 {
-                            acc.dipole[i][3 * a + b] += li * t.normal[a] * c.force[b];
+                            sink.dipole(i)[3 * a + b] += li * t.normal[a] * c.force[b];
                         }
                     }
                 }

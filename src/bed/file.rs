@@ -31,9 +31,9 @@ pub struct BedFile {
     pub angular_velocity: Vec<Vec3>,
     pub species: Vec<u16>,
     pub walls: Vec<Wall>,
-    /// bincode of the particle contacts `Vec<(i, j, history, spring)>` of the scene's law.
+    /// bincode of the particle contacts `Vec<(i, j, history, spring, contact radius)>` of the scene's law.
     pub contacts: Vec<u8>,
-    /// bincode of the wall contacts `Vec<Vec<(i, history, spring)>>`, one list per wall.
+    /// bincode of the wall contacts `Vec<Vec<(i, history, spring, contact radius)>>`, one list per wall.
     pub wall_contacts: Vec<u8>,
     /// The forces, torques and rolling loads of the last step: a loaded bed continues exactly where it
     /// was saved (velocity Verlet's next half kick uses them).
@@ -50,19 +50,23 @@ impl<L: BedLaw> Engine<L> {
             let si = self.particles.species[i] as usize;
             for (k, &j) in (self.list.start[i] as usize..).zip(self.list.row(i)) {
                 let init = self.pairs[si * self.species + self.particles.species[j as usize] as usize].initial;
-                if self.normal[k] != init || self.spring[k] != [0.0; 3] {
-                    pairs.push((i as u32, j, self.normal[k], self.spring[k]));
+                if self.normal[k] != init || self.spring[k] != [0.0; 3] || self.radius[k] != 0.0 {
+                    pairs.push((i as u32, j, self.normal[k], self.spring[k], self.radius[k]));
                 }
             }
         }
-        let walls: Vec<Vec<(u32, L::History, Vec3)>> = self
+        let walls: Vec<Vec<(u32, L::History, Vec3, f64)>> = self
             .wall_contacts
             .iter()
             .enumerate()
             .map(|(w, wc)| {
                 (0..wc.particle.len())
-                    .filter(|&k| wc.normal[k] != self.wall_pairs[w][self.particles.species[wc.particle[k] as usize] as usize].initial || wc.spring[k] != [0.0; 3])
-                    .map(|k| (wc.particle[k], wc.normal[k], wc.spring[k]))
+                    .filter(|&k| {
+                        wc.normal[k] != self.wall_pairs[w][self.particles.species[wc.particle[k] as usize] as usize].initial
+                            || wc.spring[k] != [0.0; 3]
+                            || wc.radius[k] != 0.0
+                    })
+                    .map(|k| (wc.particle[k], wc.normal[k], wc.spring[k], wc.radius[k]))
                     .collect()
             })
             .collect();
@@ -71,9 +75,9 @@ impl<L: BedLaw> Engine<L> {
 
     /// Puts saved contacts back into the current lists (they are within range: they were in contact).
     fn restore_contacts(&mut self, pairs: &[u8], walls: &[u8]) -> Result<(), BedError> {
-        let pairs: Vec<(u32, u32, L::History, Vec3)> =
+        let pairs: Vec<(u32, u32, L::History, Vec3, f64)> =
             bincode::deserialize(pairs).map_err(|e| BedError::Setup(format!("bed file: contacts unreadable ({e})")))?;
-        let walls: Vec<Vec<(u32, L::History, Vec3)>> =
+        let walls: Vec<Vec<(u32, L::History, Vec3, f64)>> =
             bincode::deserialize(walls).map_err(|e| BedError::Setup(format!("bed file: wall contacts unreadable ({e})")))?;
         // Every slot starts as a pair that has never touched (the engine's first force pass may have
         // loaded springs); the file then says which remember something.
@@ -83,16 +87,18 @@ impl<L: BedLaw> Engine<L> {
                 let b = self.particles.species[self.list.partner[k] as usize] as usize;
                 self.normal[k] = self.pairs[a * self.species + b].initial;
                 self.spring[k] = [0.0; 3];
+                self.radius[k] = 0.0;
             }
         }
         for (w, wc) in self.wall_contacts.iter_mut().enumerate() {
             for k in 0..wc.particle.len() {
                 wc.normal[k] = self.wall_pairs[w][self.particles.species[wc.particle[k] as usize] as usize].initial;
                 wc.spring[k] = [0.0; 3];
+                wc.radius[k] = 0.0;
             }
         }
         let n = self.particles.len() as u32;
-        for (i, j, h, s) in pairs {
+        for (i, j, h, s, a) in pairs {
             if i >= n || j >= n {
                 return Err(BedError::Setup(format!("bed file: contact ({i}, {j}) names a particle beyond {n}")));
             }
@@ -101,16 +107,18 @@ impl<L: BedLaw> Engine<L> {
             let slot = self.list.start[i as usize] as usize + k;
             self.normal[slot] = h;
             self.spring[slot] = s;
+            self.radius[slot] = a;
         }
         if walls.len() != self.wall_contacts.len() {
             return Err(BedError::Setup("bed file: wall contact lists do not match the walls".into()));
         }
         for (w, list) in walls.into_iter().enumerate() {
             let wc: &mut WallContacts<L::History> = &mut self.wall_contacts[w];
-            for (i, h, s) in list {
+            for (i, h, s, a) in list {
                 let k = wc.particle.binary_search(&i).map_err(|_| BedError::Setup(format!("bed file: wall contact of particle {i} is not within range")))?;
                 wc.normal[k] = h;
                 wc.spring[k] = s;
+                wc.radius[k] = a;
             }
         }
         self.compute_forces_without_increment();

@@ -23,7 +23,8 @@ pub struct ContactForce {
 }
 
 /// One contact. `normal` points from the first body's centre to the partner; `relative_velocity` is
-/// the velocity of the first body's surface relative to the partner's surface at the contact point.
+/// the velocity of the first body's surface relative to the partner's surface at the contact point;
+/// `radius_guess` keeps the contact radius for the next step's solve (the JKR laws).
 /// Returns `None` when the pair carries no force (its history and spring are updated all the same).
 #[inline(always)]
 pub fn contact<L: BedLaw>(
@@ -33,11 +34,13 @@ pub fn contact<L: BedLaw>(
     relative_velocity: Vec3,
     history: &mut L::History,
     spring: &mut Vec3,
+    radius_guess: &mut f64,
     dt: f64,
 ) -> Option<ContactForce> {
     let law = &it.law;
-    let (ev, k_damp, radius) = law.evaluate_with_radius(alpha, history);
+    let (ev, k_damp, radius) = law.evaluate_near(alpha, history, *radius_guess);
     *history = ev.history;
+    *radius_guess = radius.unwrap_or(0.0);
     if !ev.branch.in_contact() {
         *spring = [0.0; 3];
         if ev.force == 0.0 {

@@ -38,6 +38,11 @@ impl NeighborList {
         &self.partner[self.start[i] as usize..self.start[i + 1] as usize]
     }
 
+    /// Positions at the last build.
+    pub fn reference(&self) -> &[Vec3] {
+        &self.reference
+    }
+
     /// Whether some particle moved more than `limit` since the last build (or none was done).
     pub fn stale(&self, position: &[Vec3], limit: f64) -> bool {
         if self.reference.len() != position.len() {

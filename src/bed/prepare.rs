@@ -206,17 +206,34 @@ pub fn piston_stress(e: &AnyEngine, scene: &BedScene) -> f64 {
     e.walls()[PISTON].force[2] / (PI * 0.25 * scene.die_diameter * scene.die_diameter)
 }
 
+/// The phases, in order.
+pub const PHASES: [&str; 5] = ["fill", "settle", "consolidate", "unload", "relax"];
+
 /// The whole protocol, from an empty die to a relaxed, pre-consolidated bed.
 pub fn prepare(scene: &BedScene, progress: &mut dyn FnMut(&Progress)) -> Result<(AnyEngine, Report), BedError> {
+    prepare_until(scene, "relax", progress)
+}
+
+/// The protocol up to and including phase `last` (one of `PHASES`).
+pub fn prepare_until(scene: &BedScene, last: &str, progress: &mut dyn FnMut(&Progress)) -> Result<(AnyEngine, Report), BedError> {
+    if !PHASES.contains(&last) {
+        return Err(BedError::Setup(format!("unknown phase `{last}`: allowed {}", PHASES.join(", "))));
+    }
     let particles = fill(scene)?;
     let fill_height = bed_height(&particles);
     let mut e = AnyEngine::build(scene, particles, die(scene))?;
     let mut report = Report { time_step: e.dt(), ..Default::default() };
     progress(&Progress { phase: "fill", fraction: overall("fill", 1.0), time: 0.0, steps: 0, detail: format!("{} spheres, fill {fill_height:.4} m high", scene.particle_count) });
+    if last == "fill" {
+        return Ok((e, report));
+    }
 
     let fall = (2.0 * fill_height / scene.gravity.max(1e-3)).sqrt();
     let (t, s) = calm(&mut e, scene, "settle", fall, 50.0 * fall + 0.1, progress)?;
     report.phases.push(("settle", t, s));
+    if last == "settle" {
+        return Ok((e, report));
+    }
 
     // Consolidate: the piston comes down from just above the bed at v = strain_rate x height.
     let h0 = bed_height(e.particles());
@@ -258,6 +275,9 @@ pub fn prepare(scene: &BedScene, progress: &mut dyn FnMut(&Progress)) -> Result<
         }
     }
     report.phases.push(("consolidate", e.time() - t0, steps));
+    if last == "consolidate" {
+        return Ok((e, report));
+    }
 
     // Unload at the same speed until the piston has carried no force for 100 steps; then it is parked
     // one mean diameter higher, out of reach.
@@ -278,6 +298,9 @@ pub fn prepare(scene: &BedScene, progress: &mut dyn FnMut(&Progress)) -> Result<
     e.walls_mut()[PISTON].position[2] += scene.size_distribution.mean_diameter();
     e.walls_mut()[PISTON].velocity = [0.0; 3];
     report.phases.push(("unload", e.time() - t0, steps));
+    if last == "unload" {
+        return Ok((e, report));
+    }
 
     let (t, s) = calm(&mut e, scene, "relax", 1e-3, 5.0 * fall + 0.1, progress)?;
     report.phases.push(("relax", t, s));

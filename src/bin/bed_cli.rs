@@ -9,12 +9,14 @@ use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-pub const USAGE: &str = "  powderfmu bed prepare SCENE.json [-o BED] [--threads N]  fill, settle, consolidate, unload, relax (004 Sec. 5.1.3)
+pub const USAGE: &str = "  powderfmu bed prepare SCENE.json [-o BED] [--threads N] [--until PHASE]
+                                                        fill, settle, consolidate, unload, relax (004 Sec. 5.1.3)
   powderfmu bed info BED                                count, height, solid fraction, coordination, overlap, stress
   powderfmu bed snapshot BED OUT.vtk|OUT.csv            spheres for ParaView (VTK) or a spreadsheet (CSV)
   powderfmu bed render BED OUT.png [--width PX]         vertical cross-section through the die axis
   powderfmu bed export-lammps BED OUT.data              LAMMPS data file (atom_style sphere)
-  powderfmu bed bench BED --model M [--steps N] [--threads T] [--stiffness K]
+  powderfmu bed bench BED --model M [--steps N] [--threads T] [--stiffness K] [--yield-pressure P]
+                        [--surface-energy G] [--no-rolling]
                                                         particle-steps per second of the force loop";
 
 pub fn run(args: &[String]) -> Result<(), String> {
@@ -117,7 +119,11 @@ impl Bar {
 }
 
 fn prepare_cmd(args: &[String]) -> Result<(), String> {
-    let a = parse(args, &["-o", "--output", "--threads"])?;
+    let a = parse(args, &["-o", "--output", "--threads", "--until"])?;
+    let until = a.get("--until").unwrap_or("relax");
+    if !prepare::PHASES.contains(&until) {
+        return Err(format!("--until = `{until}` is not allowed: give one of {}", prepare::PHASES.join(", ")));
+    }
     let scene_path = a.need(0, "the bed scene file (JSON)")?;
     let text = std::fs::read_to_string(scene_path).map_err(|e| format!("cannot read bed scene `{scene_path}`: {e}"))?;
     let mut scene = BedScene::from_json(&text).map_err(|e| format!("{scene_path}: {e}"))?;
@@ -139,7 +145,7 @@ fn prepare_cmd(args: &[String]) -> Result<(), String> {
         out.display()
     );
     let mut bar = Bar { start: Instant::now(), tty: std::io::stderr().is_terminal(), last_line: -1.0 };
-    let (mut engine, report) = prepare::prepare(&scene, &mut |p| bar.show(p)).map_err(|e| e.to_string())?;
+    let (mut engine, report) = prepare::prepare_until(&scene, until, &mut |p| bar.show(p)).map_err(|e| e.to_string())?;
     if bar.tty {
         eprintln!();
     }
@@ -148,7 +154,14 @@ fn prepare_cmd(args: &[String]) -> Result<(), String> {
     for (phase, t, steps) in &report.phases {
         println!("{phase:<12} {t:.4e} s simulated, {steps} steps");
     }
-    println!("consolidation stress reached: {:.4e} Pa (target {:.4e} Pa)", report.consolidation_stress, scene.consolidation_stress);
+    if let Some(s) = report.stress_at_target {
+        println!(
+            "consolidation stress reached: piston {:.4e} Pa, Bagi sigma_zz in the middle half {:.4e} Pa (target {:.4e} Pa)",
+            report.consolidation_stress,
+            s.get(2, 2),
+            scene.consolidation_stress
+        );
+    }
     println!("wall time: {:.1} s", bar.start.elapsed().as_secs_f64());
     describe(&mut engine, &scene);
     println!("bed written to {}", out.display());
@@ -239,7 +252,7 @@ fn export_cmd(args: &[String]) -> Result<(), String> {
 }
 
 /// The bed of `path` under another law: same positions and walls, contacts start fresh.
-fn with_model(path: &str, model: &str, stiffness: f64, threads: usize) -> Result<(AnyEngine, BedScene), String> {
+fn with_model(path: &str, model: &str, stiffness: f64, yield_pressure: f64, surface_energy: Option<f64>, threads: usize, rolling: bool) -> Result<(AnyEngine, BedScene), String> {
     let bytes = std::fs::read(path).map_err(|e| format!("cannot read bed file `{path}`: {e}"))?;
     let mut f: BedFile = file::decode(&bytes).map_err(|e| format!("{path}: {e}"))?;
     let mut scene: serde_json::Value = serde_json::from_str(&f.scene).map_err(|e| e.to_string())?;
@@ -250,12 +263,19 @@ fn with_model(path: &str, model: &str, stiffness: f64, threads: usize) -> Result
         if law == "linear" {
             m.insert("linear_stiffness".into(), stiffness.into());
         }
-        if law == "nan" && !m.contains_key("particle_yield_pressure") {
-            // A yield pressure for glass-like beads (000 Sec. 3.1 needs one for the Nan law).
-            m.insert("particle_yield_pressure".into(), 1e9.into());
+        if let (Some(gamma), "particle_particle") = (surface_energy, key) {
+            m.insert("surface_energy".into(), gamma.into());
+        }
+        if !m.contains_key("particle_yield_pressure") && !m.contains_key("particle_yield_stress") {
+            // The elasto-plastic laws need a yield pressure (000 Sec. 3.1); the others ignore it.
+            m.insert("particle_yield_pressure".into(), yield_pressure.into());
         }
     }
     scene["threads"] = threads.into();
+    if !rolling {
+        scene["rolling_friction"] = 0.0.into();
+        scene["wall_rolling_friction"] = 0.0.into();
+    }
     f.scene = scene.to_string();
     f.contacts = bincode_empty_pairs();
     f.wall_contacts = bincode_empty_walls(f.walls.len());
@@ -276,22 +296,32 @@ fn bincode_empty_walls(walls: usize) -> Vec<u8> {
 }
 
 fn bench_cmd(args: &[String]) -> Result<(), String> {
-    let a = parse(args, &["--model", "--steps", "--threads", "--stiffness", "--warmup"])?;
+    // `--no-rolling` is a flag without value.
+    let rolling = !args.iter().any(|a| a == "--no-rolling");
+    let args: Vec<String> = args.iter().filter(|a| *a != "--no-rolling").cloned().collect();
+    let a = parse(&args, &["--model", "--steps", "--threads", "--stiffness", "--warmup", "--yield-pressure", "--surface-energy"])?;
     let path = a.need(0, "the bed file")?;
     let model = a.get("--model").ok_or("--model is required: hooke, hertz, jkr, nan or any contact_model")?;
     let steps = a.number("--steps", 2000u64, |s| (1..=100_000_000).contains(s), "give a whole number in [1, 1e8]")?;
     let warmup = a.number("--warmup", 200u64, |s| *s <= 100_000_000, "give a whole number in [0, 1e8]")?;
     let threads = a.number("--threads", 1usize, |t| (1..=256).contains(t), "give a whole number in [1, 256]")?;
     let stiffness = a.number("--stiffness", 2e5f64, |k| k.is_finite() && *k > 0.0 && *k < 1e12, "give a spring stiffness in (0, 1e12) N/m")?;
-    let (mut engine, _) = with_model(path, model, stiffness, threads)?;
+    let yield_pressure =
+        a.number("--yield-pressure", 2e6f64, |p| p.is_finite() && *p > 0.0 && *p < 1e13, "give a yield pressure in (0, 1e13) Pa")?;
+    let surface_energy = match a.get("--surface-energy") {
+        None => None,
+        Some(_) => Some(a.number("--surface-energy", 0.0f64, |g| g.is_finite() && *g >= 0.0 && *g < 1e3, "give an interface energy in [0, 1e3) J/m^2")?),
+    };
+    let (mut engine, _) = with_model(path, model, stiffness, yield_pressure, surface_energy, threads, rolling)?;
     engine.run(warmup);
     let n = engine.particles().len();
     let start = Instant::now();
     engine.run(steps);
     let seconds = start.elapsed().as_secs_f64();
     let ke = engine.particles().kinetic_energy();
+    let builds = with_engine!(&engine, e => e.list.builds);
     println!(
-        "model={model} particles={n} steps={steps} threads={threads} dt={:.4e} seconds={seconds:.4} particle_steps_per_s={:.4e} bytes_per_particle={:.0} kinetic_energy={ke:.3e}",
+        "model={model} particles={n} steps={steps} threads={threads} dt={:.4e} seconds={seconds:.4} particle_steps_per_s={:.4e} bytes_per_particle={:.0} kinetic_energy={ke:.3e} list_builds={builds}",
         engine.dt(),
         n as f64 * steps as f64 / seconds,
         engine.memory_bytes() as f64 / n as f64

@@ -20,11 +20,10 @@ pub struct JkrCurve {
     b: f64,
     /// sqrt(a) at detachment (d alpha/ d a = 0): (b R / 4)^(1/3).
     w_detach: f64,
-    /// Detachment overlap, pull-off radius and overlap, and (2 b R)^(1/3): fixed per curve, kept.
+    /// Detachment overlap, pull-off radius and overlap: fixed per curve, kept.
     alpha_detach: f64,
     a_pull_off: f64,
     alpha_pull_off: f64,
-    cbrt_2br: f64,
 }
 
 impl JkrCurve {
@@ -41,7 +40,6 @@ impl JkrCurve {
             alpha_detach: 0.0,
             a_pull_off,
             alpha_pull_off: 0.0,
-            cbrt_2br: (2.0 * b * radius).cbrt(),
         };
         c.alpha_detach = c.overlap(w_detach * w_detach);
         c.alpha_pull_off = c.overlap(a_pull_off);
@@ -96,8 +94,11 @@ impl JkrCurve {
     }
 
     /// Contact radius on the stable branch (a >= detach radius) for an overlap; below the detachment
-    /// overlap the detachment radius. Newton's method on w = sqrt(a), started right of the root where the
-    /// quartic w^4/R - b w - alpha is convex and increasing, converges monotonically.
+    /// overlap the detachment radius. With w = sqrt(a), alpha(a) = a^2/R - b sqrt(a) is the depressed
+    /// quartic w^4 - b R w - alpha R = 0, solved in closed form (Ferrari): m > 0 solves the resolvent cubic
+    /// m^3 + alpha R m - (b R)^2 / 8 = 0 (Cardano, or its trigonometric form where it has three real
+    /// roots), and the largest root is w = (sqrt(2m) + sqrt(sqrt(2) b R / sqrt(m) - 2m)) / 2. One Newton
+    /// step on the quartic then polishes w to rounding (docs/models.md, JKR).
     pub fn contact_radius(&self, alpha: f64) -> f64 {
         if self.b == 0.0 {
             return (self.radius * alpha.max(0.0)).sqrt();
@@ -108,32 +109,65 @@ impl JkrCurve {
         }
         let r = self.radius;
         let wf = self.w_detach;
-        // Two starts that both lie right of the root (docs/models.md, JKR); take the tighter.
-        let curvature = 12.0 * wf * wf / r;
-        let near = wf + (2.0 * (alpha - alpha_f) / curvature).sqrt();
-        let far = (2.0 * r * alpha.abs()).sqrt().sqrt() + self.cbrt_2br;
-        let mut w = near.min(far);
-        let mut last_step = f64::INFINITY;
-        for _ in 0..100 {
-            let f = w.powi(4) / r - self.b * w - alpha;
-            let df = 4.0 * w.powi(3) / r - self.b;
-            if !(df > 0.0) {
-                break;
+        let p = alpha * r;
+        let q = 0.125 * (self.b * r).powi(2);
+        let disc = 0.25 * q * q + (p / 3.0).powi(3);
+        let m = if disc >= 0.0 {
+            let u = (0.5 * q + disc.sqrt()).cbrt();
+            let m = u - p / (3.0 * u);
+            // m = q / (m^2 + p) is the same root without the cancellation of u - p/(3u) when p is large.
+            if m * m + p > 0.0 {
+                q / (m * m + p)
+            } else {
+                m
             }
-            let step = f / df;
-            // From the right every step is positive and shrinking; a step that is not means the root is
-            // reached to rounding (near detachment the root is nearly double and rounding dominates).
-            if !(step > 0.0) || step >= last_step {
-                break;
-            }
-            w -= step;
-            last_step = step;
-            if step <= 4.0 * f64::EPSILON * w {
-                break;
+        } else {
+            let s = (-p / 3.0).sqrt();
+            2.0 * s * ((0.5 * q / (s * s * s)).clamp(-1.0, 1.0).acos() / 3.0).cos()
+        };
+        let root2m = (2.0 * m).sqrt();
+        let inner = (std::f64::consts::SQRT_2 * self.b * r / m.sqrt() - 2.0 * m).max(0.0);
+        let mut w = 0.5 * (root2m + inner.sqrt());
+        let df = 4.0 * w * w * w / r - self.b;
+        if df > 0.0 {
+            let step = (w.powi(4) / r - self.b * w - alpha) / df;
+            if step.abs() < 1e-6 * w {
+                w -= step;
             }
         }
         let w = w.max(wf);
         w * w
+    }
+}
+
+impl JkrCurve {
+    /// The contact radius of `alpha` by Newton's method on the quartic from a nearby radius `guess` (the
+    /// same contact a step earlier). On the stable branch the quartic increases and is convex, so from
+    /// either side Newton converges (from the left it first overshoots to the right); two or three
+    /// steps reach rounding. Falls back to the closed form without a usable guess.
+    pub fn contact_radius_from(&self, alpha: f64, guess: f64) -> f64 {
+        let wf = self.w_detach;
+        if self.b == 0.0 || alpha <= self.alpha_detach || !(guess > wf * wf * (1.0 + 1e-6)) {
+            return self.contact_radius(alpha);
+        }
+        let r = self.radius;
+        let mut w = guess.sqrt();
+        for _ in 0..8 {
+            let df = 4.0 * w * w * w / r - self.b;
+            if !(df > 0.0) {
+                break;
+            }
+            let step = (w * w * w * w / r - self.b * w - alpha) / df;
+            w -= step;
+            // Convergence is quadratic: after a step of relative size s the error is about
+            // (w f''/2f') s^2. Away from detachment (f' at least a tenth of its Hertz part) that factor
+            // is of order one, so a step below 1e-8 w leaves an error below rounding.
+            let settled = if df > 0.4 * w * w * w / r { 1e-8 * w } else { 4.0 * f64::EPSILON * w };
+            if step.abs() <= settled {
+                return w.max(wf).powi(2);
+            }
+        }
+        self.contact_radius(alpha)
     }
 }
 
@@ -221,6 +255,15 @@ impl NormalLaw for Jkr {
             return (Evaluation::separated(0.0, JkrHistory { established: false }), 0.0, None);
         }
         let a = self.curve.contact_radius(alpha);
+        let ev = on_curve_at(&self.curve, 0.0, a, JkrHistory { established: true });
+        (ev, 2.0 * self.curve.youngs_modulus * a, Some(a))
+    }
+
+    fn evaluate_near(&self, alpha: f64, h: &JkrHistory, guess: f64) -> (Evaluation<JkrHistory>, f64, Option<f64>) {
+        if (!h.established && alpha < 0.0) || alpha < self.curve.detach_overlap() {
+            return (Evaluation::separated(0.0, JkrHistory { established: false }), 0.0, None);
+        }
+        let a = self.curve.contact_radius_from(alpha, guess);
         let ev = on_curve_at(&self.curve, 0.0, a, JkrHistory { established: true });
         (ev, 2.0 * self.curve.youngs_modulus * a, Some(a))
     }

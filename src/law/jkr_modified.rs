@@ -75,4 +75,12 @@ impl NormalLaw for JkrModified {
         let a = self.curve.contact_radius(alpha);
         (self.elastic_at(a), 2.0 * self.curve.youngs_modulus * a, Some(a))
     }
+
+    fn evaluate_near(&self, alpha: f64, _h: &(), guess: f64) -> (Evaluation<()>, f64, Option<f64>) {
+        if alpha <= 0.0 {
+            return (Evaluation::separated(0.0, ()), 0.0, None);
+        }
+        let a = self.curve.contact_radius_from(alpha, guess);
+        (self.elastic_at(a), 2.0 * self.curve.youngs_modulus * a, Some(a))
+    }
 }

@@ -123,6 +123,14 @@ pub trait NormalLaw {
         (ev, k_damp, a)
     }
 
+    /// `evaluate_with_radius` with the contact radius of the same contact one step earlier as a starting
+    /// guess (0 if none): the JKR laws then polish it with two or three Newton steps instead of solving
+    /// their quartic from scratch. Other laws ignore the guess.
+    #[inline(always)]
+    fn evaluate_near(&self, alpha: f64, history: &Self::History, _radius_guess: f64) -> (Evaluation<Self::History>, f64, Option<f64>) {
+        self.evaluate_with_radius(alpha, history)
+    }
+
     /// The stiffness k_n of the viscous damping 2 gamma sqrt(m* k_n) (000 Eqs. 24-25) [N/m]: by default the
     /// magnitude of the branch stiffness. The JKR curves use 2 E* a, because their branch stiffness is
     /// infinite at detachment.
