@@ -73,6 +73,7 @@ def ensure_bed():
 
 
 ADHESIVE = {"jkr", "jkr_modified", "nan"}
+CONTACTS = {}  # force-carrying particle contacts per particle at the end of the last run of each model
 
 
 def powderfmu(model, steps, threads=1):
@@ -80,6 +81,7 @@ def powderfmu(model, steps, threads=1):
     out = run([str(BIN), "bed", "bench", str(BED), "--model", model, "--steps", str(steps), "--threads", str(threads),
                "--stiffness", str(KN), "--surface-energy", str(gamma), "--no-rolling"]).stdout
     fields = dict(kv.split("=", 1) for kv in out.split())
+    CONTACTS[model] = float(fields["contacts_per_particle"])
     return float(fields["particle_steps_per_s"]), float(fields["dt"]), float(fields["bytes_per_particle"]), int(fields["particles"])
 
 
@@ -137,12 +139,15 @@ def main():
             best = max(theirs, key=lambda t: statistics.median(peer[t]))
             y = statistics.median(peer[best])
             print(f"{ours}: powderfmu {x:.3e}, LAMMPS {y:.3e} particle-steps/s, ratio {x / y:.2f}"
-                  f"   ({name}; LAMMPS {best}{'; ' + ', '.join(f'{t} {statistics.median(peer[t]):.3e}' for t in theirs) if len(theirs) > 1 else ''})")
-            rows.append([ours, name, f"{x:.4e}", f"{y:.4e}", f"{x / y:.3f}", best, f"{bytes_ours:.0f}", f"{bytes_lammps:.0f}", f"{dt:.4e}"])
+                  f"   ({name}; {CONTACTS[ours]:.2f} contacts per particle; LAMMPS {best}"
+                  f"{'; ' + ', '.join(f'{t} {statistics.median(peer[t]):.3e}' for t in theirs) if len(theirs) > 1 else ''})")
+            rows.append([ours, name, f"{x:.4e}", f"{y:.4e}", f"{x / y:.3f}", best, f"{bytes_ours:.0f}", f"{bytes_lammps:.0f}", f"{dt:.4e}", f"{CONTACTS[ours]:.3f}"])
         else:
             h = results["hertz"]
-            print(f"{ours}: powderfmu {x:.3e} particle-steps/s, powderfmu Hertz-Mindlin {h:.3e}, ratio {x / h:.2f}   ({name}: no LAMMPS equivalent)")
-            rows.append([ours, name, f"{x:.4e}", "", f"{x / h:.3f}", "powderfmu hertz", f"{bytes_ours:.0f}", "", f"{dt:.4e}"])
+            per_contact = (x * CONTACTS[ours]) / (h * CONTACTS["hertz"])
+            print(f"{ours}: powderfmu {x:.3e} particle-steps/s, powderfmu Hertz-Mindlin {h:.3e}, ratio {x / h:.2f}   ({name}, no LAMMPS equivalent;"
+                  f" {CONTACTS[ours]:.2f} contacts per particle against Hertz's {CONTACTS['hertz']:.2f}: contact-steps per second, ratio {per_contact:.2f})")
+            rows.append([ours, name, f"{x:.4e}", f"{h:.4e}", f"{x / h:.3f}", "powderfmu hertz", f"{bytes_ours:.0f}", "", f"{dt:.4e}", f"{CONTACTS[ours]:.3f}"])
     for model in ["jkr_modified", "hertz"]:
         one, two = [], []
         for _ in range(args.repeats):
@@ -150,13 +155,13 @@ def main():
             two.append(powderfmu(model, args.steps, 2)[0])
         speedup = statistics.median(two) / statistics.median(one)
         print(f"2-thread speed-up ({model}): {speedup:.2f} ({statistics.median(one):.3e} -> {statistics.median(two):.3e} particle-steps/s)")
-        rows.append([f"{model}_2_threads", "2-thread speed-up", f"{statistics.median(two):.4e}", f"{statistics.median(one):.4e}", f"{speedup:.3f}", "powderfmu 1 thread", "", "", ""])
+        rows.append([f"{model}_2_threads", "2-thread speed-up", f"{statistics.median(two):.4e}", f"{statistics.median(one):.4e}", f"{speedup:.3f}", "powderfmu 1 thread", "", "", "", ""])
     print(f"memory: powderfmu {rows[1][6]} bytes per particle (engine arrays, Hertz-Mindlin, 1 thread), LAMMPS {rows[1][7]} bytes per particle (its per-rank allocation)")
     out = ROOT / "docs" / "figures" / "vs_lammps.csv"
     with open(out, "w", newline="") as f:
         w = csv.writer(f)
         w.writerow(["model", "name", "powderfmu_particle_steps_per_s", "reference_particle_steps_per_s", "ratio", "reference",
-                    "powderfmu_bytes_per_particle", "lammps_bytes_per_particle", "dt_s"])
+                    "powderfmu_bytes_per_particle", "lammps_bytes_per_particle", "dt_s", "contacts_per_particle"])
         w.writerows(rows)
     print(f"written {out.relative_to(ROOT)}")
 

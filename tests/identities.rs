@@ -139,6 +139,12 @@ fn jkr_curve_obeys_appendix_b() {
     for alpha in [c.detach_overlap() * 0.999, -1e-9, 0.0, 1e-9, 1e-7, 1e-5] {
         let a = c.contact_radius(alpha);
         assert!((c.overlap(a) - alpha).abs() < 1e-12 * alpha.abs().max(1e-9), "alpha {alpha}");
+        // The DEM bed's warm start (Newton from the radius one step earlier, 1 % away on either side,
+        // or from nothing) finds the same radius.
+        for guess in [0.0, 0.99 * a, 1.01 * a] {
+            let b = c.contact_radius_from(alpha, guess);
+            assert!(rel(b, a) < 1e-13, "alpha {alpha}, guess {guess}: {b} vs {a}");
+        }
     }
 }
 

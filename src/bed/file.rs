@@ -18,7 +18,7 @@ use std::io::Write;
 use std::path::Path;
 
 pub const MAGIC: &[u8; 8] = b"PFBED\0\0\0";
-pub const VERSION: u32 = 1;
+pub const VERSION: u32 = 2;
 
 /// What a bed file holds.
 #[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]

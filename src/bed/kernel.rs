@@ -39,7 +39,10 @@ pub fn contact<L: BedLaw>(
 ) -> Option<ContactForce> {
     let law = &it.law;
     let (ev, k_damp, radius) = law.evaluate_near(alpha, history, *radius_guess);
-    *history = ev.history;
+    // Most contacts keep their history from step to step: skip the store (Nan's is 72 bytes).
+    if ev.history != *history {
+        *history = ev.history;
+    }
     *radius_guess = radius.unwrap_or(0.0);
     if !ev.branch.in_contact() {
         *spring = [0.0; 3];

@@ -320,11 +320,13 @@ fn bench_cmd(args: &[String]) -> Result<(), String> {
     let seconds = start.elapsed().as_secs_f64();
     let ke = engine.particles().kinetic_energy();
     let builds = with_engine!(&engine, e => e.list.builds);
+    let (contacts, _) = with_engine!(&engine, e => e.contact_statistics());
     println!(
-        "model={model} particles={n} steps={steps} threads={threads} dt={:.4e} seconds={seconds:.4} particle_steps_per_s={:.4e} bytes_per_particle={:.0} kinetic_energy={ke:.3e} list_builds={builds}",
+        "model={model} particles={n} steps={steps} threads={threads} dt={:.4e} seconds={seconds:.4} particle_steps_per_s={:.4e} bytes_per_particle={:.0} kinetic_energy={ke:.3e} list_builds={builds} contacts_per_particle={:.3}",
         engine.dt(),
         n as f64 * steps as f64 / seconds,
-        engine.memory_bytes() as f64 / n as f64
+        engine.memory_bytes() as f64 / n as f64,
+        contacts as f64 / n as f64
     );
     Ok(())
 }

@@ -65,10 +65,12 @@ impl TangentialSpring {
             self.force[i] -= k_t * increment[i];
         }
         let limit = mu * sliding_normal_force.max(0.0);
-        let norm = (self.force[0].powi(2) + self.force[1].powi(2) + self.force[2].powi(2)).sqrt();
-        if norm <= limit {
+        // Compared squared: a sticking contact (the common case in a bed at rest) needs no square root.
+        let norm2 = self.force[0].powi(2) + self.force[1].powi(2) + self.force[2].powi(2);
+        if norm2 <= limit * limit {
             return (self.force, false);
         }
+        let norm = norm2.sqrt();
         let scale = if norm > 0.0 { limit / norm } else { 0.0 };
         for f in &mut self.force {
             *f *= scale;
