@@ -79,7 +79,7 @@ CONTACTS = {}  # force-carrying particle contacts per particle at the end of the
 def powderfmu(model, steps, threads=1):
     gamma = GAMMA if model in ADHESIVE else 0.0
     out = run([str(BIN), "bed", "bench", str(BED), "--model", model, "--steps", str(steps), "--threads", str(threads),
-               "--stiffness", str(KN), "--surface-energy", str(gamma), "--no-rolling"]).stdout
+               "--stiffness", str(KN), "--surface-energy", str(gamma), "--rolling-friction", "0"]).stdout
     fields = dict(kv.split("=", 1) for kv in out.split())
     CONTACTS[model] = float(fields["contacts_per_particle"])
     return float(fields["particle_steps_per_s"]), float(fields["dt"]), float(fields["bytes_per_particle"]), int(fields["particles"])

@@ -16,7 +16,7 @@ pub const USAGE: &str = "  powderfmu bed prepare SCENE.json [-o BED] [--threads 
   powderfmu bed render BED OUT.png [--width PX]         vertical cross-section through the die axis
   powderfmu bed export-lammps BED OUT.data              LAMMPS data file (atom_style sphere)
   powderfmu bed bench BED --model M [--steps N] [--threads T] [--stiffness K] [--yield-pressure P]
-                        [--surface-energy G] [--no-rolling]
+                        [--surface-energy G] [--rolling-friction MU]
                                                         particle-steps per second of the force loop";
 
 pub fn run(args: &[String]) -> Result<(), String> {
@@ -252,7 +252,15 @@ fn export_cmd(args: &[String]) -> Result<(), String> {
 }
 
 /// The bed of `path` under another law: same positions and walls, contacts start fresh.
-fn with_model(path: &str, model: &str, stiffness: f64, yield_pressure: f64, surface_energy: Option<f64>, threads: usize, rolling: bool) -> Result<(AnyEngine, BedScene), String> {
+fn with_model(
+    path: &str,
+    model: &str,
+    stiffness: f64,
+    yield_pressure: f64,
+    surface_energy: Option<f64>,
+    threads: usize,
+    rolling: Option<f64>,
+) -> Result<(AnyEngine, BedScene), String> {
     let bytes = std::fs::read(path).map_err(|e| format!("cannot read bed file `{path}`: {e}"))?;
     let mut f: BedFile = file::decode(&bytes).map_err(|e| format!("{path}: {e}"))?;
     let mut scene: serde_json::Value = serde_json::from_str(&f.scene).map_err(|e| e.to_string())?;
@@ -272,9 +280,9 @@ fn with_model(path: &str, model: &str, stiffness: f64, yield_pressure: f64, surf
         }
     }
     scene["threads"] = threads.into();
-    if !rolling {
-        scene["rolling_friction"] = 0.0.into();
-        scene["wall_rolling_friction"] = 0.0.into();
+    if let Some(mu_r) = rolling {
+        scene["rolling_friction"] = mu_r.into();
+        scene["wall_rolling_friction"] = mu_r.into();
     }
     f.scene = scene.to_string();
     f.contacts = bincode_empty_pairs();
@@ -296,10 +304,11 @@ fn bincode_empty_walls(walls: usize) -> Vec<u8> {
 }
 
 fn bench_cmd(args: &[String]) -> Result<(), String> {
-    // `--no-rolling` is a flag without value.
-    let rolling = !args.iter().any(|a| a == "--no-rolling");
-    let args: Vec<String> = args.iter().filter(|a| *a != "--no-rolling").cloned().collect();
-    let a = parse(&args, &["--model", "--steps", "--threads", "--stiffness", "--warmup", "--yield-pressure", "--surface-energy"])?;
+    let a = parse(args, &["--model", "--steps", "--threads", "--stiffness", "--warmup", "--yield-pressure", "--surface-energy", "--rolling-friction"])?;
+    let rolling = match a.get("--rolling-friction") {
+        None => None,
+        Some(_) => Some(a.number("--rolling-friction", 0.0f64, |m| m.is_finite() && *m >= 0.0 && *m < 10.0, "give a rolling friction coefficient in [0, 10)")?),
+    };
     let path = a.need(0, "the bed file")?;
     let model = a.get("--model").ok_or("--model is required: hooke, hertz, jkr, nan or any contact_model")?;
     let steps = a.number("--steps", 2000u64, |s| (1..=100_000_000).contains(s), "give a whole number in [1, 1e8]")?;

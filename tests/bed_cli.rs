@@ -1,0 +1,84 @@
+//! `powderfmu bed ...` as a user runs it: prepare a small soft bed, read it back with every subcommand,
+//! and bad input that must fail with a message, exit code 2 and no file written.
+
+use std::path::PathBuf;
+use std::process::Command;
+
+fn run(args: &[&str]) -> (i32, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_powderfmu")).args(args).output().unwrap();
+    (out.status.code().unwrap_or(-1), String::from_utf8_lossy(&out.stdout).into(), String::from_utf8_lossy(&out.stderr).into())
+}
+
+/// A folder of this test's own (the tests run in parallel).
+fn dir(test: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("powderfmu-bed-cli-{}-{test}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+#[test]
+fn prepare_then_info_snapshot_render_export_and_bench() {
+    let d = dir("prepare");
+    let scene = d.join("small.json");
+    std::fs::write(&scene, r#"{"particle_particle": {"particle_youngs_modulus": 55e6}, "particle_count": 120, "die_diameter": 0.007}"#).unwrap();
+    let bed = d.join("small.bed");
+    let (code, out, err) = run(&["bed", "prepare", scene.to_str().unwrap(), "-o", bed.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    // Progress lines (not a terminal here) up to 100 %, and the consolidation report.
+    assert!(err.contains("settle") && err.contains("100%"), "{err}");
+    assert!(out.contains("consolidation stress reached") && out.contains("bed written to"), "{out}");
+    let (code, out, err) = run(&["bed", "info", bed.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    for field in ["particles:            120", "bed height:", "solid fraction:", "coordination number:", "mean overlap:", "sigma_zz"] {
+        assert!(out.contains(field), "`{field}` missing in\n{out}");
+    }
+    let solid: f64 = out.lines().find(|l| l.starts_with("solid fraction")).unwrap().split_whitespace().last().unwrap().parse().unwrap();
+    assert!(solid > 0.3 && solid < 0.74, "solid fraction {solid}");
+    let vtk = d.join("small.vtk");
+    assert_eq!(run(&["bed", "snapshot", bed.to_str().unwrap(), vtk.to_str().unwrap()]).0, 0);
+    let text = std::fs::read_to_string(&vtk).unwrap();
+    assert!(text.starts_with("# vtk DataFile") && text.contains("POINTS 120 double") && text.contains("SCALARS radius"));
+    let csv = d.join("small.csv");
+    assert_eq!(run(&["bed", "snapshot", bed.to_str().unwrap(), csv.to_str().unwrap()]).0, 0);
+    assert_eq!(std::fs::read_to_string(&csv).unwrap().lines().count(), 121);
+    let png = d.join("small.png");
+    let (code, out, _) = run(&["bed", "render", bed.to_str().unwrap(), png.to_str().unwrap(), "--width", "200"]);
+    assert_eq!(code, 0);
+    assert!(out.contains("spheres cut"), "{out}");
+    assert_eq!(&std::fs::read(&png).unwrap()[..8], b"\x89PNG\r\n\x1a\n");
+    let data = d.join("small.data");
+    assert_eq!(run(&["bed", "export-lammps", bed.to_str().unwrap(), data.to_str().unwrap()]).0, 0);
+    let text = std::fs::read_to_string(&data).unwrap();
+    assert!(text.contains("120 atoms") && text.contains("Atoms # sphere") && text.contains("Velocities"));
+    let (code, out, err) = run(&["bed", "bench", bed.to_str().unwrap(), "--model", "hertz", "--steps", "50", "--warmup", "0"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("particle_steps_per_s=") && out.contains("bytes_per_particle="), "{out}");
+    std::fs::remove_dir_all(&d).unwrap();
+}
+
+#[test]
+fn bad_input_fails_by_name_and_writes_nothing() {
+    let d = dir("bad");
+    let scene = d.join("many.json");
+    std::fs::write(&scene, r#"{"particle_count": 100000, "die_height": 0.02}"#).unwrap();
+    let (code, _, err) = run(&["bed", "prepare", scene.to_str().unwrap()]);
+    assert_eq!(code, 2);
+    assert!(err.contains("insertion impossible") && err.contains("die_height"), "{err}");
+    std::fs::write(&scene, r#"{"time_step": 1e-3}"#).unwrap();
+    let (code, _, err) = run(&["bed", "prepare", scene.to_str().unwrap()]);
+    assert_eq!(code, 2);
+    assert!(err.contains("time_step") && err.contains("stability limit"), "{err}");
+    let (code, _, err) = run(&["bed", "prepare", scene.to_str().unwrap(), "--until", "lunch"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("--until") && err.contains("settle"), "{err}");
+    let junk = d.join("junk.bed");
+    std::fs::write(&junk, b"PFBED\0\0\0\x02\0\0\0\xff\xff\0\0\0\0\0\0").unwrap();
+    let (code, _, err) = run(&["bed", "info", junk.to_str().unwrap()]);
+    assert_eq!(code, 2);
+    assert!(err.contains("truncated"), "{err}");
+    // Only the two inputs are in the folder: nothing half-written.
+    let mut names: Vec<String> = std::fs::read_dir(&d).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
+    names.sort();
+    assert_eq!(names, vec!["junk.bed".to_string(), "many.json".to_string()]);
+    std::fs::remove_dir_all(&d).unwrap();
+}
