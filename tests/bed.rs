@@ -278,32 +278,42 @@ fn a_settled_column_follows_janssen_saturation() {
     // The die wall carries a real share of the weight by friction, and the two add up to it.
     assert!(rel(floor + wall_vertical, weight) < 0.02, "floor {floor} + wall {wall_vertical} vs weight {weight}");
     assert!(floor < 0.9 * weight, "floor {floor} N of {weight} N: the wall carries too little");
-    // The vertical stress profile (Bagi, slices two diameters thick over the whole cross-section)
-    // against Janssen's sigma(depth) = rho_b g lambda (1 - exp(-depth / lambda)), lambda = D / (4 mu K).
+    // Janssen: sigma_v(depth) = rho_b g lambda (1 - exp(-depth / lambda)), lambda = D / (4 mu K), so the
+    // floor carries the fraction (lambda / H)(1 - exp(-H / lambda)) of the weight. The floor force is
+    // exact (a wall reaction), so lambda is taken from it; slice-by-slice stresses in a column five
+    // spheres wide scatter by 20-30 % from seed to seed, the floor fraction by a few per cent.
     let area = std::f64::consts::PI * 0.25 * scene.die_diameter.powi(2);
     let rho_b = weight / (scene.gravity * area * h);
     let die_r = 0.5 * scene.die_diameter;
-    let mut profile = vec![];
-    let mut z = d;
-    while z + 2.0 * d < h - d {
-        let s = bagi(&mut e, &Region { radius: die_r, z_low: z, z_high: z + 2.0 * d });
-        profile.push((h - (z + d), s.get(2, 2)));
-        z += 2.0 * d;
-    }
-    let janssen = |lambda: f64, depth: f64| rho_b * scene.gravity * lambda * (1.0 - (-depth / lambda).exp());
-    let misfit = |lambda: f64| (profile.iter().map(|&(y, s)| (s - janssen(lambda, y)).powi(2)).sum::<f64>() / profile.iter().map(|p| p.1 * p.1).sum::<f64>()).sqrt();
-    let lambda = (1..=400).map(|k| k as f64 * 0.05 * d).min_by(|a, b| misfit(*a).total_cmp(&misfit(*b))).unwrap();
-    assert!(profile.len() >= 6, "{} slices", profile.len());
-    assert!(misfit(lambda) < 0.15, "Janssen misfit {} with lambda {lambda} m; profile {profile:?}", misfit(lambda));
-    // It saturates: lambda is well inside the column, and the deepest stress is well below hydrostatic.
-    assert!(lambda < 0.5 * h, "lambda {lambda} m in a column {h} m high");
-    let (deepest, s_deep) = profile[0];
-    assert!(s_deep < 0.8 * rho_b * scene.gravity * deepest, "sigma {s_deep} Pa at depth {deepest} m");
-    // The friction it implies, D / (4 lambda K) with K from the same slices, is what the wall can give.
-    let mid = bagi(&mut e, &Region { radius: die_r, z_low: 0.3 * h, z_high: 0.7 * h });
+    let fraction = floor / weight;
+    let lambda = {
+        let share = |l: f64| l / h * (1.0 - (-h / l).exp());
+        let (mut lo, mut hi) = (1e-6 * h, 1e3 * h);
+        for _ in 0..200 {
+            let mid = (lo * hi).sqrt();
+            if share(mid) < fraction {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        lo
+    };
+    // Saturation: the column is several lambda deep.
+    assert!(h > 3.0 * lambda, "lambda {lambda} m in a column {h} m high (floor carries {fraction})");
+    // Below three lambda the stress is saturated at rho_b g lambda (Bagi over the whole lower region), far
+    // below the hydrostatic stress there.
+    let deep = bagi(&mut e, &Region { radius: die_r, z_low: d, z_high: (h - 3.0 * lambda).max(2.0 * d) }).get(2, 2);
+    let saturated = rho_b * scene.gravity * lambda;
+    assert!(rel(deep, saturated) < 0.25, "sigma_zz below 3 lambda: {deep} Pa, Janssen's saturation {saturated} Pa");
+    assert!(deep < 0.5 * rho_b * scene.gravity * (h - 0.5 * (h - 3.0 * lambda)), "sigma_zz {deep} Pa is not saturated");
+    // The friction it implies, D / (4 lambda K) with K the ratio of horizontal to vertical stress in the
+    // column, is what the wall can give: mobilized, and at most mu_w.
+    let mid = bagi(&mut e, &Region { radius: die_r, z_low: 0.2 * h, z_high: 0.8 * h });
     let k = 0.5 * (mid.get(0, 0) + mid.get(1, 1)) / mid.get(2, 2);
+    assert!(k > 0.2 && k < 1.5, "K = {k}");
     let mu_mobilized = scene.die_diameter / (4.0 * lambda * k);
-    assert!(mu_mobilized > 0.05 && mu_mobilized <= 1.05 * mu_w, "mobilized wall friction {mu_mobilized} (K = {k}, mu_w = {mu_w})");
+    assert!(mu_mobilized > 0.2 * mu_w && mu_mobilized <= mu_w, "mobilized wall friction {mu_mobilized} (K = {k}, mu_w = {mu_w})");
 }
 
 // ---------------------------------------------------------------------------------------------------

@@ -63,6 +63,9 @@ pub struct Interaction<L: BedLaw> {
     pub damping_elastic: f64,
     pub damping_plastic: f64,
     pub tangential: TangentialStiffness,
+    /// sqrt(k_t / k_n) where that ratio is the same at every overlap for this pair (k_n the damping
+    /// stiffness): then the tangential damping needs no square root of its own. Found by probing.
+    pub tangential_root_ratio: Option<f64>,
     /// Sliding friction coefficient mu [-].
     pub friction: f64,
     /// Rolling friction coefficient mu_r [-] (constant directional torque mu_r |F_n| R, EDEM's model).
@@ -91,12 +94,14 @@ impl<L: BedLaw> Interaction<L> {
             damping_elastic: 2.0 * gamma(damping.restitution, damping.beta_elastic) * mass.sqrt(),
             damping_plastic: 2.0 * gamma(damping.restitution, damping.beta_plastic) * mass.sqrt(),
             tangential: TangentialStiffness::for_model(model, eff.shear_modulus, eff.youngs_modulus, eff.radius),
+            tangential_root_ratio: None,
             friction: scene.friction_coefficient,
             rolling_friction,
             mass,
             radius,
         };
         it.reach = it.probe_reach();
+        it.tangential_root_ratio = it.probe_tangential_ratio();
         Ok(it)
     }
 
@@ -153,6 +158,29 @@ impl<L: BedLaw> Interaction<L> {
             }
         }
         1.1 * reach.max(0.0)
+    }
+
+    /// sqrt(k_t / k_n) if it is one constant along loading and unloading (to 1e-12), else None.
+    fn probe_tangential_ratio(&self) -> Option<f64> {
+        let mut h = self.initial;
+        let mut ratio: Option<f64> = None;
+        let path = (1..=40).map(|k| k as f64 / 40.0).chain((0..40).map(|k| 1.0 - k as f64 / 40.0 * 0.9));
+        for x in path {
+            let alpha = 1e-2 * self.radius * x;
+            let (ev, k_damp, a) = self.law.evaluate_with_radius(alpha, &h);
+            h = ev.history;
+            if !ev.branch.in_contact() || !(k_damp > 0.0) {
+                continue;
+            }
+            let load = self.law.sliding_normal_force(ev.force, alpha, &h);
+            let q = self.tangential.at(alpha, ev.stiffness, load, a) / k_damp.abs();
+            match ratio {
+                None => ratio = Some(q),
+                Some(r) if ((q - r) / r).abs() <= 1e-12 => {}
+                Some(_) => return None,
+            }
+        }
+        ratio.filter(|r| r.is_finite() && *r > 0.0).map(f64::sqrt)
     }
 
     /// The normal damping coefficient for a branch of stiffness `k` [N s/m] (000 Eqs. 24-26).
