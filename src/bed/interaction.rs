@@ -182,10 +182,4 @@ impl<L: BedLaw> Interaction<L> {
         }
         ratio.filter(|r| r.is_finite() && *r > 0.0).map(f64::sqrt)
     }
-
-    /// The normal damping coefficient for a branch of stiffness `k` [N s/m] (000 Eqs. 24-26).
-    #[inline(always)]
-    pub fn damping(&self, k: f64, yielded: bool) -> f64 {
-        (if yielded { self.damping_plastic } else { self.damping_elastic }) * k.abs().sqrt()
-    }
 }

@@ -43,18 +43,6 @@ impl NeighborList {
         &self.reference
     }
 
-    /// Whether some particle moved more than `limit` since the last build (or none was done).
-    pub fn stale(&self, position: &[Vec3], limit: f64) -> bool {
-        if self.reference.len() != position.len() {
-            return true;
-        }
-        let l2 = limit * limit;
-        position.iter().zip(&self.reference).any(|(x, r)| {
-            let d = super::sub(*x, *r);
-            super::dot(d, d) > l2
-        })
-    }
-
     /// Rebuilds the list for these positions and radii.
     pub fn build(&mut self, position: &[Vec3], radius: &[f64]) {
         let n = position.len();
