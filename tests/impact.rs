@@ -7,7 +7,7 @@ use common::*;
 use powderfmu::impact::{Contact, Solver, Sphere, Wall};
 use powderfmu::law::damping::NormalDamping;
 use powderfmu::law::params::Effective;
-use powderfmu::law::{AnyLaw, Branch, NormalLaw};
+use powderfmu::law::{AnyLaw, Branch};
 use powderfmu::scene::{ModelKind, Scene};
 use powderfmu::theory::{energy_balance, restitution};
 
@@ -88,7 +88,7 @@ fn exact_rebounds_as_the_closed_form_to_1e_12_for_every_piecewise_linear_law() {
         let (_, m) = sphere(&s, 1e-10);
         for v in [3.0, 5.0, 20.0] {
             let want = restitution::closed_form(&law, m, v).unwrap();
-            let (y, max, sp) = run_with(&s, v, Solver::Exact, 0.0);
+            let (y, max, _sp) = run_with(&s, v, Solver::Exact, 0.0);
             assert!(rel(y[1], want.rebound_velocity) < 1e-12, "{model:?} at {v} m/s: rebound {} vs energy balance {}", y[1], want.rebound_velocity);
             assert!(rel(max, want.max_overlap) < 1e-12, "{model:?}: max overlap {max:e} vs {:e}", want.max_overlap);
             let lost = 0.5 * m * (v * v - y[1] * y[1]);
