@@ -573,40 +573,31 @@ impl<L: BedLaw> Engine<L> {
             + acc(&self.total)
     }
 
-    /// Contacts carrying force now, and their mean overlap [m] (particle-particle only).
-    pub fn contact_statistics(&self) -> (usize, f64) {
+    /// The particle-particle pairs in contact now: (i, j, overlap [m]).
+    fn touching(&self) -> impl Iterator<Item = (usize, usize, f64)> + '_ {
         let p = &self.particles;
-        let mut count = 0;
-        let mut sum = 0.0;
-        for i in 0..self.list.rows() {
-            for (k, &j) in (self.list.start[i] as usize..).zip(self.list.row(i)) {
+        (0..self.list.rows()).flat_map(move |i| {
+            (self.list.start[i] as usize..).zip(self.list.row(i)).filter_map(move |(k, &j)| {
                 let j = j as usize;
                 let alpha = p.radius[i] + p.radius[j] - super::norm(sub(p.position[j], p.position[i]));
                 let it = &self.pairs[p.species[i] as usize * self.species + p.species[j] as usize];
-                let ev = law::NormalLaw::evaluate(&it.law, alpha, &self.normal[k]);
-                if ev.branch.in_contact() {
-                    count += 1;
-                    sum += alpha;
-                }
-            }
-        }
+                law::NormalLaw::evaluate(&it.law, alpha, &self.normal[k]).branch.in_contact().then_some((i, j, alpha))
+            })
+        })
+    }
+
+    /// Contacts carrying force now, and their mean overlap [m] (particle-particle only).
+    pub fn contact_statistics(&self) -> (usize, f64) {
+        let (count, sum) = self.touching().fold((0usize, 0.0), |(c, s), (_, _, alpha)| (c + 1, s + alpha));
         (count, if count > 0 { sum / count as f64 } else { 0.0 })
     }
 
-    /// Per particle: number of particle and wall contacts carrying force now.
+    /// Per particle: number of particle contacts carrying force now.
     pub fn coordination(&self) -> Vec<u32> {
-        let p = &self.particles;
-        let mut z = vec![0u32; p.len()];
-        for i in 0..self.list.rows() {
-            for (k, &j) in (self.list.start[i] as usize..).zip(self.list.row(i)) {
-                let j = j as usize;
-                let alpha = p.radius[i] + p.radius[j] - super::norm(sub(p.position[j], p.position[i]));
-                let it = &self.pairs[p.species[i] as usize * self.species + p.species[j] as usize];
-                if law::NormalLaw::evaluate(&it.law, alpha, &self.normal[k]).branch.in_contact() {
-                    z[i] += 1;
-                    z[j] += 1;
-                }
-            }
+        let mut z = vec![0u32; self.particles.len()];
+        for (i, j, _) in self.touching() {
+            z[i] += 1;
+            z[j] += 1;
         }
         z
     }

@@ -18,7 +18,10 @@ pub struct BedScene {
     /// `particle_particle` with the `particle_wall` keys laid over it.
     pub particle_wall: Map<String, Value>,
     pub model: ModelKind,
+    /// The particles' density [kg/m^3], Young's modulus [Pa] and Poisson ratio, as `particle_particle` gives them.
     pub density: f64,
+    pub youngs_modulus: f64,
+    pub poisson_ratio: f64,
     pub rolling_friction: f64,
     pub wall_rolling_friction: f64,
     pub size_distribution: SizeDistribution,
@@ -183,6 +186,8 @@ impl BedScene {
         Ok(BedScene {
             model: scene_pp.contact_model,
             density: scene_pp.particle_density,
+            youngs_modulus: scene_pp.particle_youngs_modulus,
+            poisson_ratio: scene_pp.particle_poisson_ratio,
             particle_particle: pp,
             particle_wall: pw,
             rolling_friction: check_closed_low("rolling_friction", num("rolling_friction", 0.1)?, 0.0, 10.0, "-")?,
@@ -240,9 +245,7 @@ impl BedScene {
 
     /// The Rayleigh time of the smallest sphere (000 Eq. 71) [s]: the stability limit of the step.
     pub fn rayleigh_time(&self) -> f64 {
-        let e = self.particle_particle.get("particle_youngs_modulus").and_then(Value::as_f64).unwrap_or(55e9);
-        let nu = self.particle_particle.get("particle_poisson_ratio").and_then(Value::as_f64).unwrap_or(0.25);
-        let g = e / (2.0 * (1.0 + nu));
-        crate::theory::time_step::rayleigh_time_step(0.5 * self.size_distribution.min_diameter(), self.density, g, nu)
+        let (e, nu) = (self.youngs_modulus, self.poisson_ratio);
+        crate::theory::time_step::rayleigh_time_step(0.5 * self.size_distribution.min_diameter(), self.density, e / (2.0 * (1.0 + nu)), nu)
     }
 }
