@@ -143,7 +143,7 @@ fn accepting_the_same_point_twice_changes_nothing() {
     let (history, branch) = (c.history, c.accepted.branch);
     c.accept(40e-9, 1.0);
     assert_eq!((c.history, c.accepted.branch), (history, branch));
-    assert_eq!(c.branch_at(40e-9, 1.0), Branch::Plastic, "plastic loading goes on at the accepted point");
+    assert_eq!(c.force(40e-9, 1.0).branch, Branch::Plastic, "plastic loading goes on at the accepted point");
     c.accept(40e-9, -1.0);
     assert_eq!(c.accepted.branch, Branch::Elastic, "unloading from the turning point");
     assert_eq!(c.history, history);

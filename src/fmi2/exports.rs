@@ -425,7 +425,7 @@ pub unsafe extern "C" fn fmi2SetString(c: fmi2Component, vr: *const fmi2ValueRef
 pub unsafe extern "C" fn fmi2GetFMUstate(c: fmi2Component, FMUstate: *mut fmi2FMUstate) -> fmi2Status {
     call(c, "fmi2GetFMUstate", allowed::ANY_LIVE, |inst| {
         let p = out(FMUstate, "fmi2GetFMUstate", "FMUstate")?;
-        let bytes = inst.save();
+        let bytes = inst.save()?;
         let existing = *p;
         if !existing.is_null() && live(&STATES, existing as usize) {
             // SAFETY: a live state pointer came from Box::into_raw of a SavedState.
@@ -576,10 +576,10 @@ pub unsafe extern "C" fn fmi2CompletedIntegratorStep(
     enterEventMode: *mut fmi2Boolean,
     terminateSimulation: *mut fmi2Boolean,
 ) -> fmi2Status {
-    me(c, "fmi2CompletedIntegratorStep", allowed::COMPLETED_INTEGRATOR_STEP, |inst| {
+    me(c, "fmi2CompletedIntegratorStep", allowed::COMPLETED_INTEGRATOR_STEP, |_inst| {
         let e = out(enterEventMode, "fmi2CompletedIntegratorStep", "enterEventMode")?;
         let t = out(terminateSimulation, "fmi2CompletedIntegratorStep", "terminateSimulation")?;
-        inst.accept();
+        // Nothing to do: between events the units stay on the branch of the last event (DESIGN 6).
         *e = fmi2False;
         *t = fmi2False;
         Ok(())

@@ -237,10 +237,10 @@ impl Instance {
 
     /// Builds the model's initial state from the current values.
     fn initialize_model(&mut self, function: &str) -> Call {
-        match self.model.initialize(&self.values, self.time) {
+        match self.model.initialize(&self.values, self.time, self.kind == Kind::ModelExchange) {
             Ok(()) => {
                 self.model_ready = true;
-                self.model.compute(&mut self.values);
+                self.model.compute(&mut self.values, false);
                 Ok(())
             }
             Err(message) => {
@@ -262,7 +262,8 @@ impl Instance {
             self.initialize_model(function)?;
         }
         if self.model_ready {
-            self.model.compute(&mut self.values);
+            let between_events = self.kind == Kind::ModelExchange && self.mode == Mode::ContinuousTimeMode;
+            self.model.compute(&mut self.values, between_events);
         }
         Ok(())
     }
@@ -398,7 +399,7 @@ impl Instance {
         Ok(())
     }
 
-    /// Event iteration or a completed integrator step: the history accepts the current state.
+    /// Event iteration (fmi2NewDiscreteStates): the history accepts the current state.
     pub fn accept(&mut self) {
         if let Some(message) = self.model.accept(&self.values) {
             self.log(fmi2OK, "logEvents", &message);
@@ -427,8 +428,10 @@ impl Instance {
         }
     }
 
-    pub fn save(&self) -> Vec<u8> {
-        snapshot::write(self)
+    /// The saved state; a model that cannot serialize itself is an error the host sees (fmi2Error), never
+    /// an empty state that would restore as "not initialized".
+    pub fn save(&self) -> Call<Vec<u8>> {
+        snapshot::write(self).map_err(|m| Failure { status: fmi2Error, message: format!("FMU state not saved: {m}"), enters_error_state: false })
     }
 
     pub fn restore(&mut self, bytes: &[u8]) -> Call {

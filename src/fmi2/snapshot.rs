@@ -11,7 +11,7 @@ use crate::units::variables::{Value, VarType};
 use crate::units::UnitInfo;
 
 const MAGIC: &[u8; 8] = b"PFMUSTAT";
-pub const VERSION: u32 = 1;
+pub const VERSION: u32 = 2;
 
 /// What a saved state holds.
 pub struct Saved {
@@ -25,7 +25,7 @@ pub struct Saved {
     pub model: Vec<u8>,
 }
 
-pub fn write(inst: &Instance) -> Vec<u8> {
+pub fn write(inst: &Instance) -> Result<Vec<u8>, String> {
     let mut b = Vec::with_capacity(4096);
     b.extend_from_slice(MAGIC);
     b.extend_from_slice(&VERSION.to_le_bytes());
@@ -59,12 +59,12 @@ pub fn write(inst: &Instance) -> Vec<u8> {
             }
         }
     }
-    let model = inst.model.save();
+    let model = inst.model.save()?;
     b.extend_from_slice(&(model.len() as u32).to_le_bytes());
     b.extend_from_slice(&model);
     let sum = fnv1a(&b);
     b.extend_from_slice(&sum.to_le_bytes());
-    b
+    Ok(b)
 }
 
 fn put_str(b: &mut Vec<u8>, s: &str) {

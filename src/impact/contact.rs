@@ -8,18 +8,25 @@
 //!   third is the overlap rate, so that every turning point (the largest overlap) is landed on.
 //!   A bound that moves with the overlap (plastic loading, where alpha_max follows alpha) is watched through
 //!   the sign of the overlap rate instead, so the turning point, where the history must be taken, is an
-//!   event too. Indicators carry a small hysteresis (DESIGN 6), and an accepted state at a branch point is
-//!   nudged in the direction of motion, so the branch just entered is the one the motion goes into.
+//!   event too. Indicators carry a small hysteresis (DESIGN 6), so an event lands just beyond its bound.
+//! - Between events, trial evaluations stay on the accepted branch and continue it smoothly past its ends
+//!   (`force`); a branch decided from the trial state would be a jump no indicator announces.
 
 use crate::law::damping::NormalDamping;
 use crate::law::{AnyHistory, AnyLaw, Branch, Evaluation, NormalLaw};
 use crate::numeric::tanh_sinh;
 use serde::{Deserialize, Serialize};
 
-/// Indicator hysteresis, in units of the nominal overlap (or nominal rate).
+/// Indicator hysteresis, in units of the nominal overlap (or nominal rate): an indicator crosses zero
+/// this far beyond its bound, so that the state an event is located at lies strictly on the law's other
+/// side, and an indicator is never exactly 0 right after the event.
 pub const HYSTERESIS: f64 = 1e-10;
-/// The nudge into the branch the motion enters, in units of the nominal overlap.
-pub const NUDGE: f64 = 1e-9;
+/// A state this many ulps from a bound of its branch is on the bound (the rounding of the law's formula
+/// for the bound): moving out of it, the branch is the one beyond.
+const BOUND_ULPS: f64 = 8.0;
+/// How close below the largest overlap an accepted point still counts as being at it (the turning-point
+/// indicator watches the rate there), in units of the nominal overlap.
+pub const AT_MAX_OVERLAP: f64 = 2e-9;
 
 #[derive(Debug, Clone)]
 pub struct Contact {
@@ -90,6 +97,8 @@ pub struct ContactForce {
     /// Viscous damping force [N].
     pub damping: f64,
     pub branch: Branch,
+    /// The history the law gives on that branch at this overlap (growing with plastic loading).
+    pub history: AnyHistory,
 }
 
 impl ContactForce {
@@ -151,56 +160,114 @@ impl Contact {
         Ok(())
     }
 
-    /// Force at overlap `alpha` and overlap rate `rate` with the accepted history (a trial: nothing kept).
+    /// Force at overlap `alpha` and overlap rate `rate` on the accepted branch (a trial: nothing kept).
     ///
-    /// At the accepted point itself (within the nudge) the branch is the one the motion goes into: the
-    /// law evaluated exactly at a branch point answers for the branch behind it (the elastic end of the
-    /// line at alpha_max, where plastic loading goes on), and its damping there differs. Every step that
-    /// starts at an accepted point would then see a jump in the damping force, and an error-controlled
-    /// integrator would shrink its steps to nothing. There the accepted branch is extended linearly.
+    /// Between events the right-hand side must not switch on the trial state (FMI 2.0 Sec. 3.1; DESIGN 6):
+    /// a solver evaluates states past a bound before it locates the event there, and a jump no indicator
+    /// announces makes CVode fail its error test. So where the law puts `alpha` on another branch than the
+    /// accepted one, the accepted branch goes on as its tangent at the bound it crossed (the exact line for
+    /// the piecewise-linear laws); branch, history and discrete outputs change only in `accept`.
     pub fn force(&self, alpha: f64, rate: f64) -> ContactForce {
+        let (e, law_force, at) = self.on_accepted_branch(alpha);
+        self.with_damping(e, law_force, at, rate)
+    }
+
+    /// Force at overlap `alpha` with the law's own branch there and the accepted history, as a DEM force
+    /// loop evaluates it (the `verlet` baseline): the branch may differ from the accepted one.
+    pub fn law_force(&self, alpha: f64, rate: f64) -> ContactForce {
         let e = self.law.evaluate(alpha, &self.history);
-        let a = &self.accepted;
-        let at_accepted = (alpha - self.accepted_alpha).abs() <= 2.0 * NUDGE * self.alpha_nominal;
-        let (e, law_force) = if at_accepted && e.branch != a.branch && a.stiffness.is_finite() {
-            (*a, a.force + a.stiffness * (alpha - self.accepted_alpha))
-        } else {
-            (e, e.force)
-        };
+        self.with_damping(e, e.force, alpha, rate)
+    }
+
+    /// The damping force of 000 Eqs. 24-26 on the branch of `e` (evaluated at overlap `at`).
+    fn with_damping(&self, e: Evaluation<AnyHistory>, law_force: f64, at: f64, rate: f64) -> ContactForce {
         let damping = if e.branch.in_contact() {
-            let k = self.law.damping_stiffness(alpha, &e.history, e.stiffness);
+            let k = self.law.damping_stiffness(at, &e.history, e.stiffness);
             self.damping.force(k, self.law.has_yielded(&e.history), rate)
         } else {
             0.0
         };
-        ContactForce { law: law_force, damping, branch: e.branch }
+        ContactForce { law: law_force, damping, branch: e.branch, history: e.history }
     }
 
-    /// The branch at `alpha`: the trial branch, except at the accepted point itself, where it is the branch
-    /// the motion goes into (plastic loading rather than the elastic end of the line just accepted).
-    pub fn branch_at(&self, alpha: f64, rate: f64) -> Branch {
-        if (alpha - self.accepted_alpha).abs() <= 2.0 * NUDGE * self.alpha_nominal {
-            self.accepted.branch
-        } else {
-            self.force(alpha, rate).branch
+    /// The accepted branch at `alpha`: the law's evaluation where the law agrees, else the tangent
+    /// continued from the end of the accepted interval on `alpha`'s side. Returns the evaluation that
+    /// stands for the branch, the law force and the overlap at which that evaluation was made.
+    fn on_accepted_branch(&self, alpha: f64) -> (Evaluation<AnyHistory>, f64, f64) {
+        let a = &self.accepted;
+        let e = self.law.evaluate(alpha, &self.history);
+        if e.branch == a.branch || !self.accepted_alpha.is_finite() {
+            return (e, e.force, alpha);
         }
+        // The end of the accepted interval toward alpha (a moving bound is the accepted point itself).
+        let end = if alpha > self.accepted_alpha { a.upper } else { a.lower };
+        let mut candidates = [end, f64::NAN];
+        if end.is_finite() {
+            // The law's inequality may put the end itself on the other side: one ulp inside then.
+            candidates[1] = if alpha > self.accepted_alpha { next_down(end) } else { next_up(end) };
+        }
+        let on_end = candidates
+            .into_iter()
+            .filter(|b| b.is_finite())
+            .map(|b| (b, self.law.evaluate(b, &self.history)))
+            .find(|(_, eb)| eb.branch == a.branch);
+        let (b, eb) = on_end.unwrap_or((self.accepted_alpha, *a));
+        // A vertical tangent (JKR at detachment) continues flat.
+        let k = if eb.stiffness.is_finite() { eb.stiffness } else { 0.0 };
+        (Evaluation { stiffness: k, ..eb }, eb.force + k * (alpha - b), b)
+    }
+
+    /// The contact as it is after walking from the accepted overlap to `alpha` (a copy; this one is not
+    /// changed): what `follow` and `accept` would make of these inputs. Co-Simulation's outputs at new
+    /// inputs use it, so that they are the values the next step starts from.
+    pub fn walked_to(&self, alpha: f64, rate: f64) -> Contact {
+        let mut c = self.clone();
+        c.follow(alpha);
+        c.accept(alpha, rate);
+        c
     }
 
     /// Takes the state at `alpha`, moving with `rate`, into the history. Returns the branch before and after.
+    ///
+    /// The branch is the law's own at `alpha`, with its inequalities exactly as the paper writes them
+    /// (000 Eq. 20: adhesive on alpha_fp <= alpha <= alpha_cp, detached below alpha_fp). Only where
+    /// `alpha` is a point at which the branch ends in the direction of motion (the largest overlap, where
+    /// plastic loading goes on; a bound reached by `follow`) is the branch the one just beyond, one ulp
+    /// further.
     pub fn accept(&mut self, alpha: f64, rate: f64) -> (Branch, Branch) {
         let before = self.accepted.branch;
         // First the history at alpha itself (a turning point of plastic loading keeps its alpha_max), then
         // the branch the motion goes into.
         let here = self.law.evaluate(alpha, &self.history);
-        let step = NUDGE * self.alpha_nominal * direction(rate);
-        let mut into = if step == 0.0 { here } else { self.law.evaluate(alpha + step, &here.history) };
-        let into_point = alpha + step;
-        // The history is the one at alpha itself; the nudged evaluation only names the branch and its
-        // bounds. So accepting the same point twice changes nothing.
+        let dir = direction(rate);
+        let mut point = alpha;
+        let mut into = self.law.evaluate(alpha, &here.history);
+        // On the bound within the rounding of the law's own formulas for it (a few ulps).
+        let on = |bound: f64| bound.is_finite() && (bound - alpha).abs() <= BOUND_ULPS * f64::EPSILON * alpha.abs().max(bound.abs());
+        // Step out by ulps until the law's own inequality (rounded as it computes it) agrees.
+        if dir > 0.0 && (into.upper <= alpha || on(into.upper)) {
+            for _ in 0..BOUND_ULPS as usize {
+                point = next_up(into.upper.max(point));
+                into = self.law.evaluate(point, &here.history);
+                if into.upper > point {
+                    break;
+                }
+            }
+        } else if dir < 0.0 && (into.lower >= alpha || on(into.lower)) {
+            for _ in 0..BOUND_ULPS as usize {
+                point = next_down(into.lower.min(point));
+                into = self.law.evaluate(point, &here.history);
+                if into.lower < point {
+                    break;
+                }
+            }
+        }
+        // The history is the one at alpha itself; the point beyond only names the branch and its bounds.
+        // So accepting the same point twice changes nothing.
         into.history = here.history;
         self.history = here.history;
         self.accepted = into;
-        self.accepted_alpha = into_point;
+        self.accepted_alpha = point;
         if alpha > self.max_overlap {
             self.max_overlap = alpha;
         }
@@ -238,7 +305,7 @@ impl Contact {
         // plastic loading); elsewhere (a sphere oscillating in its adhesive well, at rest under gravity)
         // watching the rate would only make events. There the indicator watches max_overlap itself, so
         // that a deeper peak (a second impact on a branch without a bound there) is landed on too.
-        let turning = if self.accepted_alpha >= self.max_overlap - 2.0 * NUDGE * self.alpha_nominal {
+        let turning = if self.accepted_alpha >= self.max_overlap - AT_MAX_OVERLAP * self.alpha_nominal {
             Line { constant: 0.0, overlap: 0.0, rate: r }
         } else if self.max_overlap.is_finite() {
             Line { constant: self.max_overlap * a, overlap: -a, rate: 0.0 }
@@ -296,7 +363,24 @@ impl Contact {
     }
 }
 
-/// +1, -1 or 0: the sign of a rate, for the nudge.
+/// The next larger double (for finite x).
+pub fn next_up(x: f64) -> f64 {
+    if x.is_nan() || x == f64::INFINITY {
+        return x;
+    }
+    if x == 0.0 {
+        return f64::from_bits(1);
+    }
+    let bits = x.to_bits();
+    f64::from_bits(if x > 0.0 { bits + 1 } else { bits - 1 })
+}
+
+/// The next smaller double (for finite x).
+pub fn next_down(x: f64) -> f64 {
+    -next_up(-x)
+}
+
+/// +1, -1 or 0: the sign of a rate, the direction of motion.
 fn direction(rate: f64) -> f64 {
     if rate > 0.0 {
         1.0

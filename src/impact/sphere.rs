@@ -10,7 +10,7 @@
 //! the master moves the wall between steps by more than that, the contact walks the jump quasi-statically
 //! (`Contact::follow`) before the step.
 
-use super::contact::{Contact, NUDGE};
+use super::contact::Contact;
 
 /// The state of the sphere: [z, v, W] with W the work done on the contact (the integral of f d alpha).
 pub type State = [f64; 3];
@@ -109,13 +109,19 @@ impl Sphere {
     /// along a straight path (the sphere cannot move in no time), adding that path's work.
     fn follow_jump(&mut self, wall: &Wall, t: f64, y: &mut State) {
         let (alpha, rate) = self.overlap(wall, t, y);
-        let from = self.contact.accepted_alpha;
-        // Beyond the nudge and the rounding of the absolute positions the overlap is made of.
-        let resolution = 2.0 * NUDGE * self.contact.alpha_nominal + 8.0 * f64::EPSILON * (wall.at(t).abs() + y[0].abs());
-        if from.is_finite() && (alpha - from).abs() > resolution {
+        if self.jumped(wall, t, y) {
             y[2] += self.contact.follow(alpha);
             self.contact.accept(alpha, rate);
         }
+    }
+
+    /// Whether the overlap at this state differs from the accepted one by more than the rounding of the
+    /// absolute positions it is made of (a wall the master moved between steps).
+    pub fn jumped(&self, wall: &Wall, t: f64, y: &State) -> bool {
+        let (alpha, _) = self.overlap(wall, t, y);
+        let from = self.contact.accepted_alpha;
+        let resolution = 8.0 * f64::EPSILON * (wall.at(t).abs() + y[0].abs());
+        from.is_finite() && (alpha - from).abs() > resolution
     }
 
     /// Overlap and overlap rate of a state at time t.
@@ -123,7 +129,7 @@ impl Sphere {
         (wall.at(t) - y[0], wall.velocity - y[1])
     }
 
-    /// dy/dt with the accepted history.
+    /// dy/dt on the accepted branch and its continuation (`Contact::force`).
     pub fn derivatives(&self, wall: &Wall, t: f64, y: &State) -> State {
         let (alpha, rate) = self.overlap(wall, t, y);
         let f = self.contact.force(alpha, rate).total();

@@ -17,14 +17,14 @@ impl Sphere {
         }
         let h = span / n;
         let (alpha, rate) = self.overlap(wall, t0, y);
-        let mut f = self.contact.force(alpha, rate).total();
+        let mut f = self.contact.law_force(alpha, rate).total();
         let mut alpha = alpha;
         for i in 0..n as u64 {
             let t1 = t0 + (i + 1) as f64 * h;
             let v_half = y[1] + 0.5 * h * (f / self.mass - self.gravity);
             y[0] += h * v_half;
             let (alpha1, rate1) = (wall.at(t1) - y[0], wall.velocity - v_half);
-            let f1 = self.contact.force(alpha1, rate1).total();
+            let f1 = self.contact.law_force(alpha1, rate1).total();
             y[1] = v_half + 0.5 * h * (f1 / self.mass - self.gravity);
             // Trapezoidal contact work, the accuracy of the scheme.
             y[2] += 0.5 * (f + f1) * (alpha1 - alpha);

@@ -118,7 +118,7 @@ impl ContactElement {
 }
 
 impl Model for ContactElement {
-    fn initialize(&mut self, values: &[Value], _t0: f64) -> Result<(), String> {
+    fn initialize(&mut self, values: &[Value], _t0: f64, _model_exchange: bool) -> Result<(), String> {
         let (mut contact, gap) = self.build(values)?;
         self.gap = gap;
         let (alpha, rate) = self.inputs(values);
@@ -131,11 +131,20 @@ impl Model for ContactElement {
         Ok(())
     }
 
-    fn compute(&mut self, values: &mut [Value]) {
+    fn compute(&mut self, values: &mut [Value], between_events: bool) {
         let (alpha, rate) = self.inputs(values);
-        let Some(c) = &self.contact else { return };
+        let Some(contact) = &self.contact else { return };
         let r = self.refs;
-        let f = r.outputs.write(values, c, alpha, rate, c.max_overlap.max(alpha).max(0.0));
+        // Feed-through: in Continuous-Time Mode the accepted branch; elsewhere the history walked to the
+        // inputs, so that the output at an input is the value fmi2DoStep (or the next event) gives there.
+        let walked;
+        let c = if between_events {
+            contact
+        } else {
+            walked = contact.walked_to(alpha, rate);
+            &walked
+        };
+        let f = r.outputs.write(values, c, alpha, rate);
         values[r.dissipated_energy] = Value::Real(self.work);
         values[r.der_energy] = Value::Real(f * rate);
     }
@@ -192,10 +201,10 @@ impl Model for ContactElement {
         Ok(())
     }
 
-    fn save(&self) -> Vec<u8> {
-        let Some(c) = &self.contact else { return Vec::new() };
+    fn save(&self) -> Result<Vec<u8>, String> {
+        let Some(c) = &self.contact else { return Ok(Vec::new()) };
         let snap = Snapshot { work: self.work, contact: c.memory() };
-        bincode::serialize(&snap).unwrap_or_default()
+        contact_parts::encode(&snap)
     }
 
     fn restore(&mut self, values: &[Value], bytes: &[u8]) -> Result<(), String> {

@@ -61,15 +61,22 @@ impl Outputs {
         }
     }
 
-    /// Writes force, overlap, state and history at `alpha`, `rate`; returns the total force.
-    pub fn write(&self, values: &mut [Value], c: &Contact, alpha: f64, rate: f64, max_overlap: f64) -> f64 {
-        let f = c.force(alpha, rate).total();
-        values[self.force] = Value::Real(f);
+    /// Writes force, overlap, state and history at `alpha`, `rate` on the accepted branch of `c`; returns
+    /// the total force.
+    pub fn write(&self, values: &mut [Value], c: &Contact, alpha: f64, rate: f64) -> f64 {
+        let f = c.force(alpha, rate);
+        values[self.force] = Value::Real(f.total());
         values[self.overlap] = Value::Real(alpha);
-        values[self.contact_state] = Value::Integer(c.branch_at(alpha, rate).contact_state());
-        values[self.max_overlap] = Value::Real(max_overlap);
-        values[self.plastic_overlap] = Value::Real(c.law.plastic_overlap(&c.history));
-        values[self.pull_off_force] = Value::Real(c.law.pull_off_force(&c.history));
-        f
+        values[self.contact_state] = Value::Integer(c.accepted.branch.contact_state());
+        values[self.max_overlap] = Value::Real(c.max_overlap.max(alpha).max(0.0));
+        values[self.plastic_overlap] = Value::Real(c.law.plastic_overlap(&f.history));
+        values[self.pull_off_force] = Value::Real(c.law.pull_off_force(&f.history));
+        f.total()
     }
+}
+
+/// Serializes a unit's snapshot; a failure is an error the host sees, never an empty state (which
+/// `restore` would read as "not initialized").
+pub fn encode<T: serde::Serialize>(snapshot: &T) -> Result<Vec<u8>, String> {
+    bincode::serialize(snapshot).map_err(|e| format!("the model state cannot be serialized: {e}"))
 }

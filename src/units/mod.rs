@@ -23,11 +23,15 @@ pub const LOG_CATEGORIES: &[(&str, &str)] = &[
 /// What a unit does, as the FMI glue sees it. Values are indexed by value reference (the position in
 /// the variable table); the glue has checked types, causality and the calling sequence before a call.
 pub trait Model: Send {
-    /// Reads the parameters and inputs and sets the initial state at `t0` (fmi2ExitInitializationMode).
-    /// An error names the parameter and its allowed range.
-    fn initialize(&mut self, values: &[Value], t0: f64) -> Result<(), String>;
+    /// Reads the parameters and inputs and sets the initial state at `t0` (fmi2ExitInitializationMode)
+    /// for Model Exchange or Co-Simulation. An error names the parameter and its allowed range.
+    fn initialize(&mut self, values: &[Value], t0: f64, model_exchange: bool) -> Result<(), String>;
     /// Writes the outputs and locals for the current time, state and inputs into `values`.
-    fn compute(&mut self, values: &mut [Value]);
+    /// `between_events` is Model Exchange's Continuous-Time Mode: everything stays on the branch accepted
+    /// at the last event (discrete outputs included). Elsewhere (initialization, Event Mode,
+    /// Co-Simulation) the outputs at new inputs are those of the history walked to them, the values the
+    /// next event or step starts from.
+    fn compute(&mut self, values: &mut [Value], between_events: bool);
     /// ME: the solver's time.
     fn set_time(&mut self, t: f64);
     fn get_states(&self, x: &mut [f64]);
@@ -35,13 +39,14 @@ pub trait Model: Send {
     fn derivatives(&mut self, values: &[Value], dx: &mut [f64]);
     fn event_indicators(&mut self, values: &[Value], z: &mut [f64]);
     fn nominals(&self, x: &mut [f64]);
-    /// ME: an event or a completed integrator step: the contact's history accepts the current state.
-    /// Returns a message for the logEvents category when the branch changed.
+    /// ME: an event (fmi2NewDiscreteStates): the contact's history accepts the current state. The only
+    /// place where Model Exchange changes a branch. Returns a message for the logEvents category when the
+    /// branch changed.
     fn accept(&mut self, values: &[Value]) -> Option<String>;
     /// CS: advance from `t` by `h` with the current inputs.
     fn do_step(&mut self, values: &[Value], t: f64, h: f64) -> Result<(), String>;
-    /// The dynamic state (not the parameters) as bytes; `restore` reads it back.
-    fn save(&self) -> Vec<u8>;
+    /// The dynamic state (not the parameters) as bytes (empty: not initialized); `restore` reads it back.
+    fn save(&self) -> Result<Vec<u8>, String>;
     fn restore(&mut self, values: &[Value], bytes: &[u8]) -> Result<(), String>;
 }
 

@@ -11,7 +11,7 @@ use super::variables::{Causality, Role, Value, VarType, Variable};
 use super::{Model, UnitInfo};
 use crate::impact::contact::Memory;
 use crate::impact::{Solver, Sphere, State, Wall};
-use crate::law::AnyLaw;
+use crate::law::{AnyLaw, NormalLaw};
 use crate::scene::Partner;
 use crate::theory::time_step;
 use serde::{Deserialize, Serialize};
@@ -123,6 +123,21 @@ pub struct ParticleWallImpact {
     t: f64,
     /// CS: the wall input the last step started from and where the step left the wall.
     cs_wall: Option<(f64, f64)>,
+    /// ME: the wall inputs as last seen and the time they were first seen at (`SeenWall`).
+    me_wall: Option<SeenWall>,
+}
+
+/// Model Exchange: between two updates of its inputs the wall moves on with its velocity input, from
+/// where and when it was last given. So the overlap rate is exactly wall_velocity - sphere_velocity
+/// between updates, whatever the importer's sampling, and the indicators that watch the rate watch the
+/// overlap's own derivative. An importer that sets the inputs at every evaluation sees them unchanged;
+/// one that sets them only now and then (fmpy sets them where it evaluates event indicators, not in the
+/// right-hand side) sees a wall that moves smoothly instead of one that stands still and jumps.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+struct SeenWall {
+    position: f64,
+    velocity: f64,
+    t: f64,
 }
 
 /// The dynamic state, for fmi2GetFMUstate and serialization.
@@ -133,6 +148,7 @@ struct Snapshot {
     contact: Memory,
     last_step: f64,
     cs_wall: Option<(f64, f64)>,
+    me_wall: Option<SeenWall>,
 }
 
 fn real(values: &[Value], vr: usize) -> f64 {
@@ -167,6 +183,7 @@ impl ParticleWallImpact {
             y: [0.0; 3],
             t: 0.0,
             cs_wall: None,
+            me_wall: None,
         }
     }
 
@@ -195,8 +212,24 @@ impl ParticleWallImpact {
         Ok((Sphere::new(eff.mass, g, contact, solver, tol), scene.particle_radius))
     }
 
+    /// The wall at the current time: as given (CS, and ME at an input update), or moved on with its
+    /// velocity since the inputs were last given (ME, `SeenWall`).
     fn wall(&self, values: &[Value]) -> Wall {
-        Wall { t0: self.t, position: real(values, self.refs.wall_displacement), velocity: real(values, self.refs.wall_velocity) }
+        let (position, velocity) = (real(values, self.refs.wall_displacement), real(values, self.refs.wall_velocity));
+        match self.me_wall {
+            Some(s) if s.position == position && s.velocity == velocity => Wall { t0: s.t, position, velocity },
+            _ => Wall { t0: self.t, position, velocity },
+        }
+    }
+
+    /// ME: notes inputs that changed since they were last seen, with the current time.
+    fn see_inputs(&mut self, values: &[Value]) {
+        if let Some(seen) = &mut self.me_wall {
+            let (position, velocity) = (real(values, self.refs.wall_displacement), real(values, self.refs.wall_velocity));
+            if seen.position != position || seen.velocity != velocity {
+                *seen = SeenWall { position, velocity, t: self.t };
+            }
+        }
     }
 }
 
@@ -235,7 +268,7 @@ fn finite(values: &[Value], vr: usize, name: &str, unit: &str) -> Result<f64, St
 }
 
 impl Model for ParticleWallImpact {
-    fn initialize(&mut self, values: &[Value], t0: f64) -> Result<(), String> {
+    fn initialize(&mut self, values: &[Value], t0: f64, model_exchange: bool) -> Result<(), String> {
         let (mut sphere, radius) = self.build(values)?;
         let gap = finite(values, self.refs.initial_gap, "initial_gap", "m")?;
         if gap < 0.0 {
@@ -248,13 +281,15 @@ impl Model for ParticleWallImpact {
         self.radius = radius;
         self.cs_wall = None;
         let wall = Wall { t0, position: w, velocity: real(values, self.refs.wall_velocity) };
+        self.me_wall = model_exchange.then_some(SeenWall { position: wall.position, velocity: wall.velocity, t: t0 });
         sphere.accept(&wall, t0, &self.y);
         sphere.contact.max_overlap = f64::NEG_INFINITY;
         self.sphere = Some(sphere);
         Ok(())
     }
 
-    fn compute(&mut self, values: &mut [Value]) {
+    fn compute(&mut self, values: &mut [Value], between_events: bool) {
+        self.see_inputs(values);
         let Some(sphere) = &self.sphere else { return };
         let r = self.refs;
         let mut wall = self.wall(values);
@@ -264,8 +299,15 @@ impl Model for ParticleWallImpact {
             }
         }
         let (alpha, rate) = sphere.overlap(&wall, self.t, &self.y);
-        let c = &sphere.contact;
-        let f = r.outputs.write(values, c, alpha, rate, c.max_overlap.max(0.0));
+        // A wall moved outside Continuous-Time Mode: the outputs the next step or event starts from.
+        let walked;
+        let c = if !between_events && sphere.jumped(&wall, self.t, &self.y) {
+            walked = sphere.contact.walked_to(alpha, rate);
+            &walked
+        } else {
+            &sphere.contact
+        };
+        let f = r.outputs.write(values, c, alpha, rate);
         values[r.sphere_position] = Value::Real(self.y[0] + self.radius);
         values[r.sphere_velocity] = Value::Real(self.y[1]);
         values[r.dissipated_energy] = Value::Real(self.y[2]);
@@ -289,12 +331,14 @@ impl Model for ParticleWallImpact {
     }
 
     fn derivatives(&mut self, values: &[Value], dx: &mut [f64]) {
+        self.see_inputs(values);
         if let Some(sphere) = &self.sphere {
             dx.copy_from_slice(&sphere.derivatives(&self.wall(values), self.t, &self.y));
         }
     }
 
     fn event_indicators(&mut self, values: &[Value], z: &mut [f64]) {
+        self.see_inputs(values);
         if let Some(sphere) = &self.sphere {
             z.copy_from_slice(&sphere.indicators(&self.wall(values), self.t, &self.y));
         }
@@ -303,13 +347,22 @@ impl Model for ParticleWallImpact {
     fn nominals(&self, x: &mut [f64]) {
         if let Some(s) = &self.sphere {
             let c = &s.contact;
-            x.copy_from_slice(&[c.alpha_nominal, c.rate_nominal, 0.5 * s.mass * c.rate_nominal * c.rate_nominal]);
+            // The contact work's scale: the larger of the approach's kinetic energy and the work of the
+            // contact's own force scale over the overlap scale. A sphere set down on the wall at rest has
+            // no kinetic scale, and a nominal from it alone (1e-19 J here) made CVode's error test on
+            // the work fail at any step above 1e-13 s.
+            let fresh = c.law.initial_history();
+            let force_scale =
+                c.law.evaluate(c.alpha_nominal, &fresh).force.abs().max(c.law.pull_off_force(&fresh)).max(s.mass * s.gravity.abs());
+            let energy = (0.5 * s.mass * c.rate_nominal * c.rate_nominal).max(force_scale * c.alpha_nominal);
+            x.copy_from_slice(&[c.alpha_nominal, c.rate_nominal, energy]);
         } else {
             x.fill(1.0);
         }
     }
 
     fn accept(&mut self, values: &[Value]) -> Option<String> {
+        self.see_inputs(values);
         let wall = self.wall(values);
         let (t, y) = (self.t, self.y);
         let sphere = self.sphere.as_mut()?;
@@ -344,10 +397,10 @@ impl Model for ParticleWallImpact {
         Ok(())
     }
 
-    fn save(&self) -> Vec<u8> {
-        let Some(s) = &self.sphere else { return Vec::new() };
-        let snap = Snapshot { y: self.y, t: self.t, contact: s.contact.memory(), last_step: s.last_step, cs_wall: self.cs_wall };
-        bincode::serialize(&snap).unwrap_or_default()
+    fn save(&self) -> Result<Vec<u8>, String> {
+        let Some(s) = &self.sphere else { return Ok(Vec::new()) };
+        let snap = Snapshot { y: self.y, t: self.t, contact: s.contact.memory(), last_step: s.last_step, cs_wall: self.cs_wall, me_wall: self.me_wall };
+        contact_parts::encode(&snap)
     }
 
     fn restore(&mut self, values: &[Value], bytes: &[u8]) -> Result<(), String> {
@@ -360,6 +413,7 @@ impl Model for ParticleWallImpact {
         // Finite, and a speed no impact of powder reaches (a corrupted state that passed the checksum).
         if !(snap.y.iter().all(|x| x.is_finite()) && snap.t.is_finite() && snap.last_step.is_finite() && snap.last_step >= 0.0)
             || snap.y[1].abs() > MAX_SPEED
+            || snap.me_wall.is_some_and(|w| !(w.position.is_finite() && w.t.is_finite() && w.velocity.abs() <= MAX_SPEED))
         {
             return Err(format!("the saved sphere state is not plausible (velocity {:e} m/s; allowed finite and at most {MAX_SPEED:e})", snap.y[1]));
         }
@@ -370,6 +424,7 @@ impl Model for ParticleWallImpact {
         self.y = snap.y;
         self.t = snap.t;
         self.cs_wall = snap.cs_wall;
+        self.me_wall = snap.me_wall;
         Ok(())
     }
 }

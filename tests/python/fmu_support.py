@@ -397,3 +397,60 @@ def initialized_model(unit: Unit, start_values: dict | None = None, instance_nam
     driver = FixedStepME(unit, fmu, h=0.0)
     driver.event_iteration(enter=False)
     return fmu, driver
+
+
+# ---------------------------------------------------------------------------------------------------
+# A strict CVode: fmpy's own solver with a minimum step, as OMSimulator sets it
+
+
+class StrictCVode:
+    """While active, every CVode solver fmpy creates gets `CVodeSetMinStep(min_step)` (OMSimulator's
+    default is 1e-12 s; fmpy sets none), and the solvers are kept so that their statistics can be read:
+    `steps` (CVodeGetNumSteps) and `root_returns` (state events CVode located) of the last run."""
+
+    def __init__(self, min_step: float = 1e-12):
+        import fmpy.sundials as sundials
+        from fmpy.sundials.libraries import sundials_cvode
+
+        self.min_step = min_step
+        self._sundials = sundials
+        self._set_min_step = sundials_cvode.CVodeSetMinStep
+        self._set_min_step.argtypes = [ctypes.c_void_p, ctypes.c_double]
+        self._set_min_step.restype = ctypes.c_int
+        self._num_steps = sundials_cvode.CVodeGetNumSteps
+        self._num_steps.argtypes = [ctypes.c_void_p, ctypes.POINTER(ctypes.c_long)]
+        self._num_steps.restype = ctypes.c_int
+        self.solvers = []
+        self.root_returns = 0
+
+    def __enter__(self):
+        original_init = self._original_init = self._sundials.CVodeSolver.__init__
+        original_step = self._original_step = self._sundials.CVodeSolver.step
+        strict = self
+
+        def init(solver, *args, **kwargs):
+            original_init(solver, *args, **kwargs)
+            flag = strict._set_min_step(solver.cvode_mem, strict.min_step)
+            assert flag == 0, f"CVodeSetMinStep returned {flag}"
+            strict.solvers.append(solver)
+
+        def step(solver, t, t_next):
+            state_event, roots, t_ret = original_step(solver, t, t_next)
+            strict.root_returns += int(state_event)
+            return state_event, roots, t_ret
+
+        self._sundials.CVodeSolver.__init__ = init
+        self._sundials.CVodeSolver.step = step
+        return self
+
+    def __exit__(self, *exc):
+        self._sundials.CVodeSolver.__init__ = self._original_init
+        self._sundials.CVodeSolver.step = self._original_step
+        return False
+
+    @property
+    def steps(self) -> int:
+        """CVode's internal steps of the last solver created (its run must not have been freed)."""
+        n = ctypes.c_long(0)
+        assert self._num_steps(self.solvers[-1].cvode_mem, ctypes.byref(n)) == 0
+        return n.value
