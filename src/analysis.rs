@@ -3,7 +3,7 @@
 
 use crate::error::ParamError;
 use crate::law::nan::Nan;
-use crate::law::params::{alpha_y0, f_y0, k_hertz, Effective, NanParams};
+use crate::law::params::{alpha_y0, f_y0, k_hertz, w_jkr, Effective, NanParams};
 use crate::law::{AnyLaw, NormalLaw};
 use crate::scene::Scene;
 use crate::theory::energy_balance;
@@ -37,10 +37,11 @@ pub const OUTPUTS: &[Output] = &[
     Output { name: "alpha_y0", unit: "m", doc: "Thornton-Ning yield overlap (000 Eq. 31)" },
     Output { name: "hertz_stiffness_at_yield", unit: "N/m", doc: "2 E* sqrt(R* alpha_y) (000 Eq. 41; Table 3's k_H)" },
     Output { name: "w_jkr", unit: "J", doc: "JKR adhesion work 7.09 (Gamma^5 R*^4/E*^2)^(1/3) (000 Eq. 37)" },
-    Output { name: "jkr_sticking_velocity", unit: "m/s", doc: "V_s (000 Eq. 73)" },
+    Output { name: "jkr_sticking_velocity", unit: "m/s", doc: "V_s = (2 W_JKR / m*)^(1/2) (000 Eq. 73); needs no yield pressure" },
     Output { name: "yield_velocity", unit: "m/s", doc: "V_y0, yield velocity without cohesion (000 Eq. 74)" },
     Output { name: "adhesive_yield_velocity", unit: "m/s", doc: "V_y (000 Eq. 75); null when f_y < f_0 (adhesion-induced plasticity)" },
-    Output { name: "sticking_velocity", unit: "m/s", doc: "V_ys, plastic adhesive sticking velocity, undamped (000 Eqs. 77-79)" },
+    Output { name: "sticking_velocity", unit: "m/s", doc: "the active law's sticking velocity, undamped: the smallest impact speed at which the sphere rebounds (nan: 000 Eqs. 77-79; other laws: bisection on the energy balance to 1e-9); 0 if it never sticks" },
+    Output { name: "nan_sticking_velocity", unit: "m/s", doc: "V_ys of the Nan law for these materials, whatever the active law (000 Eqs. 77-79)" },
     Output { name: "critical_yield_pressure", unit: "Pa", doc: "p_y below which f_y < f_0 with k_el by Eq. 52 (000 Eq. 80)" },
     Output { name: "cohesion_yield_number", unit: "-", doc: "CY = p_y^3 R* / (E*^2 Gamma) (000 Eq. 81)" },
     Output { name: "rayleigh_time_step", unit: "s", doc: "Rayleigh time step of the particle (000 Eq. 71)" },
@@ -52,6 +53,28 @@ pub const OUTPUTS: &[Output] = &[
     Output { name: "rebound_velocity", unit: "m/s", doc: "with --velocity: rebound speed by energy balance (active law), 0 if it sticks" },
     Output { name: "restitution", unit: "-", doc: "with --velocity: rebound / impact velocity (active law)" },
 ];
+
+/// The largest impact speed searched for a sticking velocity [m/s].
+const MAX_STICKING_SEARCH: f64 = 1e4;
+
+/// The smallest undamped impact speed at which the sphere rebounds, by the energy balance: the first
+/// doubling from 1 mm/s that rebounds, then bisection to 1e-9 below it (`energy_balance::sticking_velocity`).
+/// 0 when it rebounds even at 1 mm/s from a law without adhesion.
+fn active_sticking_velocity(law: &AnyLaw, mass: f64, radius: f64) -> Option<f64> {
+    let sticks = |v: f64| energy_balance::impact(law, mass, v, radius).map(|o| o.sticks).unwrap_or(true);
+    let mut lo = 1e-3;
+    if !sticks(lo) {
+        return (law.pull_off_force(&law.initial_history()) == 0.0).then_some(0.0);
+    }
+    while lo < MAX_STICKING_SEARCH {
+        let hi = 2.0 * lo;
+        if !sticks(hi) {
+            return energy_balance::sticking_velocity(law, mass, radius, lo, hi);
+        }
+        lo = hi;
+    }
+    None
+}
 
 /// Analyses a scene: derived parameters, closed-form results, and, with `velocity`, one undamped impact
 /// of the active law by energy balance.
@@ -73,7 +96,13 @@ pub fn analyze(scene: &Scene, velocity: Option<f64>) -> Result<Value, ParamError
         json!(rayleigh_time_step(eff.particle_radius, eff.density, eff.particle_shear_modulus, eff.poisson_ratio)),
     );
     out.insert("pull_off_force_fresh".into(), json!(law.pull_off_force(&law.initial_history())));
-    match NanParams::from_scene(scene, &eff) {
+    // The JKR quantities need no yield pressure (000 Eqs. 37, 73; W_0 = W_JKR).
+    if eff.surface_energy > 0.0 {
+        let w = w_jkr(eff.surface_energy, eff.radius, eff.youngs_modulus);
+        out.insert("w_jkr".into(), json!(w));
+        out.insert("jkr_sticking_velocity".into(), json!((2.0 * w / eff.mass).sqrt()));
+    }
+    let nan_sticking = match NanParams::from_scene(scene, &eff) {
         Ok(p) => {
             let nan = Nan::new(p);
             let v = sticking_velocities(&nan, eff.mass);
@@ -87,11 +116,9 @@ pub fn analyze(scene: &Scene, velocity: Option<f64>) -> Result<Value, ParamError
             out.insert("f_y0".into(), json!(f_y0(r, e, p.yield_pressure)));
             out.insert("alpha_y0".into(), json!(alpha_y0(r, e, p.yield_pressure)));
             out.insert("hertz_stiffness_at_yield".into(), json!(k_hertz(e, r, p.alpha_y)));
-            out.insert("w_jkr".into(), json!(p.w_jkr));
-            out.insert("jkr_sticking_velocity".into(), json!(v.jkr_sticking_velocity));
             out.insert("yield_velocity".into(), json!(v.yield_velocity));
             out.insert("adhesive_yield_velocity".into(), json!(v.adhesive_yield_velocity));
-            out.insert("sticking_velocity".into(), json!(v.sticking_velocity));
+            out.insert("nan_sticking_velocity".into(), json!(v.sticking_velocity));
             if v.sticking_velocity.is_none() {
                 notes.push("sticking_velocity is undefined: 000 Eq. 78 has no root with pull_off_law pasha (Eq. 61 drops f_cp to 0 at yield)".into());
             }
@@ -105,11 +132,21 @@ pub fn analyze(scene: &Scene, velocity: Option<f64>) -> Result<Value, ParamError
                 notes.push("surface_energy is 0: no adhesion, so no critical yield pressure and CY is infinite".into());
             }
             if scene.contact_model.name() != "nan" {
-                notes.push("k_el .. sticking_velocity are the Nan law's (000 Sec. 3-4) for these materials".into());
+                notes.push("k_el .. adhesive_yield_velocity and nan_sticking_velocity are the Nan law's (000 Sec. 3-4) for these materials".into());
             }
+            v.sticking_velocity
         }
-        Err(err) => notes.push(format!("Nan law parameters not derived: {err}")),
+        Err(err) => {
+            notes.push(format!("Nan law parameters not derived: {err}"));
+            None
+        }
+    };
+    // The active law's sticking velocity: the Nan law's closed form, else the energy balance.
+    let sticking = if matches!(law, AnyLaw::Nan(_)) { nan_sticking } else { active_sticking_velocity(&law, eff.mass, eff.radius) };
+    if sticking.is_none() {
+        notes.push(format!("sticking_velocity of {} not found: the sphere sticks at every speed up to {MAX_STICKING_SEARCH} m/s, or 000 Eq. 78 has no root", scene.contact_model.name()));
     }
+    out.insert("sticking_velocity".into(), json!(sticking));
     if let Some(v) = velocity {
         let o = energy_balance::impact(&law, eff.mass, v, eff.radius)
             .map_err(|e| ParamError::Inconsistent { name: "impact_velocity", why: e.to_string() })?;

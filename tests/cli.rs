@@ -181,3 +181,59 @@ fn curve_walks_load_unload_and_detachment() {
     assert_ne!(code, 0);
     assert!(err.contains("--path"));
 }
+
+fn analyze(name: &str, scene: &Value) -> Value {
+    let path = write_scene(name, scene);
+    let (code, out, err) = run(&["analyze", path.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    serde_json::from_str(&out).unwrap()
+}
+
+fn restitution_sticking_velocity(name: &str, scene: &Value, velocities: &str) -> f64 {
+    let path = write_scene(name, scene);
+    let (code, out, err) = run(&["restitution", path.to_str().unwrap(), "--velocities", velocities]);
+    assert_eq!(code, 0, "{err}");
+    out.lines().find_map(|l| l.strip_prefix("# sticking_velocity_m_per_s = ")).expect("no sticking velocity in the bracket").trim().parse().unwrap()
+}
+
+#[test]
+fn sticking_velocity_is_the_active_laws_and_the_nan_value_says_so_by_name() {
+    // 004 Table 4.2 (simplified Pasha law): analyze used to print the Nan law's 252.8 m/s here.
+    let scene: Value = serde_json::from_str(&std::fs::read_to_string("scenes/pasha_table_4_2.json").unwrap()).unwrap();
+    let v = analyze("pasha42.json", &scene);
+    let active = v["sticking_velocity"].as_f64().unwrap();
+    let by_restitution = restitution_sticking_velocity("pasha42r.json", &scene, "1.0,2.0");
+    assert!((active / by_restitution - 1.0).abs() < 1e-8, "{active} vs restitution's {by_restitution}");
+    assert!((active - 1.50).abs() < 0.01, "004 Table 4.2 sticks below ~1.5 m/s: {active}");
+    assert!(v["nan_sticking_velocity"].as_f64().unwrap() > 100.0);
+    assert_eq!(v["units"]["nan_sticking_velocity"], "m/s");
+    // For the Nan law both are the closed form.
+    let v = analyze("nan_both.json", &table5(2.45e-6, 30e6));
+    assert_eq!(v["sticking_velocity"], v["nan_sticking_velocity"]);
+    // A law without adhesion never sticks.
+    let mut hertz = table5(2.45e-6, 30e6);
+    hertz["contact_model"] = json!("hertz");
+    hertz["surface_energy"] = json!(0.0);
+    assert_eq!(analyze("hertz.json", &hertz)["sticking_velocity"], json!(0.0));
+}
+
+#[test]
+fn jkr_quantities_need_no_yield_pressure() {
+    let mut scene = table5(2.45e-6, 30e6);
+    let with_yield = analyze("jkr_py.json", &scene);
+    let obj = scene.as_object_mut().unwrap();
+    obj.remove("particle_yield_pressure");
+    obj.remove("wall_yield_pressure");
+    obj.insert("contact_model".into(), json!("jkr"));
+    let v = analyze("jkr_no_py.json", &scene);
+    for key in ["w_jkr", "jkr_sticking_velocity"] {
+        assert_eq!(v[key], with_yield[key], "{key}");
+        assert!(v["units"][key].is_string(), "{key} has a unit");
+    }
+    // 000 Table 6: V_s = 0.66 m/s at R = 2.45 um; the JKR law's own energy balance (detachment at
+    // -5/9 F_c, 000 App. B) gives the same W_0 = W_JKR.
+    let v_s = v["jkr_sticking_velocity"].as_f64().unwrap();
+    assert!((v_s / 0.66 - 1.0).abs() < 0.01, "{v_s}");
+    let active = v["sticking_velocity"].as_f64().unwrap();
+    assert!((active / v_s - 1.0).abs() < 1e-3, "{active} vs {v_s}");
+}

@@ -148,3 +148,68 @@ fn accepting_the_same_point_twice_changes_nothing() {
     assert_eq!(c.accepted.branch, Branch::Elastic, "unloading from the turning point");
     assert_eq!(c.history, history);
 }
+
+/// A contact of the default Nan scene with k_p < k_el, so that the plastic line differs from the elastic one.
+fn nan_contact() -> (Contact, powderfmu::law::nan::Nan) {
+    let mut s = scene(ModelKind::Nan);
+    s.plastic_stiffness = Some(50.0);
+    let (sp, _) = sphere(&s, 1e-10);
+    let AnyLaw::Nan(law) = sp.contact.law.clone() else { unreachable!() };
+    (sp.contact, law)
+}
+
+#[test]
+fn trial_forces_stay_on_the_accepted_branch_and_continue_it() {
+    let (mut c, law) = nan_contact();
+    let p = law.p;
+    // Free flight accepted: a trial state in the wall is still free flight (no jump to -8/9 f_ce).
+    c.accept(-1e-9, 1.0);
+    for alpha in [1e-20, 1e-12, 1e-9, 5e-8] {
+        let f = c.force(alpha, 1.0);
+        assert_eq!((f.total(), f.branch), (0.0, Branch::Separated), "alpha = {alpha:e}");
+    }
+    // The elastic line before yield goes on past alpha_y until yield is accepted.
+    c.accept(0.5 * p.alpha_y, 1.0);
+    assert_eq!(c.accepted.branch, Branch::Elastic);
+    let (a1, a2) = (1.5 * p.alpha_y, 2.0 * p.alpha_y);
+    let slope = (c.force(a2, 0.0).law - c.force(a1, 0.0).law) / (a2 - a1);
+    assert!(rel(slope, p.k_el) < 1e-9, "{slope} vs k_el {}", p.k_el);
+    // The law itself says plastic there: the DEM-style evaluation switches, the accepted branch does not.
+    assert_eq!(c.law_force(a2, 0.0).branch, Branch::Plastic);
+    // Yield accepted: plastic loading, and below the accepted point the plastic line goes on (until the
+    // turning point is accepted, the unloading line does not start).
+    c.accept(a1, 1.0);
+    assert_eq!(c.accepted.branch, Branch::Plastic);
+    let slope = (c.force(a1, 0.0).law - c.force(0.9 * a1, 0.0).law) / (0.1 * a1);
+    assert!(rel(slope, p.k_p) < 1e-9, "{slope} vs k_p {}", p.k_p);
+    // Continuous across the accepted point, both ways.
+    let f_at = c.force(a1, 0.0).law;
+    assert!(rel(c.force(a1 * (1.0 + 1e-12), 0.0).law, f_at) < 1e-9);
+    assert!(rel(c.force(a1 * (1.0 - 1e-12), 0.0).law, f_at) < 1e-9);
+}
+
+#[test]
+fn accepted_branches_follow_the_papers_inequalities_within_1e_14() {
+    let (mut c, law) = nan_contact();
+    let pts = law.points(law.p.alpha_y);
+    // 000 Eq. 20 before any contact: not established below alpha_c0 = 0, established from it on.
+    c.accept(-1e-9, 1.0);
+    c.accept(-f64::MIN_POSITIVE, 1.0);
+    assert_eq!(c.accepted.branch, Branch::Separated);
+    c.accept(0.0, 1.0);
+    assert!(c.accepted.branch.in_contact());
+    // Unloading: adhesive on alpha_fp <= alpha <= alpha_cp, detached strictly below alpha_fp; 1e-14
+    // inside the adhesive branch (some 50 ulps), moving out, the contact still holds.
+    let above = |x: f64| x + 1e-14 * x.abs();
+    let below = |x: f64| x - 1e-14 * x.abs();
+    let mut walk = |c: &mut Contact, to: f64| {
+        c.follow(to);
+        c.accept(to, -1.0);
+        c.accepted.branch
+    };
+    walk(&mut c, 0.5 * law.p.alpha_0);
+    assert_eq!(walk(&mut c, above(pts.alpha_cp)), Branch::Elastic);
+    assert_eq!(walk(&mut c, pts.alpha_cp), Branch::Adhesive, "alpha = alpha_cp is adhesive");
+    assert_eq!(walk(&mut c, above(pts.alpha_fp)), Branch::Adhesive, "just above alpha_fp the contact holds");
+    assert_eq!(walk(&mut c, below(pts.alpha_fp)), Branch::Separated, "below alpha_fp the contact detaches");
+}

@@ -468,3 +468,58 @@ impl Instance {
         self.model_ready
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::units::variables::Variable;
+
+    /// A model whose state cannot be serialized.
+    struct Unserializable;
+
+    impl Model for Unserializable {
+        fn initialize(&mut self, _: &[Value], _: f64, _: bool) -> Result<(), String> {
+            Ok(())
+        }
+        fn compute(&mut self, _: &mut [Value], _: bool) {}
+        fn set_time(&mut self, _: f64) {}
+        fn get_states(&self, _: &mut [f64]) {}
+        fn set_states(&mut self, _: &[f64]) {}
+        fn derivatives(&mut self, _: &[Value], _: &mut [f64]) {}
+        fn event_indicators(&mut self, _: &[Value], _: &mut [f64]) {}
+        fn nominals(&self, _: &mut [f64]) {}
+        fn accept(&mut self, _: &[Value]) -> Option<String> {
+            None
+        }
+        fn do_step(&mut self, _: &[Value], _: f64, _: f64) -> Result<(), String> {
+            Ok(())
+        }
+        fn save(&self) -> Result<Vec<u8>, String> {
+            Err("a failure of the serializer".into())
+        }
+        fn restore(&mut self, _: &[Value], _: &[u8]) -> Result<(), String> {
+            Ok(())
+        }
+    }
+
+    #[test]
+    fn a_model_that_cannot_save_is_an_error_not_an_empty_state() {
+        let unit: &'static UnitInfo = Box::leak(Box::new(UnitInfo {
+            model_identifier: "Unserializable",
+            description: "",
+            variables: vec![Variable::parameter("p", Value::Real(1.0), "", "")],
+            n_states: 0,
+            n_event_indicators: 0,
+            stop_time: 1.0,
+            step_size: 0.1,
+            new_model: |_| Box::new(Unserializable),
+            guid_cache: std::sync::OnceLock::new(),
+        }));
+        let mut inst = Instance::new("i", unit, Kind::CoSimulation, Logger::new(None, std::ptr::null_mut(), false));
+        inst.exit_initialization_mode().unwrap();
+        let failure = inst.save().unwrap_err();
+        assert_eq!(failure.status, fmi2Error);
+        assert!(failure.message.contains("a failure of the serializer"), "{}", failure.message);
+        assert!(!failure.enters_error_state, "the unit stays usable");
+    }
+}

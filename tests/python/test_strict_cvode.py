@@ -164,3 +164,23 @@ def test_loading_line_continues_past_yield_until_the_yield_event(impact, cli):
     assert rel(stiffness(2.0 * alpha_y, 2.5 * alpha_y), k_p) < 1e-6
     fmu.terminate()
     fmu.freeInstance()
+
+
+def test_contact_element_with_sampled_inputs(contact):
+    """ContactElement driven by a sampled sine (wall_velocity not the slope of wall_displacement between
+    samples) through contact, yield, unloading, pull-off and re-contact: ME runs to the end under the
+    strict CVode and keeps the history CS finds."""
+    stop = 2.0
+    signals = sampled_sine(4e-8, 1.0, stop, 201)
+    outputs = ["max_overlap", "plastic_overlap", "contact_state", "force"]
+    cs = contact.simulate("CoSimulation", input=signals, stop_time=stop, output_interval=1e-3, output=outputs)
+    with StrictCVode() as cvode:
+        me = contact.simulate("ModelExchange", input=signals, stop_time=stop, output_interval=1e-3, output=outputs)
+        events = cvode.root_returns
+    assert me["time"][-1] == pytest.approx(stop)
+    assert {0, 1, 2, 3} <= set(me["contact_state"])
+    assert events < 100, events
+    # Turning points are located where wall_velocity changes sign; between samples that is within a
+    # sample's motion of the largest displacement.
+    assert rel(me["max_overlap"][-1], cs["max_overlap"][-1]) < 1e-6
+    assert rel(me["plastic_overlap"][-1], cs["plastic_overlap"][-1]) < 1e-6
