@@ -202,7 +202,7 @@ fn accepted_branches_follow_the_papers_inequalities_within_1e_14() {
     // inside the adhesive branch (some 50 ulps), moving out, the contact still holds.
     let above = |x: f64| x + 1e-14 * x.abs();
     let below = |x: f64| x - 1e-14 * x.abs();
-    let mut walk = |c: &mut Contact, to: f64| {
+    let walk = |c: &mut Contact, to: f64| {
         c.follow(to);
         c.accept(to, -1.0);
         c.accepted.branch

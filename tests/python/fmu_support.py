@@ -406,7 +406,8 @@ def initialized_model(unit: Unit, start_values: dict | None = None, instance_nam
 class StrictCVode:
     """While active, every CVode solver fmpy creates gets `CVodeSetMinStep(min_step)` (OMSimulator's
     default is 1e-12 s; fmpy sets none), and the solvers are kept so that their statistics can be read:
-    `steps` (CVodeGetNumSteps) and `root_returns` (state events CVode located) of the last run."""
+    `steps` (CVodeGetNumSteps, summed over the restarts after events) and `root_returns` (state events
+    CVode located) of the last run."""
 
     def __init__(self, min_step: float = 1e-12):
         import fmpy.sundials as sundials
@@ -426,7 +427,14 @@ class StrictCVode:
     def __enter__(self):
         original_init = self._original_init = self._sundials.CVodeSolver.__init__
         original_step = self._original_step = self._sundials.CVodeSolver.step
+        original_reset = self._original_reset = self._sundials.CVodeSolver.reset
         strict = self
+        self._steps_before_reset = 0
+
+        def reset(solver, time):
+            # CVodeReInit (after each event) sets CVode's step counter back to 0: keep the count.
+            strict._steps_before_reset += strict._count(solver)
+            original_reset(solver, time)
 
         def init(solver, *args, **kwargs):
             original_init(solver, *args, **kwargs)
@@ -441,16 +449,21 @@ class StrictCVode:
 
         self._sundials.CVodeSolver.__init__ = init
         self._sundials.CVodeSolver.step = step
+        self._sundials.CVodeSolver.reset = reset
         return self
 
     def __exit__(self, *exc):
         self._sundials.CVodeSolver.__init__ = self._original_init
         self._sundials.CVodeSolver.step = self._original_step
+        self._sundials.CVodeSolver.reset = self._original_reset
         return False
+
+    def _count(self, solver) -> int:
+        n = ctypes.c_long(0)
+        assert self._num_steps(solver.cvode_mem, ctypes.byref(n)) == 0
+        return n.value
 
     @property
     def steps(self) -> int:
-        """CVode's internal steps of the last solver created (its run must not have been freed)."""
-        n = ctypes.c_long(0)
-        assert self._num_steps(self.solvers[-1].cvode_mem, ctypes.byref(n)) == 0
-        return n.value
+        """CVode's internal steps of the run (the last solver created, across its restarts at events)."""
+        return self._steps_before_reset + self._count(self.solvers[-1])

@@ -41,7 +41,7 @@ def test_default_impact_runs_and_matches_the_energy_balance(impact, cli):
     assert rel(r["sphere_velocity"][-1] / v, ref["restitution"]) < 1e-4
     # Contact, yield, turning point, pull-off, detachment: a handful of events, not a Zeno cascade.
     assert 3 <= events <= 10, events
-    assert steps < 200, steps
+    assert steps < 1000, steps
 
 
 def test_damped_sphere_on_a_20_khz_wall_runs_to_the_end(impact):
