@@ -230,7 +230,6 @@ impl Sphere {
                 t += tau;
                 self.events += 1;
                 stalls = if tau == 0.0 { stalls + 1 } else { 0 };
-                if stalls > 2 { eprintln!("DBG stall {stalls} x={x:?} acc={:?} aa={:e} lines={:?} crossing={crossing:?} hist={:?}", self.contact.accepted, self.contact.accepted_alpha, self.contact.indicator_lines(), self.contact.history); }
                 if stalls > MAX_STALLS {
                     return Err(StepError::NoProgress { t });
                 }
