@@ -144,7 +144,10 @@ pub fn analyze(scene: &Scene, velocity: Option<f64>) -> Result<Value, ParamError
     // The active law's sticking velocity: the Nan law's closed form, else the energy balance.
     let sticking = if matches!(law, AnyLaw::Nan(_)) { nan_sticking } else { active_sticking_velocity(&law, eff.mass, eff.radius) };
     if sticking.is_none() {
-        notes.push(format!("sticking_velocity of {} not found: the sphere sticks at every speed up to {MAX_STICKING_SEARCH} m/s, or 000 Eq. 78 has no root", scene.contact_model.name()));
+        notes.push(format!(
+            "sticking_velocity of {} not found: the sphere sticks at every speed up to {MAX_STICKING_SEARCH} m/s, or 000 Eq. 78 has no root",
+            scene.contact_model.name()
+        ));
     }
     out.insert("sticking_velocity".into(), json!(sticking));
     if let Some(v) = velocity {

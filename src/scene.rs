@@ -7,6 +7,13 @@
 use crate::error::{check_closed_low, check_open, ParamError};
 use serde_json::{Map, Value};
 
+/// The names of the laws as one literal (for `concat!`).
+macro_rules! model_names {
+    ($d:tt; $($variant:ident, $name:literal, $ty:ty, $pl:literal;)*) => {
+        $crate::join_names!($($name),*)
+    };
+}
+
 /// One scene key: name, unit, default (as text) and what it means (with its seed reference).
 #[derive(Debug, Clone, Copy)]
 pub struct Key {
@@ -18,7 +25,7 @@ pub struct Key {
 
 /// Every scene key, in the order the help prints them.
 pub const KEYS: &[Key] = &[
-    Key { name: "contact_model", unit: "-", default: "nan", doc: "normal contact law: nan, pasha, pasha_simplified, luding, thornton_ning, tomas, hertz, jkr, jkr_modified, linear, walton_braun" },
+    Key { name: "contact_model", unit: "-", default: "nan", doc: concat!("normal contact law: ", crate::law_table!(model_names; $)) },
     Key { name: "contact_partner", unit: "-", default: "wall", doc: "wall (a flat of the wall_* properties) or particle (an identical particle: R* = R/2, m* = m/2)" },
     Key { name: "particle_radius", unit: "m", default: "required", doc: "sphere radius R" },
     Key { name: "particle_density", unit: "kg/m^3", default: "required", doc: "solid density rho" },
@@ -63,59 +70,47 @@ pub const KEYS: &[Key] = &[
     Key { name: "walton_braun_stiffening_slope", unit: "1/m", default: "0", doc: "S of k_e = k_p + S F_max (004 Eq. 3.38); 0 keeps k_e constant" },
 ];
 
-/// The normal contact laws a scene can name.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum ModelKind {
-    Nan,
-    Pasha,
-    PashaSimplified,
-    Luding,
-    ThorntonNing,
-    Tomas,
-    Hertz,
-    Jkr,
-    JkrModified,
-    Linear,
-    WaltonBraun,
+/// Defines `ModelKind` from the rows of `law_table!`.
+macro_rules! define_model_kind {
+    ($d:tt; $($variant:ident, $name:literal, $ty:ty, $pl:literal;)*) => {
+        /// The normal contact laws a scene can name: the rows of `law_table!` (`src/law/table.rs`), in its
+        /// order.
+        #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+        pub enum ModelKind {
+            $($variant,)*
+        }
+
+        impl ModelKind {
+            /// Every law, in the table's order.
+            pub const ALL: [ModelKind; [$($name),*].len()] = [$(ModelKind::$variant),*];
+
+            /// The scene name (`contact_model`).
+            pub fn name(self) -> &'static str {
+                match self {
+                    $(ModelKind::$variant => $name,)*
+                }
+            }
+
+            /// Whether every branch is a straight line for a fixed history (the laws the `exact`
+            /// integrator solves in closed form).
+            pub fn is_piecewise_linear(self) -> bool {
+                match self {
+                    $(ModelKind::$variant => $pl,)*
+                }
+            }
+        }
+    };
 }
 
+crate::law_table!(define_model_kind; $);
+
 impl ModelKind {
-    pub const ALL: [ModelKind; 11] = [
-        ModelKind::Nan,
-        ModelKind::Pasha,
-        ModelKind::PashaSimplified,
-        ModelKind::Luding,
-        ModelKind::ThorntonNing,
-        ModelKind::Tomas,
-        ModelKind::Hertz,
-        ModelKind::Jkr,
-        ModelKind::JkrModified,
-        ModelKind::Linear,
-        ModelKind::WaltonBraun,
-    ];
+    /// The default law: the first line of the table.
+    pub const DEFAULT: ModelKind = ModelKind::ALL[0];
 
-    /// The laws whose branches are straight lines for a fixed history.
-    pub fn is_piecewise_linear(self) -> bool {
-        matches!(
-            self,
-            ModelKind::Nan | ModelKind::Pasha | ModelKind::PashaSimplified | ModelKind::Luding | ModelKind::Linear | ModelKind::WaltonBraun
-        )
-    }
-
-    pub fn name(self) -> &'static str {
-        match self {
-            ModelKind::Nan => "nan",
-            ModelKind::Pasha => "pasha",
-            ModelKind::PashaSimplified => "pasha_simplified",
-            ModelKind::Luding => "luding",
-            ModelKind::ThorntonNing => "thornton_ning",
-            ModelKind::Tomas => "tomas",
-            ModelKind::Hertz => "hertz",
-            ModelKind::Jkr => "jkr",
-            ModelKind::JkrModified => "jkr_modified",
-            ModelKind::Linear => "linear",
-            ModelKind::WaltonBraun => "walton_braun",
-        }
+    /// The scene names of the piecewise-linear laws, comma-separated.
+    pub fn piecewise_linear_names() -> String {
+        ModelKind::ALL.iter().filter(|m| m.is_piecewise_linear()).map(|m| m.name()).collect::<Vec<_>>().join(", ")
     }
 
     pub fn parse(s: &str) -> Result<ModelKind, ParamError> {
@@ -317,7 +312,7 @@ impl Scene {
         };
         let model = match text("contact_model")? {
             Some(s) => ModelKind::parse(&s)?,
-            None => ModelKind::Nan,
+            None => ModelKind::DEFAULT,
         };
         let mut s = Scene::new(
             model,

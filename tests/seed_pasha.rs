@@ -6,6 +6,7 @@ use common::*;
 use powderfmu::law::params::Effective;
 use powderfmu::law::pasha::Pasha;
 use powderfmu::law::pasha_simplified::PashaSimplified;
+use powderfmu::law::LawInfo;
 use powderfmu::law::{luding::Luding, AnyLaw};
 use powderfmu::scene::{ModelKind, PashaStiffnessLaw};
 use powderfmu::theory::{energy_balance, restitution};

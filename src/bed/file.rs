@@ -13,7 +13,6 @@ use super::scene::BedScene;
 use super::walls::Wall;
 use super::Vec3;
 use crate::fmi2::snapshot::fnv1a;
-use crate::with_engine;
 use std::io::Write;
 use std::path::Path;
 

@@ -22,8 +22,9 @@ pub trait BedLaw: NormalLaw<History: Send + Sync + Serialize + DeserializeOwned>
     fn from_any(law: AnyLaw) -> Option<Self>;
 }
 
+/// Makes every law of `law_table!` a `BedLaw`.
 macro_rules! bed_law {
-    ($($variant:ident => $ty:ty),* $(,)?) => {
+    ($d:tt; $($variant:ident, $name:literal, $ty:ty, $pl:literal;)*) => {
         $(impl BedLaw for $ty {
             fn from_any(law: AnyLaw) -> Option<Self> {
                 match law {
@@ -35,19 +36,7 @@ macro_rules! bed_law {
     };
 }
 
-bed_law!(
-    Nan => law::nan::Nan,
-    Pasha => law::pasha::Pasha,
-    PashaSimplified => law::pasha_simplified::PashaSimplified,
-    Luding => law::luding::Luding,
-    ThorntonNing => law::thornton_ning::ThorntonNing,
-    Tomas => law::tomas::Tomas,
-    Hertz => law::hertz::Hertz,
-    Jkr => law::jkr::Jkr,
-    JkrModified => law::jkr_modified::JkrModified,
-    Linear => law::linear::Linear,
-    WaltonBraun => law::walton_braun::WaltonBraun,
-);
+crate::law_table!(bed_law; $);
 
 /// The parameters of one pair of species, or of one species against one wall.
 #[derive(Debug, Clone)]
@@ -93,7 +82,7 @@ impl<L: BedLaw> Interaction<L> {
             reach: 0.0,
             damping_elastic: 2.0 * gamma(damping.restitution, damping.beta_elastic) * mass.sqrt(),
             damping_plastic: 2.0 * gamma(damping.restitution, damping.beta_plastic) * mass.sqrt(),
-            tangential: TangentialStiffness::for_model(model, eff.shear_modulus, eff.youngs_modulus, eff.radius),
+            tangential: TangentialStiffness::for_model(model.tangential_model(), eff.shear_modulus, eff.youngs_modulus, eff.radius),
             tangential_root_ratio: None,
             friction: scene.friction_coefficient,
             rolling_friction,

@@ -15,6 +15,7 @@
 //! - `file`: the versioned bed file; `snapshot`: VTK/CSV output; `render`: the PNG cross-section;
 //! - `lammps`: the LAMMPS data file export for the side-by-side benchmark.
 
+#[macro_use]
 pub mod any;
 pub mod engine;
 pub mod file;
@@ -36,7 +37,6 @@ pub mod walls;
 pub use any::{AnyEngine, BedError};
 pub use engine::Engine;
 pub use scene::BedScene;
-
 
 /// A 3-vector [m], [m/s], [N], ...
 pub type Vec3 = [f64; 3];

@@ -4,7 +4,6 @@
 //! (least) to yellow (most): the force chains stand out. Die, floor and piston are drawn in grey.
 
 use super::any::AnyEngine;
-use crate::with_engine;
 
 /// What was drawn: image size and the colour scale [Pa].
 #[derive(Debug, Clone, Copy)]

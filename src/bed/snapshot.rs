@@ -3,7 +3,6 @@
 //! radius) and CSV with a header naming every column and its unit.
 
 use super::any::AnyEngine;
-use crate::with_engine;
 use std::fmt::Write;
 
 /// Legacy ASCII VTK of the spheres.

@@ -5,7 +5,6 @@
 //! deviatoric stresses are 004 Eqs. 5.2 and 5.3.
 
 use super::any::AnyEngine;
-use crate::with_engine;
 
 /// A measurement volume: a vertical cylinder about the die axis between two heights.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -206,11 +206,8 @@ impl Contact {
             // The law's inequality may put the end itself on the other side: one ulp inside then.
             candidates[1] = if alpha > self.accepted_alpha { next_down(end) } else { next_up(end) };
         }
-        let on_end = candidates
-            .into_iter()
-            .filter(|b| b.is_finite())
-            .map(|b| (b, self.law.evaluate(b, &self.history)))
-            .find(|(_, eb)| eb.branch == a.branch);
+        let on_end =
+            candidates.into_iter().filter(|b| b.is_finite()).map(|b| (b, self.law.evaluate(b, &self.history))).find(|(_, eb)| eb.branch == a.branch);
         let (b, eb) = on_end.unwrap_or((self.accepted_alpha, *a));
         // A vertical tangent (JKR at detachment) continues flat.
         let k = if eb.stiffness.is_finite() { eb.stiffness } else { 0.0 };

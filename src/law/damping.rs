@@ -7,7 +7,7 @@
 //! k_n is the law's damping stiffness (`NormalLaw::damping_stiffness`): the branch stiffness, its
 //! magnitude on the adhesive branches (000 Sec. 2.2 names k_c there), and 2 E* a for the JKR curves.
 
-use crate::scene::{ModelKind, Scene};
+use crate::scene::Scene;
 
 /// gamma of 000 Eq. 26.
 pub fn gamma(restitution: f64, beta: f64) -> f64 {
@@ -44,7 +44,7 @@ pub struct NormalDamping {
 impl NormalDamping {
     /// The damping of a scene: beta after yield defaults to 0.1 for nan and 1 for the other laws.
     pub fn from_scene(s: &Scene, mass: f64) -> NormalDamping {
-        let default_plastic = if s.contact_model == ModelKind::Nan { 0.1 } else { s.damping_factor_elastic };
+        let default_plastic = s.contact_model.plastic_damping_factor().unwrap_or(s.damping_factor_elastic);
         NormalDamping {
             restitution: s.restitution_coefficient,
             beta_elastic: s.damping_factor_elastic,
@@ -68,6 +68,7 @@ impl NormalDamping {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::scene::ModelKind;
 
     #[test]
     fn plastic_beta_defaults_to_0_1_for_nan_only() {

@@ -1,6 +1,11 @@
 //! Hertz's elastic law (`004` Eq. 3.14): f = 4/3 E* sqrt(R*) alpha^(3/2) for alpha > 0. No history.
 
+use super::params::Effective;
+use super::tangential::TangentialModel;
+use super::LawInfo;
 use super::{Branch, Evaluation, NormalLaw};
+use crate::error::ParamError;
+use crate::scene::Scene;
 
 #[derive(Debug, Clone, PartialEq)]
 pub struct Hertz {
@@ -60,5 +65,12 @@ impl NormalLaw for Hertz {
         let ev = self.evaluate(alpha, h);
         let a = ev.stiffness / (2.0 * self.youngs_modulus); // 2 E* a = 2 E* sqrt(R* alpha)
         (ev, ev.stiffness, Some(a))
+    }
+}
+
+impl LawInfo for Hertz {
+    const TANGENTIAL: TangentialModel = TangentialModel::Mindlin;
+    fn from_scene(_s: &Scene, eff: &Effective) -> Result<Hertz, ParamError> {
+        Ok(Hertz::new(eff.radius, eff.youngs_modulus))
     }
 }

@@ -6,7 +6,12 @@
 //! Under displacement control the contact forms at alpha = 0 with f = -8/9 f_c (000 Eq. B5-B6), passes the
 //! pull-off force -f_c at a_c (004 Eq. 3.57) and breaks where d alpha / d a = 0, at -5/9 f_c.
 
+use super::params::Effective;
+use super::tangential::TangentialModel;
+use super::LawInfo;
 use super::{Branch, Evaluation, NormalLaw};
+use crate::error::ParamError;
+use crate::scene::Scene;
 use std::f64::consts::PI;
 
 /// The JKR curve of one radius of curvature: all the geometry Thornton-Ning and the JKR laws share.
@@ -31,16 +36,7 @@ impl JkrCurve {
         let b = (2.0 * PI * surface_energy / youngs_modulus).sqrt();
         let w_detach = (b * radius / 4.0).cbrt();
         let a_pull_off = (9.0 * PI * surface_energy * radius * radius / (8.0 * youngs_modulus)).cbrt();
-        let mut c = JkrCurve {
-            radius,
-            youngs_modulus,
-            surface_energy,
-            b,
-            w_detach,
-            alpha_detach: 0.0,
-            a_pull_off,
-            alpha_pull_off: 0.0,
-        };
+        let mut c = JkrCurve { radius, youngs_modulus, surface_energy, b, w_detach, alpha_detach: 0.0, a_pull_off, alpha_pull_off: 0.0 };
         c.alpha_detach = c.overlap(w_detach * w_detach);
         c.alpha_pull_off = c.overlap(a_pull_off);
         c
@@ -266,5 +262,12 @@ impl NormalLaw for Jkr {
         let a = self.curve.contact_radius_from(alpha, guess);
         let ev = on_curve_at(&self.curve, 0.0, a, JkrHistory { established: true });
         (ev, 2.0 * self.curve.youngs_modulus * a, Some(a))
+    }
+}
+
+impl LawInfo for Jkr {
+    const TANGENTIAL: TangentialModel = TangentialModel::Mindlin;
+    fn from_scene(_s: &Scene, eff: &Effective) -> Result<Jkr, ParamError> {
+        Ok(Jkr::new(eff.radius, eff.youngs_modulus, eff.surface_energy))
     }
 }

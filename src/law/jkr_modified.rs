@@ -3,7 +3,12 @@
 //! overlap is zero, so the extra adhesion work of JKR below alpha = 0 is never done. No history.
 
 use super::jkr::{on_curve_at, JkrCurve};
+use super::params::Effective;
+use super::tangential::TangentialModel;
+use super::LawInfo;
 use super::{Branch, Evaluation, NormalLaw};
+use crate::error::ParamError;
+use crate::scene::Scene;
 
 #[derive(Debug, Clone, PartialEq)]
 pub struct JkrModified {
@@ -82,5 +87,12 @@ impl NormalLaw for JkrModified {
         }
         let a = self.curve.contact_radius_from(alpha, guess);
         (self.elastic_at(a), 2.0 * self.curve.youngs_modulus * a, Some(a))
+    }
+}
+
+impl LawInfo for JkrModified {
+    const TANGENTIAL: TangentialModel = TangentialModel::Mindlin;
+    fn from_scene(_s: &Scene, eff: &Effective) -> Result<JkrModified, ParamError> {
+        Ok(JkrModified::new(eff.radius, eff.youngs_modulus, eff.surface_energy))
     }
 }

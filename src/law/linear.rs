@@ -1,7 +1,7 @@
 //! The linear spring (`004` Sec. 3.4.1.1, Eq. 3.9): f = k_n alpha for alpha > 0. No history.
 
 use super::params::{k_el_default, Effective};
-use super::{Branch, Evaluation, NormalLaw};
+use super::{Branch, Evaluation, LawInfo, NormalLaw};
 use crate::error::ParamError;
 use crate::scene::Scene;
 
@@ -9,17 +9,6 @@ use crate::scene::Scene;
 pub struct Linear {
     /// k_n [N/m].
     pub stiffness: f64,
-}
-
-impl Linear {
-    /// k_n from `linear_stiffness`, else `elastic_stiffness`, else pi R* p_y (000 Eq. 52).
-    pub fn from_scene(s: &Scene, eff: &Effective) -> Result<Linear, ParamError> {
-        let k = match (s.linear_stiffness, s.elastic_stiffness) {
-            (Some(k), _) | (None, Some(k)) => k,
-            _ => k_el_default(eff.radius, eff.require_yield_pressure("linear (no linear_stiffness given)")?),
-        };
-        Ok(Linear { stiffness: k })
-    }
 }
 
 impl NormalLaw for Linear {
@@ -55,5 +44,16 @@ impl NormalLaw for Linear {
 
     fn plastic_overlap(&self, _h: &()) -> f64 {
         0.0
+    }
+}
+
+impl LawInfo for Linear {
+    /// k_n from `linear_stiffness`, else `elastic_stiffness`, else pi R* p_y (000 Eq. 52).
+    fn from_scene(s: &Scene, eff: &Effective) -> Result<Linear, ParamError> {
+        let k = match (s.linear_stiffness, s.elastic_stiffness) {
+            (Some(k), _) | (None, Some(k)) => k,
+            _ => k_el_default(eff.radius, eff.require_yield_pressure("linear (no linear_stiffness given)")?),
+        };
+        Ok(Linear { stiffness: k })
     }
 }

@@ -12,7 +12,7 @@
 //! new: it keeps no history (the model's defining flaw, 004 Sec. 3.4.4.5).
 
 use super::params::{k_el_default, Effective};
-use super::{Branch, Evaluation, NormalLaw};
+use super::{Branch, Evaluation, LawInfo, NormalLaw};
 use crate::error::ParamError;
 use crate::scene::Scene;
 
@@ -40,22 +40,6 @@ pub struct LudingHistory {
 }
 
 impl Luding {
-    pub fn from_scene(s: &Scene, eff: &Effective) -> Result<Luding, ParamError> {
-        let k1 = match (s.luding_loading_stiffness, s.plastic_stiffness) {
-            (Some(k), _) | (None, Some(k)) => k,
-            _ => k_el_default(eff.radius, eff.require_yield_pressure("luding (no luding_loading_stiffness given)")?),
-        };
-        let k2_hat = s.luding_max_unloading_stiffness.unwrap_or(5.0 * k1);
-        if k2_hat <= k1 {
-            return Err(ParamError::Inconsistent {
-                name: "luding_max_unloading_stiffness",
-                why: format!("k_2_hat = {k2_hat:e} N/m must exceed k_1 = {k1:e} N/m (004 Eq. 3.71)"),
-            });
-        }
-        let f0 = s.luding_contact_adhesion_force.unwrap_or(8.0 / 9.0 * eff.f_ce());
-        Ok(Luding::new(k1, k2_hat, s.luding_adhesion_stiffness, f0, s.luding_plasticity_depth, eff.radius))
-    }
-
     pub fn new(k1: f64, k2_hat: f64, kc: f64, f0: f64, phi_f: f64, r_star: f64) -> Luding {
         let alpha_star = k2_hat / (k2_hat - k1) * phi_f * 2.0 * r_star; // Eq. 3.71
         Luding { k1, k2_hat, kc, f0, alpha_star }
@@ -138,5 +122,23 @@ impl NormalLaw for Luding {
         } else {
             0.0
         }
+    }
+}
+
+impl LawInfo for Luding {
+    fn from_scene(s: &Scene, eff: &Effective) -> Result<Luding, ParamError> {
+        let k1 = match (s.luding_loading_stiffness, s.plastic_stiffness) {
+            (Some(k), _) | (None, Some(k)) => k,
+            _ => k_el_default(eff.radius, eff.require_yield_pressure("luding (no luding_loading_stiffness given)")?),
+        };
+        let k2_hat = s.luding_max_unloading_stiffness.unwrap_or(5.0 * k1);
+        if k2_hat <= k1 {
+            return Err(ParamError::Inconsistent {
+                name: "luding_max_unloading_stiffness",
+                why: format!("k_2_hat = {k2_hat:e} N/m must exceed k_1 = {k1:e} N/m (004 Eq. 3.71)"),
+            });
+        }
+        let f0 = s.luding_contact_adhesion_force.unwrap_or(8.0 / 9.0 * eff.f_ce());
+        Ok(Luding::new(k1, k2_hat, s.luding_adhesion_stiffness, f0, s.luding_plasticity_depth, eff.radius))
     }
 }

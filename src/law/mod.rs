@@ -14,6 +14,7 @@ pub mod nan;
 pub mod params;
 pub mod pasha;
 pub mod pasha_simplified;
+pub mod table;
 pub mod tangential;
 pub mod thornton_ning;
 pub mod tomas;
@@ -22,6 +23,7 @@ pub mod walton_braun;
 use crate::error::ParamError;
 use crate::scene::{ModelKind, Scene};
 use params::Effective;
+use tangential::TangentialModel;
 
 /// The branch of a force-overlap diagram the contact is on.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
@@ -139,98 +141,90 @@ pub trait NormalLaw {
     }
 }
 
-/// Any of the laws, chosen at run time from a scene. Dispatch is one `match`.
-#[derive(Debug, Clone, PartialEq)]
-pub enum AnyLaw {
-    Nan(nan::Nan),
-    Pasha(pasha::Pasha),
-    PashaSimplified(pasha_simplified::PashaSimplified),
-    Luding(luding::Luding),
-    ThorntonNing(thornton_ning::ThorntonNing),
-    Tomas(tomas::Tomas),
-    Hertz(hertz::Hertz),
-    Jkr(jkr::Jkr),
-    JkrModified(jkr_modified::JkrModified),
-    Linear(linear::Linear),
-    WaltonBraun(walton_braun::WaltonBraun),
+/// What a law says about itself beyond its force, for the table (`law_table!`): how a scene builds it,
+/// which tangential stiffness goes with it, and its damping factor after yield.
+pub trait LawInfo: NormalLaw + Sized {
+    /// The tangential stiffness model of the law (`tangential::TangentialStiffness`).
+    const TANGENTIAL: TangentialModel = TangentialModel::Ratio;
+    /// beta of 000 Eq. 26 after yield when the scene gives none; `None`: the one before yield (004 Eq. 4.25).
+    const PLASTIC_DAMPING_FACTOR: Option<f64> = None;
+    /// The law of a scene, its parameters derived and checked; an error names the parameter.
+    fn from_scene(s: &Scene, eff: &Effective) -> Result<Self, ParamError>;
 }
 
-/// The history of any law.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
-pub enum AnyHistory {
-    Nan(nan::NanHistory),
-    Pasha(pasha::PashaHistory),
-    PashaSimplified(pasha::PashaHistory),
-    Luding(luding::LudingHistory),
-    ThorntonNing(thornton_ning::TnHistory),
-    Tomas(tomas::TomasHistory),
-    Hertz(()),
-    Jkr(jkr::JkrHistory),
-    JkrModified(()),
-    Linear(()),
-    WaltonBraun(walton_braun::WbHistory),
+/// Defines `AnyLaw`, `AnyHistory` and their dispatch from the rows of `law_table!`.
+macro_rules! define_any_law {
+    ($d:tt; $($variant:ident, $name:literal, $ty:ty, $pl:literal;)*) => {
+        /// Any of the laws, chosen at run time from a scene. Dispatch is one `match`.
+        #[derive(Debug, Clone, PartialEq)]
+        pub enum AnyLaw {
+            $($variant($ty),)*
+        }
+
+        /// The history of any law.
+        #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+        pub enum AnyHistory {
+            $($variant(<$ty as NormalLaw>::History),)*
+        }
+
+        impl AnyLaw {
+            /// Builds the scene's law with its parameters derived and checked.
+            pub fn from_scene(s: &Scene) -> Result<AnyLaw, ParamError> {
+                let eff = Effective::from_scene(s)?;
+                Ok(match s.contact_model {
+                    $(ModelKind::$variant => AnyLaw::$variant(<$ty as LawInfo>::from_scene(s, &eff)?),)*
+                })
+            }
+
+            pub fn model(&self) -> ModelKind {
+                match self {
+                    $(AnyLaw::$variant(_) => ModelKind::$variant,)*
+                }
+            }
+        }
+
+        impl ModelKind {
+            /// The tangential stiffness model of the law (`LawInfo::TANGENTIAL`).
+            pub fn tangential_model(self) -> TangentialModel {
+                match self {
+                    $(ModelKind::$variant => <$ty as LawInfo>::TANGENTIAL,)*
+                }
+            }
+
+            /// The law's damping factor after yield when the scene gives none (`LawInfo::PLASTIC_DAMPING_FACTOR`).
+            pub fn plastic_damping_factor(self) -> Option<f64> {
+                match self {
+                    $(ModelKind::$variant => <$ty as LawInfo>::PLASTIC_DAMPING_FACTOR,)*
+                }
+            }
+        }
+
+        /// Dispatches one method call to the law inside `AnyLaw`, checking the history variant matches.
+        macro_rules! dispatch {
+            ($d self_:ident, $d h:ident, $d law:ident, $d hist:ident => $d body:expr, $d wrap:expr, $d mismatch:expr) => {
+                match ($d self_, $d h) {
+                    $((AnyLaw::$variant($d law), AnyHistory::$variant($d hist)) => $d wrap(AnyHistory::$variant, $d body),)*
+                    _ => $d mismatch,
+                }
+            };
+        }
+
+        fn initial_history_of(law: &AnyLaw) -> AnyHistory {
+            match law {
+                $(AnyLaw::$variant(l) => AnyHistory::$variant(l.initial_history()),)*
+            }
+        }
+    };
 }
+
+crate::law_table!(define_any_law; $);
 
 impl AnyLaw {
-    /// Builds the scene's law with its parameters derived and checked.
-    pub fn from_scene(s: &Scene) -> Result<AnyLaw, ParamError> {
-        let eff = Effective::from_scene(s)?;
-        Ok(match s.contact_model {
-            ModelKind::Nan => AnyLaw::Nan(nan::Nan::new(params::NanParams::from_scene(s, &eff)?)),
-            ModelKind::Pasha => AnyLaw::Pasha(pasha::Pasha::from_scene(s, &eff)?),
-            ModelKind::PashaSimplified => AnyLaw::PashaSimplified(pasha_simplified::PashaSimplified::from_scene(s, &eff)?),
-            ModelKind::Luding => AnyLaw::Luding(luding::Luding::from_scene(s, &eff)?),
-            ModelKind::ThorntonNing => AnyLaw::ThorntonNing(thornton_ning::ThorntonNing::from_scene(&eff)?),
-            ModelKind::Tomas => AnyLaw::Tomas(tomas::Tomas::from_scene(s, &eff)?),
-            ModelKind::Hertz => AnyLaw::Hertz(hertz::Hertz::new(eff.radius, eff.youngs_modulus)),
-            ModelKind::Jkr => AnyLaw::Jkr(jkr::Jkr::new(eff.radius, eff.youngs_modulus, eff.surface_energy)),
-            ModelKind::JkrModified => AnyLaw::JkrModified(jkr_modified::JkrModified::new(eff.radius, eff.youngs_modulus, eff.surface_energy)),
-            ModelKind::Linear => AnyLaw::Linear(linear::Linear::from_scene(s, &eff)?),
-            ModelKind::WaltonBraun => AnyLaw::WaltonBraun(walton_braun::WaltonBraun::from_scene(s, &eff)?),
-        })
-    }
-
     /// Whether every branch is a straight line in the overlap for a fixed history (the laws the `exact`
-    /// integrator solves in closed form): nan, pasha, pasha_simplified, luding, linear, walton_braun.
+    /// integrator solves in closed form; the table's column).
     pub fn is_piecewise_linear(&self) -> bool {
         self.model().is_piecewise_linear()
     }
-
-    pub fn model(&self) -> ModelKind {
-        match self {
-            AnyLaw::Nan(_) => ModelKind::Nan,
-            AnyLaw::Pasha(_) => ModelKind::Pasha,
-            AnyLaw::PashaSimplified(_) => ModelKind::PashaSimplified,
-            AnyLaw::Luding(_) => ModelKind::Luding,
-            AnyLaw::ThorntonNing(_) => ModelKind::ThorntonNing,
-            AnyLaw::Tomas(_) => ModelKind::Tomas,
-            AnyLaw::Hertz(_) => ModelKind::Hertz,
-            AnyLaw::Jkr(_) => ModelKind::Jkr,
-            AnyLaw::JkrModified(_) => ModelKind::JkrModified,
-            AnyLaw::Linear(_) => ModelKind::Linear,
-            AnyLaw::WaltonBraun(_) => ModelKind::WaltonBraun,
-        }
-    }
-}
-
-/// Dispatches one method call to the law inside `AnyLaw`, checking the history variant matches.
-macro_rules! dispatch {
-    ($self:ident, $h:ident, $law:ident, $hist:ident => $body:expr, $wrap:expr, $mismatch:expr) => {
-        match ($self, $h) {
-            (AnyLaw::Nan($law), AnyHistory::Nan($hist)) => $wrap(AnyHistory::Nan, $body),
-            (AnyLaw::Pasha($law), AnyHistory::Pasha($hist)) => $wrap(AnyHistory::Pasha, $body),
-            (AnyLaw::PashaSimplified($law), AnyHistory::PashaSimplified($hist)) => $wrap(AnyHistory::PashaSimplified, $body),
-            (AnyLaw::Luding($law), AnyHistory::Luding($hist)) => $wrap(AnyHistory::Luding, $body),
-            (AnyLaw::ThorntonNing($law), AnyHistory::ThorntonNing($hist)) => $wrap(AnyHistory::ThorntonNing, $body),
-            (AnyLaw::Tomas($law), AnyHistory::Tomas($hist)) => $wrap(AnyHistory::Tomas, $body),
-            (AnyLaw::Hertz($law), AnyHistory::Hertz($hist)) => $wrap(AnyHistory::Hertz, $body),
-            (AnyLaw::Jkr($law), AnyHistory::Jkr($hist)) => $wrap(AnyHistory::Jkr, $body),
-            (AnyLaw::JkrModified($law), AnyHistory::JkrModified($hist)) => $wrap(AnyHistory::JkrModified, $body),
-            (AnyLaw::Linear($law), AnyHistory::Linear($hist)) => $wrap(AnyHistory::Linear, $body),
-            (AnyLaw::WaltonBraun($law), AnyHistory::WaltonBraun($hist)) => $wrap(AnyHistory::WaltonBraun, $body),
-            _ => $mismatch,
-        }
-    };
 }
 
 fn wrap_eval<H>(f: fn(H) -> AnyHistory, e: Evaluation<H>) -> Evaluation<AnyHistory> {
@@ -245,19 +239,7 @@ impl NormalLaw for AnyLaw {
     type History = AnyHistory;
 
     fn initial_history(&self) -> AnyHistory {
-        match self {
-            AnyLaw::Nan(l) => AnyHistory::Nan(l.initial_history()),
-            AnyLaw::Pasha(l) => AnyHistory::Pasha(l.initial_history()),
-            AnyLaw::PashaSimplified(l) => AnyHistory::PashaSimplified(l.initial_history()),
-            AnyLaw::Luding(l) => AnyHistory::Luding(l.initial_history()),
-            AnyLaw::ThorntonNing(l) => AnyHistory::ThorntonNing(l.initial_history()),
-            AnyLaw::Tomas(l) => AnyHistory::Tomas(l.initial_history()),
-            AnyLaw::Hertz(l) => AnyHistory::Hertz(l.initial_history()),
-            AnyLaw::Jkr(l) => AnyHistory::Jkr(l.initial_history()),
-            AnyLaw::JkrModified(l) => AnyHistory::JkrModified(l.initial_history()),
-            AnyLaw::Linear(l) => AnyHistory::Linear(l.initial_history()),
-            AnyLaw::WaltonBraun(l) => AnyHistory::WaltonBraun(l.initial_history()),
-        }
+        initial_history_of(self)
     }
 
     /// A history of another law is a programming error; it is answered with the law's own initial

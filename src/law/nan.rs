@@ -14,8 +14,12 @@
 //!   and alpha_max follows alpha (Eq. 10), which recomputes k_e, k_c, alpha_p, f_cp and the overlaps of
 //!   Eqs. 11-14 so that the force stays continuous.
 
+use super::params::Effective;
 use super::params::NanParams;
+use super::LawInfo;
 use super::{Branch, Evaluation, NormalLaw};
+use crate::error::ParamError;
+use crate::scene::Scene;
 
 #[derive(Debug, Clone, PartialEq)]
 pub struct Nan {
@@ -149,5 +153,13 @@ impl NormalLaw for Nan {
 
     fn plastic_overlap(&self, h: &NanHistory) -> f64 {
         h.points.alpha_p
+    }
+}
+
+impl LawInfo for Nan {
+    /// 000 Sec. 2.3: beta = 0.1 after yield.
+    const PLASTIC_DAMPING_FACTOR: Option<f64> = Some(0.1);
+    fn from_scene(s: &Scene, eff: &Effective) -> Result<Nan, ParamError> {
+        Ok(Nan::new(NanParams::from_scene(s, eff)?))
     }
 }

@@ -20,7 +20,7 @@
 //! alpha_0 = 8/9 f_ce / k_e, so k_e is continuous at yield).
 
 use super::params::Effective;
-use super::{Branch, Evaluation, NormalLaw};
+use super::{Branch, Evaluation, LawInfo, NormalLaw};
 use crate::error::ParamError;
 use crate::scene::{PashaStiffnessLaw, Scene};
 use std::f64::consts::PI;
@@ -111,11 +111,6 @@ pub struct PashaPoints {
 }
 
 impl Pasha {
-    pub fn from_scene(s: &Scene, eff: &Effective) -> Result<Pasha, ParamError> {
-        let stiffness = PashaStiffness::from_scene(s, eff, "pasha")?;
-        Ok(Pasha::new(eff.radius, eff.surface_energy, stiffness))
-    }
-
     pub fn new(radius: f64, surface_energy: f64, stiffness: PashaStiffness) -> Pasha {
         let f_ce = 1.5 * PI * surface_energy * radius;
         // Before yield the elastic line ends at alpha_0 = 8/9 f_ce / k_e0; with Eq. 4.23 k_e depends on
@@ -219,5 +214,12 @@ impl NormalLaw for Pasha {
 
     fn plastic_overlap(&self, h: &PashaHistory) -> f64 {
         self.points(h.alpha_max).alpha_p
+    }
+}
+
+impl LawInfo for Pasha {
+    fn from_scene(s: &Scene, eff: &Effective) -> Result<Pasha, ParamError> {
+        let stiffness = PashaStiffness::from_scene(s, eff, "pasha")?;
+        Ok(Pasha::new(eff.radius, eff.surface_energy, stiffness))
     }
 }

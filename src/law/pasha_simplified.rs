@@ -9,7 +9,7 @@
 
 use super::params::Effective;
 use super::pasha::{pasha_evaluate, PashaHistory, PashaPoints, PashaStiffness};
-use super::{Evaluation, NormalLaw};
+use super::{Evaluation, LawInfo, NormalLaw};
 use crate::error::ParamError;
 use crate::scene::Scene;
 
@@ -27,13 +27,6 @@ pub struct PashaSimplified {
 }
 
 impl PashaSimplified {
-    pub fn from_scene(s: &Scene, eff: &Effective) -> Result<PashaSimplified, ParamError> {
-        let stiffness = PashaStiffness::from_scene(s, eff, "pasha_simplified")?;
-        let f_ce = eff.f_ce();
-        let f_0p = s.pasha_pull_off_intercept.unwrap_or(f_ce);
-        PashaSimplified::new(f_ce, stiffness, s.pasha_pull_off_stiffness, f_0p)
-    }
-
     pub fn new(f_ce: f64, stiffness: PashaStiffness, k_cp: f64, f_0p: f64) -> Result<PashaSimplified, ParamError> {
         if f_0p < 8.0 / 9.0 * f_ce * (1.0 - 1e-12) {
             return Err(ParamError::OutOfRange {
@@ -81,5 +74,14 @@ impl NormalLaw for PashaSimplified {
 
     fn plastic_overlap(&self, h: &PashaHistory) -> f64 {
         self.points(h.alpha_max).alpha_p
+    }
+}
+
+impl LawInfo for PashaSimplified {
+    fn from_scene(s: &Scene, eff: &Effective) -> Result<PashaSimplified, ParamError> {
+        let stiffness = PashaStiffness::from_scene(s, eff, "pasha_simplified")?;
+        let f_ce = eff.f_ce();
+        let f_0p = s.pasha_pull_off_intercept.unwrap_or(f_ce);
+        PashaSimplified::new(f_ce, stiffness, s.pasha_pull_off_stiffness, f_0p)
     }
 }

@@ -13,7 +13,13 @@
 //! 004 Eqs. 4.27-4.28, 3.49, 3.75, 003 Eq. 10). When sliding, the force is scaled back onto the limit
 //! and no tangential damping acts (000 Sec. 2.2).
 
-use crate::scene::ModelKind;
+/// Which stiffness model a law uses (`LawInfo::TANGENTIAL`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TangentialModel {
+    Ratio,
+    Mindlin,
+    Tomas,
+}
 
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum TangentialStiffness {
@@ -23,14 +29,12 @@ pub enum TangentialStiffness {
 }
 
 impl TangentialStiffness {
-    /// The model each law uses.
-    pub fn for_model(model: ModelKind, shear_modulus: f64, youngs_modulus: f64, radius: f64) -> TangentialStiffness {
+    /// The stiffness of a model with these pair properties.
+    pub fn for_model(model: TangentialModel, shear_modulus: f64, youngs_modulus: f64, radius: f64) -> TangentialStiffness {
         match model {
-            ModelKind::Hertz | ModelKind::Jkr | ModelKind::JkrModified | ModelKind::ThorntonNing => {
-                TangentialStiffness::Mindlin { shear_modulus, radius }
-            }
-            ModelKind::Tomas => TangentialStiffness::Tomas { shear_modulus, radius, youngs_modulus },
-            _ => TangentialStiffness::Ratio { ratio: 4.0 * shear_modulus / youngs_modulus },
+            TangentialModel::Mindlin => TangentialStiffness::Mindlin { shear_modulus, radius },
+            TangentialModel::Tomas => TangentialStiffness::Tomas { shear_modulus, radius, youngs_modulus },
+            TangentialModel::Ratio => TangentialStiffness::Ratio { ratio: 4.0 * shear_modulus / youngs_modulus },
         }
     }
 
@@ -82,6 +86,7 @@ impl TangentialSpring {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::scene::ModelKind;
 
     #[test]
     fn spring_sticks_then_slides_at_the_coulomb_limit() {
@@ -108,7 +113,7 @@ mod tests {
 
     #[test]
     fn ratio_is_000_eq_22() {
-        let t = TangentialStiffness::for_model(ModelKind::Nan, 1.0, 2.5, 1e-6);
+        let t = TangentialStiffness::for_model(ModelKind::Nan.tangential_model(), 1.0, 2.5, 1e-6);
         assert_eq!(t.at(1e-9, -300.0, 0.0, None), 4.0 * 1.0 / 2.5 * 300.0);
     }
 
@@ -125,7 +130,7 @@ mod tests {
 
     #[test]
     fn mindlin_uses_the_law_contact_radius_where_given() {
-        let t = TangentialStiffness::for_model(ModelKind::Jkr, 2.0, 5.0, 1e-6);
+        let t = TangentialStiffness::for_model(ModelKind::Jkr.tangential_model(), 2.0, 5.0, 1e-6);
         // Hertz radius sqrt(R alpha) without one; the JKR radius (nonzero at alpha <= 0) with one.
         assert_eq!(t.at(1e-10, 0.0, 0.0, None), 8.0 * 2.0 * (1e-6f64 * 1e-10).sqrt());
         assert_eq!(t.at(-1e-10, 0.0, 0.0, Some(3e-8)), 8.0 * 2.0 * 3e-8);

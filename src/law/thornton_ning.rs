@@ -16,9 +16,11 @@
 
 use super::jkr::{on_curve, JkrCurve};
 use super::params::Effective;
-use super::{Branch, Evaluation, NormalLaw};
+use super::tangential::TangentialModel;
+use super::{Branch, Evaluation, LawInfo, NormalLaw};
 use crate::error::ParamError;
 use crate::numeric::brent;
+use crate::scene::Scene;
 use std::f64::consts::PI;
 
 #[derive(Debug, Clone, PartialEq)]
@@ -52,11 +54,6 @@ pub struct TnHistory {
 }
 
 impl ThorntonNing {
-    pub fn from_scene(eff: &Effective) -> Result<ThorntonNing, ParamError> {
-        let p_y = eff.require_yield_pressure("thornton_ning")?;
-        Ok(ThorntonNing::new(eff.radius, eff.youngs_modulus, eff.surface_energy, p_y))
-    }
-
     pub fn new(radius: f64, youngs_modulus: f64, surface_energy: f64, yield_pressure: f64) -> ThorntonNing {
         let curve = JkrCurve::new(radius, youngs_modulus, surface_energy);
         let a_y = yield_radius(radius, youngs_modulus, surface_energy, yield_pressure);
@@ -186,5 +183,13 @@ impl NormalLaw for ThorntonNing {
     /// 2 E* a: the Hertz stiffness at the JKR contact radius (the JKR slope is infinite at detachment).
     fn damping_stiffness(&self, alpha: f64, h: &TnHistory, _branch_stiffness: f64) -> f64 {
         2.0 * self.curve.youngs_modulus * self.contact_radius(alpha, h).unwrap_or(0.0)
+    }
+}
+
+impl LawInfo for ThorntonNing {
+    const TANGENTIAL: TangentialModel = TangentialModel::Mindlin;
+    fn from_scene(_s: &Scene, eff: &Effective) -> Result<ThorntonNing, ParamError> {
+        let p_y = eff.require_yield_pressure("thornton_ning")?;
+        Ok(ThorntonNing::new(eff.radius, eff.youngs_modulus, eff.surface_energy, p_y))
     }
 }

@@ -20,7 +20,8 @@
 //!   Tomas' model keeps no permanent deformation (004 Sec. 3.4.4.3).
 
 use super::params::Effective;
-use super::{Branch, Evaluation, NormalLaw};
+use super::tangential::TangentialModel;
+use super::{Branch, Evaluation, LawInfo, NormalLaw};
 use crate::error::ParamError;
 use crate::numeric::brent;
 use crate::scene::Scene;
@@ -69,15 +70,6 @@ pub struct TomasHistory {
 }
 
 impl Tomas {
-    pub fn from_scene(s: &Scene, eff: &Effective) -> Result<Tomas, ParamError> {
-        let p_f = match s.tomas_yield_strength {
-            Some(p) => p,
-            None => eff.require_yield_pressure("tomas (no tomas_yield_strength given)")?,
-        };
-        let f0 = s.tomas_contact_adhesion_force.unwrap_or(2.0 * PI * eff.surface_energy * eff.radius);
-        Ok(Tomas::new(eff.radius, eff.youngs_modulus, p_f, s.tomas_area_coefficient, s.tomas_repulsion_coefficient, f0, s.tomas_separation))
-    }
-
     pub fn new(r: f64, e_star: f64, p_f: f64, kappa_a: f64, kappa_p: f64, f0: f64, a_f: f64) -> Tomas {
         let c = 4.0 / 3.0 * e_star * r.sqrt();
         let k1 = PI * r * p_f * (kappa_a - kappa_p);
@@ -246,5 +238,17 @@ impl NormalLaw for Tomas {
         }
         let f_max = self.k1 * h.alpha_max - self.f0;
         h.h_min + (h.alpha_max - h.h_min) * (-h.f_a / (f_max - h.f_a)).powf(2.0 / 3.0)
+    }
+}
+
+impl LawInfo for Tomas {
+    const TANGENTIAL: TangentialModel = TangentialModel::Tomas;
+    fn from_scene(s: &Scene, eff: &Effective) -> Result<Tomas, ParamError> {
+        let p_f = match s.tomas_yield_strength {
+            Some(p) => p,
+            None => eff.require_yield_pressure("tomas (no tomas_yield_strength given)")?,
+        };
+        let f0 = s.tomas_contact_adhesion_force.unwrap_or(2.0 * PI * eff.surface_energy * eff.radius);
+        Ok(Tomas::new(eff.radius, eff.youngs_modulus, p_f, s.tomas_area_coefficient, s.tomas_repulsion_coefficient, f0, s.tomas_separation))
     }
 }

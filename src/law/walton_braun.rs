@@ -5,7 +5,7 @@
 //! k_e = k_p + S F_max (Eq. 3.38) when a stiffening slope S > 0 is given. No adhesion.
 
 use super::params::{k_el_default, Effective};
-use super::{Branch, Evaluation, NormalLaw};
+use super::{Branch, Evaluation, LawInfo, NormalLaw};
 use crate::error::ParamError;
 use crate::scene::Scene;
 
@@ -26,22 +26,6 @@ pub struct WbHistory {
 }
 
 impl WaltonBraun {
-    /// k_e from `elastic_stiffness` (else pi R* p_y, 000 Eq. 52), k_p from `plastic_stiffness` (else k_e).
-    pub fn from_scene(s: &Scene, eff: &Effective) -> Result<WaltonBraun, ParamError> {
-        let k_e = match s.elastic_stiffness {
-            Some(k) => k,
-            None => k_el_default(eff.radius, eff.require_yield_pressure("walton_braun (no elastic_stiffness given)")?),
-        };
-        let k_p = s.plastic_stiffness.unwrap_or(k_e);
-        if k_p > k_e {
-            return Err(ParamError::Inconsistent {
-                name: "plastic_stiffness",
-                why: format!("k_p = {k_p:e} N/m exceeds elastic_stiffness k_e = {k_e:e} N/m (004 Eq. 3.37 needs k_p <= k_e)"),
-            });
-        }
-        Ok(WaltonBraun { k_p, k_e, slope: s.walton_braun_stiffening_slope })
-    }
-
     /// Unloading stiffness for a largest overlap.
     pub fn unloading_stiffness(&self, alpha_max: f64) -> f64 {
         if self.slope > 0.0 {
@@ -104,5 +88,23 @@ impl NormalLaw for WaltonBraun {
 
     fn plastic_overlap(&self, h: &WbHistory) -> f64 {
         self.alpha_0(h.alpha_max)
+    }
+}
+
+impl LawInfo for WaltonBraun {
+    /// k_e from `elastic_stiffness` (else pi R* p_y, 000 Eq. 52), k_p from `plastic_stiffness` (else k_e).
+    fn from_scene(s: &Scene, eff: &Effective) -> Result<WaltonBraun, ParamError> {
+        let k_e = match s.elastic_stiffness {
+            Some(k) => k,
+            None => k_el_default(eff.radius, eff.require_yield_pressure("walton_braun (no elastic_stiffness given)")?),
+        };
+        let k_p = s.plastic_stiffness.unwrap_or(k_e);
+        if k_p > k_e {
+            return Err(ParamError::Inconsistent {
+                name: "plastic_stiffness",
+                why: format!("k_p = {k_p:e} N/m exceeds elastic_stiffness k_e = {k_e:e} N/m (004 Eq. 3.37 needs k_p <= k_e)"),
+            });
+        }
+        Ok(WaltonBraun { k_p, k_e, slope: s.walton_braun_stiffening_slope })
     }
 }

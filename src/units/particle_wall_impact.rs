@@ -12,7 +12,7 @@ use super::{Model, UnitInfo};
 use crate::impact::contact::Memory;
 use crate::impact::{Solver, Sphere, State, Wall};
 use crate::law::{AnyLaw, NormalLaw};
-use crate::scene::Partner;
+use crate::scene::{ModelKind, Partner};
 use crate::theory::time_step;
 use serde::{Deserialize, Serialize};
 
@@ -67,7 +67,10 @@ fn own_variables() -> Vec<Variable> {
             "solver",
             Value::String("auto".into()),
             "",
-            "Co-Simulation integrator: exact (closed form per branch; nan, pasha, pasha_simplified, luding, linear, walton_braun), adaptive (Dormand-Prince 5(4) with event location; every law), verlet (fixed-step velocity Verlet at rayleigh_fraction of the Rayleigh time step, as DEM codes), auto (exact where it applies, else adaptive)",
+            &format!(
+                "Co-Simulation integrator: exact (closed form per branch; {}), adaptive (Dormand-Prince 5(4) with event location; every law), verlet (fixed-step velocity Verlet at rayleigh_fraction of the Rayleigh time step, as DEM codes), auto (exact where it applies, else adaptive)",
+                ModelKind::piecewise_linear_names()
+            ),
         ),
         Variable::parameter("tolerance", Value::Real(1e-10), "", "relative tolerance of the adaptive integrator, in [1e-14, 1e-2]")
             .with_range(Some(1e-14), Some(1e-2)),
@@ -240,7 +243,8 @@ fn solver(name: &str, law: &AnyLaw, verlet_step: f64) -> Result<Solver, String> 
         "auto" | "adaptive" => Ok(Solver::Adaptive),
         "exact" if law.is_piecewise_linear() => Ok(Solver::Exact),
         "exact" => Err(format!(
-            "parameter `solver` = \"exact\" needs a piecewise-linear contact_model (nan, pasha, pasha_simplified, luding, linear, walton_braun), not \"{}\"; use \"adaptive\" or \"auto\"",
+            "parameter `solver` = \"exact\" needs a piecewise-linear contact_model ({}), not \"{}\"; use \"adaptive\" or \"auto\"",
+            ModelKind::piecewise_linear_names(),
             law.model().name()
         )),
         "verlet" => Ok(Solver::Verlet { step: verlet_step }),
@@ -352,8 +356,7 @@ impl Model for ParticleWallImpact {
             // no kinetic scale, and a nominal from it alone (1e-19 J here) made CVode's error test on
             // the work fail at any step above 1e-13 s.
             let fresh = c.law.initial_history();
-            let force_scale =
-                c.law.evaluate(c.alpha_nominal, &fresh).force.abs().max(c.law.pull_off_force(&fresh)).max(s.mass * s.gravity.abs());
+            let force_scale = c.law.evaluate(c.alpha_nominal, &fresh).force.abs().max(c.law.pull_off_force(&fresh)).max(s.mass * s.gravity.abs());
             let energy = (0.5 * s.mass * c.rate_nominal * c.rate_nominal).max(force_scale * c.alpha_nominal);
             x.copy_from_slice(&[c.alpha_nominal, c.rate_nominal, energy]);
         } else {
@@ -399,7 +402,8 @@ impl Model for ParticleWallImpact {
 
     fn save(&self) -> Result<Vec<u8>, String> {
         let Some(s) = &self.sphere else { return Ok(Vec::new()) };
-        let snap = Snapshot { y: self.y, t: self.t, contact: s.contact.memory(), last_step: s.last_step, cs_wall: self.cs_wall, me_wall: self.me_wall };
+        let snap =
+            Snapshot { y: self.y, t: self.t, contact: s.contact.memory(), last_step: s.last_step, cs_wall: self.cs_wall, me_wall: self.me_wall };
         contact_parts::encode(&snap)
     }
 
