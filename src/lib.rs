@@ -1,8 +1,20 @@
 //! powderfmu: the contact mechanics of elasto-plastic, adhesive spheres (the laws of the seed papers
 //! `000` Nan et al., `003` Tykhoniuk et al., `004` Pasha), for system models of powder handling.
 //!
-//! Layers, one way (DESIGN 2): `scene` (named inputs) -> `law` (contact laws and their parameters) ->
-//! `theory` (closed-form results) -> `analysis` (the report of the command-line tool).
+//! Layers, one way (DESIGN 2):
+//! - `scene` (named inputs) -> `law` (the contact laws, their table and their parameters) -> `theory`
+//!   (closed-form results) -> `analysis` and `curves` (the reports of the command-line tool);
+//! - `law` -> `impact` (one contact followed in time, the sphere-wall dynamics and its integrators) ->
+//!   `units` (the FMUs: variable tables and models) -> `fmi2` (the C ABI);
+//! - `law` -> `bed` (the DEM bed engine and bed preparation).
+//!
+//! `numeric` (root finding, quadrature) and `error` serve all of them.
+
+// `!(x > y)` is how this crate refuses NaN together with out-of-range values; clippy's suggestion
+// (`partial_cmp`) would read worse and lose that on purpose.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
+// The bed's structure-of-arrays loops index several parallel arrays with one counter.
+#![allow(clippy::needless_range_loop)]
 
 pub mod analysis;
 pub mod bed;

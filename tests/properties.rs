@@ -83,6 +83,7 @@ fn forgets_on_separation(m: ModelKind) -> bool {
 /// branch switch is pinned to a width of 1e-14 relative, and the force must agree across each switch
 /// within the slope times that width (plus a square-root allowance for the JKR curves, whose slope is
 /// infinite at detachment). Switches into or out of separation are the documented jumps.
+#[allow(clippy::too_many_arguments)] // one path step: law, history, the two points and their evaluations
 fn continuous(
     law: &AnyLaw,
     h: AnyHistory,
@@ -138,7 +139,10 @@ fn walk(c: &Case) -> Result<(), String> {
             if !(en.force.is_finite() && en.stiffness.is_finite()) {
                 return Err(format!("non-finite force {} or stiffness {} at {next:e} on {:?}", en.force, en.stiffness, en.branch));
             }
-            if !(en.lower <= en.upper) {
+            // Also refuses NaN bounds.
+            #[allow(clippy::neg_cmp_op_on_partial_ord)]
+            let empty = !(en.lower <= en.upper);
+            if empty {
                 return Err(format!("branch interval [{}, {}] is empty at {next:e}", en.lower, en.upper));
             }
             continuous(&law, h, alpha, &e, next, f_ref, c.radius * 1e-3, 80)?;

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Runs every test of the project: the Rust tests (crate and packaging tool, including the importer test
 # and the check of every FMI signature against the official headers), then builds the .fmu files and runs
-# the fmpy suite (tests/python) against them. Installs what it needs: the project's Python virtual
-# environment (.venv, pinned fmpy, numpy, matplotlib, pytest). Ends with one line of totals.
+# the fmpy suite (tests/python) against them; cargo clippy with warnings as errors runs in between.
+# Installs what it needs: the project's Python virtual environment (.venv, pinned fmpy, numpy,
+# matplotlib, pytest). Ends with one line of totals.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 if ! command -v cargo >/dev/null 2>&1; then
@@ -22,6 +23,13 @@ echo "== Rust tests (workspace: powderfmu, fmu_build)"
 FMI2_HEADERS="$headers" cargo test --workspace --locked 2>&1 | tee "$log" || status=$?
 rust_passed=$(awk '/^test result:/ {s += $4} END {print s + 0}' "$log")
 rust_failed=$(awk '/^test result:/ {s += $6} END {print s + 0}' "$log")
+
+echo "== Lints (cargo clippy, warnings are errors)"
+if cargo clippy --version >/dev/null 2>&1; then
+    cargo clippy --workspace --all-targets --locked --quiet -- -D warnings || status=1
+else
+    echo "run_all.sh: cargo clippy is not installed (rustup component add clippy); lints skipped" >&2
+fi
 
 echo "== Building the FMUs (target/fmu)"
 cargo run --locked --quiet -p fmu_build || status=$?

@@ -69,8 +69,11 @@ impl From<String> for BedError {
     }
 }
 
+/// Species pairs (row-major), and per wall one interaction per species.
+pub type InteractionTables<L> = (Vec<Interaction<L>>, Vec<Vec<Interaction<L>>>);
+
 /// The interaction tables of a scene for law `L`: species pairs, and each wall with each species.
-pub fn interactions<L: BedLaw>(scene: &BedScene, walls: &[Wall]) -> Result<(Vec<Interaction<L>>, Vec<Vec<Interaction<L>>>), ParamError> {
+pub fn interactions<L: BedLaw>(scene: &BedScene, walls: &[Wall]) -> Result<InteractionTables<L>, ParamError> {
     let sp = scene.species();
     let mut pairs = Vec::with_capacity(sp.len() * sp.len());
     for &(r1, m1) in &sp {

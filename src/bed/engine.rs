@@ -166,13 +166,17 @@ struct Part<'a, H> {
     spring: &'a mut [Vec3],
     radius: &'a mut [f64],
     /// Per wall: particles and their memory.
-    walls: Vec<(&'a [u32], &'a mut [H], &'a mut [Vec3], &'a mut [f64])>,
+    walls: Vec<WallMemory<'a, H>>,
     sink: Sink<'a>,
 }
+
+/// One wall's contacts: the particle of each, and their memory (law history, tangential spring, contact radius).
+type WallMemory<'a, H> = (&'a [u32], &'a mut [H], &'a mut [Vec3], &'a mut [f64]);
 
 impl<L: BedLaw> Engine<L> {
     /// An engine over these particles and walls. `threads` >= 1; more than one starts a pool the engine
     /// owns. The skin must exceed every interaction's reach.
+    #[allow(clippy::too_many_arguments)] // the engine's whole set-up, each argument named at the one call site
     pub fn new(
         particles: Particles,
         walls: Vec<Wall>,
@@ -480,7 +484,7 @@ impl<L: BedLaw> Engine<L> {
         let mut normal: &mut [L::History] = &mut self.normal;
         let mut spring: &mut [Vec3] = &mut self.spring;
         let mut radius: &mut [f64] = &mut self.radius;
-        let mut wall_rest: Vec<(&[u32], &mut [L::History], &mut [Vec3], &mut [f64])> =
+        let mut wall_rest: Vec<WallMemory<'_, L::History>> =
             self.wall_contacts.iter_mut().map(|wc| (&wc.particle[..], &mut wc.normal[..], &mut wc.spring[..], &mut wc.radius[..])).collect();
         let mut consumed = 0usize;
         let record = self.record_dipoles;

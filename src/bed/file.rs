@@ -16,6 +16,9 @@ use crate::fmi2::snapshot::fnv1a;
 use std::io::Write;
 use std::path::Path;
 
+/// A wall contact as the file keeps it: the particle, its law history, tangential spring and contact radius.
+type SavedWallContact<H> = (u32, H, Vec3, f64);
+
 pub const MAGIC: &[u8; 8] = b"PFBED\0\0\0";
 pub const VERSION: u32 = 2;
 
@@ -54,7 +57,7 @@ impl<L: BedLaw> Engine<L> {
                 }
             }
         }
-        let walls: Vec<Vec<(u32, L::History, Vec3, f64)>> = self
+        let walls: Vec<Vec<SavedWallContact<L::History>>> = self
             .wall_contacts
             .iter()
             .enumerate()
@@ -76,7 +79,7 @@ impl<L: BedLaw> Engine<L> {
     fn restore_contacts(&mut self, pairs: &[u8], walls: &[u8]) -> Result<(), BedError> {
         let pairs: Vec<(u32, u32, L::History, Vec3, f64)> =
             bincode::deserialize(pairs).map_err(|e| BedError::Setup(format!("bed file: contacts unreadable ({e})")))?;
-        let walls: Vec<Vec<(u32, L::History, Vec3, f64)>> =
+        let walls: Vec<Vec<SavedWallContact<L::History>>> =
             bincode::deserialize(walls).map_err(|e| BedError::Setup(format!("bed file: wall contacts unreadable ({e})")))?;
         // Every slot starts as a pair that has never touched (the engine's first force pass may have
         // loaded springs); the file then says which remember something.

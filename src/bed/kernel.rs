@@ -27,6 +27,7 @@ pub struct ContactForce {
 /// `radius_guess` keeps the contact radius for the next step's solve (the JKR laws).
 /// Returns `None` when the pair carries no force (its history and spring are updated all the same).
 #[inline(always)]
+#[allow(clippy::too_many_arguments)] // the force loop's one call per contact, inlined: the pair, its state and its memory
 pub fn contact<L: BedLaw>(
     it: &Interaction<L>,
     alpha: f64,

@@ -188,7 +188,7 @@ fn calm(e: &mut AnyEngine, scene: &BedScene, phase: &'static str, min_time: f64,
             let f = *first.get_or_insert(ratio.max(10.0 * scene.settle_energy_ratio));
             0.5 + 0.5 * ((f / ratio.max(1e-300)).ln() / (f / scene.settle_energy_ratio).ln()).clamp(0.0, 1.0)
         };
-        progress(&Progress { phase, fraction: overall(phase, within), time: e.time(), steps: steps, detail: format!("kinetic energy ratio {ratio:.2e}") });
+        progress(&Progress { phase, fraction: overall(phase, within), time: e.time(), steps, detail: format!("kinetic energy ratio {ratio:.2e}") });
         if t >= min_time && ratio < scene.settle_energy_ratio {
             return Ok((t, steps));
         }

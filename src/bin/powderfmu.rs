@@ -18,7 +18,7 @@ fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
     match args.first().map(String::as_str) {
         Some("analyze") => run_analyze(&args[1..]),
-        Some("curve") => run_csv(&args[1..], "--path", |scene, list, points| force_overlap_csv(scene, list, points)),
+        Some("curve") => run_csv(&args[1..], "--path", force_overlap_csv),
         Some("bed") => match bed_cli::run(&args[1..]) {
             Ok(()) => ExitCode::SUCCESS,
             Err(e) => fail(&e),

@@ -372,6 +372,7 @@ pub unsafe extern "C" fn fmi2GetString(c: fmi2Component, vr: *const fmi2ValueRef
     })
 }
 
+#[allow(clippy::too_many_arguments)] // the fmi2Set* arguments plus what this one setter needs to know
 fn set_from<T: Copy>(
     c: fmi2Component,
     function: &'static str,

@@ -4,6 +4,7 @@
 //! - plastic limit    P = k_1 alpha - f_0,
 //! - un/reloading     L = k_2 (alpha - delta_0) - f_0,
 //! - adhesion limit   A = -k_c alpha - f_0.
+//!
 //! The force is L while A < L < P. Reaching P (loading) moves delta_0 so the line passes through the
 //! current point: delta_0 = (1 - k_1/k_2) alpha. Reaching A (unloading) moves it too:
 //! delta_0 = (1 + k_c/k_2) alpha, so reloading from there runs parallel to the first unloading line

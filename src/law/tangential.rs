@@ -9,6 +9,7 @@
 //!   where a = sqrt(R* alpha) for Hertz; for JKR and Thornton-Ning the JKR contact radius, as the
 //!   tangential models built on JKR use it, 004 Secs. 3.4.3.2-3.4.4.2);
 //! - `Tomas`: k_t = 4 G* r_K with r_K = [3 R* (F_N + F_H) / (2 E*_Tomas)]^(1/3) (003 Eqs. 8-9).
+//!
 //! The sliding limit is mu max(N, 0) where N is the law's `sliding_normal_force` (000 Eq. 23,
 //! 004 Eqs. 4.27-4.28, 3.49, 3.75, 003 Eq. 10). When sliding, the force is scaled back onto the limit
 //! and no tangential damping acts (000 Sec. 2.2).

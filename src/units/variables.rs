@@ -146,6 +146,7 @@ pub struct Variable {
 }
 
 impl Variable {
+    #[allow(clippy::too_many_arguments)] // every column of a variable table row; called by the named constructors below
     fn new(
         name: &str,
         causality: Causality,
