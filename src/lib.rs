@@ -15,6 +15,7 @@
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 // The bed's structure-of-arrays loops index several parallel arrays with one counter.
 #![allow(clippy::needless_range_loop)]
+#![deny(unsafe_op_in_unsafe_fn)]
 
 pub mod analysis;
 pub mod bed;

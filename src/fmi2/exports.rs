@@ -97,6 +97,10 @@ fn call_for(c: fmi2Component, function: &'static str, kind: Option<Kind>, modes:
 }
 
 /// A C array as a slice; NULL is allowed only for an empty array.
+///
+/// # Safety
+/// A non-NULL `p` must point to `n` initialized values of `T` that stay valid and unaliased by writes for
+/// `'a` (the host's array argument for the duration of the call).
 unsafe fn slice<'a, T>(p: *const T, n: usize, function: &str, name: &str) -> Call<&'a [T]> {
     if n == 0 {
         return Ok(&[]);
@@ -107,9 +111,15 @@ unsafe fn slice<'a, T>(p: *const T, n: usize, function: &str, name: &str) -> Cal
     if n > MAX_ARRAY {
         return error(format!("{function}: length {n} of `{name}` is larger than any array of this unit"));
     }
-    Ok(std::slice::from_raw_parts(p, n))
+    // SAFETY: `p` is non-NULL and the caller guarantees `n` readable elements (this function's contract).
+    Ok(unsafe { std::slice::from_raw_parts(p, n) })
 }
 
+/// A C array as a mutable slice; NULL is allowed only for an empty array.
+///
+/// # Safety
+/// A non-NULL `p` must point to `n` writable values of `T`, not aliased elsewhere, valid for `'a` (the host's
+/// output array for the duration of the call).
 unsafe fn slice_mut<'a, T>(p: *mut T, n: usize, function: &str, name: &str) -> Call<&'a mut [T]> {
     if n == 0 {
         return Ok(&mut []);
@@ -120,14 +130,20 @@ unsafe fn slice_mut<'a, T>(p: *mut T, n: usize, function: &str, name: &str) -> C
     if n > MAX_ARRAY {
         return error(format!("{function}: length {n} of `{name}` is larger than any array of this unit"));
     }
-    Ok(std::slice::from_raw_parts_mut(p, n))
+    // SAFETY: `p` is non-NULL and the caller guarantees `n` readable elements (this function's contract).
+    Ok(unsafe { std::slice::from_raw_parts_mut(p, n) })
 }
 
+/// A C string argument as a String; NULL and non-UTF-8 are refused by name.
+///
+/// # Safety
+/// A non-NULL `p` must point to a NUL-terminated string valid for the duration of the call.
 unsafe fn c_str(p: fmi2String, function: &str, name: &str) -> Call<String> {
     if p.is_null() {
         return error(format!("{function}: argument `{name}` is NULL"));
     }
-    CStr::from_ptr(p).to_str().map(str::to_owned).map_err(|_| Failure {
+    // SAFETY: `p` is non-NULL and the caller guarantees a NUL-terminated string (this function's contract).
+    unsafe { CStr::from_ptr(p) }.to_str().map(str::to_owned).map_err(|_| Failure {
         status: fmi2Error,
         message: format!("{function}: argument `{name}` is not UTF-8"),
         enters_error_state: false,
@@ -163,11 +179,13 @@ pub unsafe extern "C" fn fmi2SetDebugLogging(
     categories: *const fmi2String,
 ) -> fmi2Status {
     call(c, "fmi2SetDebugLogging", allowed::ANY_LIVE, |inst| {
-        let names = slice(categories, nCategories, "fmi2SetDebugLogging", "categories")?;
+        // SAFETY: the host passes an array of this length (FMI 2.0 Sec. 2.1); NULL and impossible lengths are refused inside.
+        let names = unsafe { slice(categories, nCategories, "fmi2SetDebugLogging", "categories") }?;
         let on = loggingOn != fmi2False;
         let mut indices = Vec::new();
         for (i, &p) in names.iter().enumerate() {
-            let name = c_str(p, "fmi2SetDebugLogging", &format!("categories[{i}]"))?;
+            // SAFETY: the host passes a NUL-terminated string (FMI 2.0 Sec. 2.1.2); NULL is refused inside.
+            let name = unsafe { c_str(p, "fmi2SetDebugLogging", &format!("categories[{i}]")) }?;
             match LOG_CATEGORIES.iter().position(|(n, _)| *n == name) {
                 Some(k) => indices.push(k),
                 None => {
@@ -207,14 +225,16 @@ pub unsafe extern "C" fn fmi2Instantiate(
         return std::ptr::null_mut();
     }
     let result = catch_unwind(AssertUnwindSafe(|| {
-        let cb = *functions;
+        // SAFETY: `functions` is non-NULL (checked above) and points to the host's callback struct.
+        let cb = unsafe { *functions };
         let logger = Logger::new(cb.logger, cb.componentEnvironment, loggingOn != fmi2False);
         let fail = |name: &str, msg: String| {
             let n = CString::new(name.replace('\0', " ")).unwrap_or_default();
             logger.log(&n, fmi2Error, "logStatusError", &msg);
             std::ptr::null_mut()
         };
-        let name = match c_str(instanceName, "fmi2Instantiate", "instanceName") {
+        // SAFETY: the host passes a NUL-terminated string (FMI 2.0 Sec. 2.1.2); NULL is refused inside.
+        let name = match unsafe { c_str(instanceName, "fmi2Instantiate", "instanceName") } {
             Ok(n) if !n.is_empty() => n,
             Ok(_) => return fail("", "fmi2Instantiate: instanceName is empty".into()),
             Err(e) => return fail("", e.message),
@@ -224,7 +244,8 @@ pub unsafe extern "C" fn fmi2Instantiate(
             fmi2CoSimulation => Kind::CoSimulation,
             other => return fail(&name, format!("fmi2Instantiate: fmuType = {other} is neither fmi2ModelExchange (0) nor fmi2CoSimulation (1)")),
         };
-        let guid = match c_str(fmuGUID, "fmi2Instantiate", "fmuGUID") {
+        // SAFETY: the host passes a NUL-terminated string (FMI 2.0 Sec. 2.1.2); NULL is refused inside.
+        let guid = match unsafe { c_str(fmuGUID, "fmi2Instantiate", "fmuGUID") } {
             Ok(g) => g,
             Err(e) => return fail(&name, e.message),
         };
@@ -239,7 +260,8 @@ pub unsafe extern "C" fn fmi2Instantiate(
             );
         };
         if !fmuResourceLocation.is_null() {
-            let uri = match c_str(fmuResourceLocation, "fmi2Instantiate", "fmuResourceLocation") {
+            // SAFETY: the host passes a NUL-terminated string (FMI 2.0 Sec. 2.1.2); NULL is refused inside.
+            let uri = match unsafe { c_str(fmuResourceLocation, "fmi2Instantiate", "fmuResourceLocation") } {
                 Ok(u) => u,
                 Err(e) => return fail(&name, e.message),
             };
@@ -266,7 +288,7 @@ pub unsafe extern "C" fn fmi2FreeInstance(c: fmi2Component) {
     }
     let _ = catch_unwind(AssertUnwindSafe(|| {
         // SAFETY: `c` was live (just unregistered) and came from Box::into_raw in fmi2Instantiate.
-        drop(Box::from_raw(c as *mut Instance));
+        drop(unsafe { Box::from_raw(c as *mut Instance) });
     }));
 }
 
@@ -319,7 +341,11 @@ pub unsafe extern "C" fn fmi2Reset(c: fmi2Component) -> fmi2Status {
 // ---------------------------------------------------------------------------------------------------
 // Getting and setting variable values
 
-fn get_into<T>(
+/// fmi2Get* of one type: the values of `vr` into `value`.
+///
+/// # Safety
+/// `vr` and `value` must be the host's arrays of `nvr` elements (or NULL with `nvr` = 0), as `slice` says.
+unsafe fn get_into<T>(
     c: fmi2Component,
     function: &'static str,
     vr: *const fmi2ValueReference,
@@ -342,24 +368,29 @@ fn get_into<T>(
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi2GetReal(c: fmi2Component, vr: *const fmi2ValueReference, nvr: usize, value: *mut fmi2Real) -> fmi2Status {
-    get_into(c, "fmi2GetReal", vr, nvr, value, VarType::Real, |v, _| v.as_real())
+    // SAFETY: the host's arguments of this FMI function, passed on as they came (FMI 2.0 Sec. 2.1).
+    unsafe { get_into(c, "fmi2GetReal", vr, nvr, value, VarType::Real, |v, _| v.as_real()) }
 }
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi2GetInteger(c: fmi2Component, vr: *const fmi2ValueReference, nvr: usize, value: *mut fmi2Integer) -> fmi2Status {
-    get_into(c, "fmi2GetInteger", vr, nvr, value, VarType::Integer, |v, _| if let Value::Integer(i) = v { *i } else { 0 })
+    // SAFETY: the host's arguments of this FMI function, passed on as they came (FMI 2.0 Sec. 2.1).
+    unsafe { get_into(c, "fmi2GetInteger", vr, nvr, value, VarType::Integer, |v, _| if let Value::Integer(i) = v { *i } else { 0 }) }
 }
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi2GetBoolean(c: fmi2Component, vr: *const fmi2ValueReference, nvr: usize, value: *mut fmi2Boolean) -> fmi2Status {
-    get_into(c, "fmi2GetBoolean", vr, nvr, value, VarType::Boolean, |v, _| if let Value::Boolean(true) = v { fmi2True } else { fmi2False })
+    // SAFETY: the host's arguments of this FMI function, passed on as they came (FMI 2.0 Sec. 2.1).
+    unsafe { get_into(c, "fmi2GetBoolean", vr, nvr, value, VarType::Boolean, |v, _| if let Value::Boolean(true) = v { fmi2True } else { fmi2False }) }
 }
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi2GetString(c: fmi2Component, vr: *const fmi2ValueReference, nvr: usize, value: *mut fmi2String) -> fmi2Status {
     call(c, "fmi2GetString", allowed::GET, |inst| {
-        let vrs = slice(vr, nvr, "fmi2GetString", "vr")?;
-        let dst = slice_mut(value, nvr, "fmi2GetString", "value")?;
+        // SAFETY: the host passes an array of this length (FMI 2.0 Sec. 2.1); NULL and impossible lengths are refused inside.
+        let vrs = unsafe { slice(vr, nvr, "fmi2GetString", "vr") }?;
+        // SAFETY: the host passes an array of this length (FMI 2.0 Sec. 2.1); NULL and impossible lengths are refused inside.
+        let dst = unsafe { slice_mut(value, nvr, "fmi2GetString", "value") }?;
         let got = inst.get("fmi2GetString", vrs, VarType::String)?;
         inst.strings = got
             .iter()
@@ -372,8 +403,12 @@ pub unsafe extern "C" fn fmi2GetString(c: fmi2Component, vr: *const fmi2ValueRef
     })
 }
 
+/// fmi2Set* of one type: the values of `value` into the variables `vr`.
+///
+/// # Safety
+/// `vr` and `value` must be the host's arrays of `nvr` elements (or NULL with `nvr` = 0), as `slice` says.
 #[allow(clippy::too_many_arguments)] // the fmi2Set* arguments plus what this one setter needs to know
-fn set_from<T: Copy>(
+unsafe fn set_from<T: Copy>(
     c: fmi2Component,
     function: &'static str,
     modes: u32,
@@ -384,7 +419,7 @@ fn set_from<T: Copy>(
     convert: impl Fn(T) -> Value,
 ) -> fmi2Status {
     call(c, function, modes, |inst| {
-        // SAFETY: as in get_into.
+        // SAFETY: this function's contract: the host's arrays of nvr elements; NULL and huge lengths are refused inside.
         let vrs = unsafe { slice(vr, nvr, function, "vr")? };
         let src = unsafe { slice(value, nvr, function, "value")? };
         inst.set(function, vrs, src.iter().map(|&x| convert(x)).collect(), var_type)
@@ -393,27 +428,33 @@ fn set_from<T: Copy>(
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi2SetReal(c: fmi2Component, vr: *const fmi2ValueReference, nvr: usize, value: *const fmi2Real) -> fmi2Status {
-    set_from(c, "fmi2SetReal", allowed::SET_REAL, vr, nvr, value, VarType::Real, Value::Real)
+    // SAFETY: the host's arguments of this FMI function, passed on as they came (FMI 2.0 Sec. 2.1).
+    unsafe { set_from(c, "fmi2SetReal", allowed::SET_REAL, vr, nvr, value, VarType::Real, Value::Real) }
 }
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi2SetInteger(c: fmi2Component, vr: *const fmi2ValueReference, nvr: usize, value: *const fmi2Integer) -> fmi2Status {
-    set_from(c, "fmi2SetInteger", allowed::SET_OTHER, vr, nvr, value, VarType::Integer, Value::Integer)
+    // SAFETY: the host's arguments of this FMI function, passed on as they came (FMI 2.0 Sec. 2.1).
+    unsafe { set_from(c, "fmi2SetInteger", allowed::SET_OTHER, vr, nvr, value, VarType::Integer, Value::Integer) }
 }
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi2SetBoolean(c: fmi2Component, vr: *const fmi2ValueReference, nvr: usize, value: *const fmi2Boolean) -> fmi2Status {
-    set_from(c, "fmi2SetBoolean", allowed::SET_OTHER, vr, nvr, value, VarType::Boolean, |b| Value::Boolean(b != fmi2False))
+    // SAFETY: the host's arguments of this FMI function, passed on as they came (FMI 2.0 Sec. 2.1).
+    unsafe { set_from(c, "fmi2SetBoolean", allowed::SET_OTHER, vr, nvr, value, VarType::Boolean, |b| Value::Boolean(b != fmi2False)) }
 }
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi2SetString(c: fmi2Component, vr: *const fmi2ValueReference, nvr: usize, value: *const fmi2String) -> fmi2Status {
     call(c, "fmi2SetString", allowed::SET_OTHER, |inst| {
-        let vrs = slice(vr, nvr, "fmi2SetString", "vr")?;
-        let src = slice(value, nvr, "fmi2SetString", "value")?;
+        // SAFETY: the host passes an array of this length (FMI 2.0 Sec. 2.1); NULL and impossible lengths are refused inside.
+        let vrs = unsafe { slice(vr, nvr, "fmi2SetString", "vr") }?;
+        // SAFETY: the host passes an array of this length (FMI 2.0 Sec. 2.1); NULL and impossible lengths are refused inside.
+        let src = unsafe { slice(value, nvr, "fmi2SetString", "value") }?;
         let mut strings = Vec::with_capacity(nvr);
         for (i, &p) in src.iter().enumerate() {
-            strings.push(Value::String(c_str(p, "fmi2SetString", &format!("value[{i}]"))?));
+            // SAFETY: the host passes a NUL-terminated string (FMI 2.0 Sec. 2.1.2); NULL is refused inside.
+            strings.push(Value::String(unsafe { c_str(p, "fmi2SetString", &format!("value[{i}]")) }?));
         }
         inst.set("fmi2SetString", vrs, strings, VarType::String)
     })
@@ -427,14 +468,16 @@ pub unsafe extern "C" fn fmi2GetFMUstate(c: fmi2Component, FMUstate: *mut fmi2FM
     call(c, "fmi2GetFMUstate", allowed::ANY_LIVE, |inst| {
         let p = out(FMUstate, "fmi2GetFMUstate", "FMUstate")?;
         let bytes = inst.save()?;
-        let existing = *p;
+        // SAFETY: an output argument of the host, checked non-NULL by `out` above.
+        let existing = unsafe { *p };
         if !existing.is_null() && live(&STATES, existing as usize) {
             // SAFETY: a live state pointer came from Box::into_raw of a SavedState.
-            (*(existing as *mut SavedState)).bytes = bytes;
+            unsafe { (*(existing as *mut SavedState)).bytes = bytes };
         } else {
             let s = Box::into_raw(Box::new(SavedState { bytes }));
             register(&STATES, s as usize);
-            *p = s as fmi2FMUstate;
+            // SAFETY: an output argument of the host, checked non-NULL by `out` above.
+            unsafe { *p = s as fmi2FMUstate };
         }
         Ok(())
     })
@@ -463,7 +506,8 @@ pub unsafe extern "C" fn fmi2SetFMUstate(c: fmi2Component, FMUstate: fmi2FMUstat
 pub unsafe extern "C" fn fmi2FreeFMUstate(c: fmi2Component, FMUstate: *mut fmi2FMUstate) -> fmi2Status {
     call(c, "fmi2FreeFMUstate", allowed::ANY_LIVE, |_| {
         let p = out(FMUstate, "fmi2FreeFMUstate", "FMUstate")?;
-        let s = *p;
+        // SAFETY: an output argument of the host, checked non-NULL by `out` above.
+        let s = unsafe { *p };
         if s.is_null() {
             return Ok(());
         }
@@ -471,8 +515,9 @@ pub unsafe extern "C" fn fmi2FreeFMUstate(c: fmi2Component, FMUstate: *mut fmi2F
             return error("fmi2FreeFMUstate: `*FMUstate` is not a live state of this library (already freed?)");
         }
         // SAFETY: just unregistered; it came from Box::into_raw of a SavedState.
-        drop(Box::from_raw(s as *mut SavedState));
-        *p = std::ptr::null_mut();
+        drop(unsafe { Box::from_raw(s as *mut SavedState) });
+        // SAFETY: an output argument of the host, checked non-NULL by `out` above.
+        unsafe { *p = std::ptr::null_mut() };
         Ok(())
     })
 }
@@ -481,7 +526,8 @@ pub unsafe extern "C" fn fmi2FreeFMUstate(c: fmi2Component, FMUstate: *mut fmi2F
 pub unsafe extern "C" fn fmi2SerializedFMUstateSize(c: fmi2Component, FMUstate: fmi2FMUstate, size: *mut usize) -> fmi2Status {
     call(c, "fmi2SerializedFMUstateSize", allowed::ANY_LIVE, |_| {
         let p = out(size, "fmi2SerializedFMUstateSize", "size")?;
-        *p = saved(FMUstate, "fmi2SerializedFMUstateSize")?.bytes.len();
+        // SAFETY: an output argument of the host, checked non-NULL by `out` above.
+        unsafe { *p = saved(FMUstate, "fmi2SerializedFMUstateSize")?.bytes.len() };
         Ok(())
     })
 }
@@ -496,7 +542,8 @@ pub unsafe extern "C" fn fmi2SerializeFMUstate(c: fmi2Component, FMUstate: fmi2F
                 bytes.len()
             ));
         }
-        let dst = slice_mut(serializedState as *mut u8, bytes.len(), "fmi2SerializeFMUstate", "serializedState")?;
+        // SAFETY: the host passes an array of this length (FMI 2.0 Sec. 2.1); NULL and impossible lengths are refused inside.
+        let dst = unsafe { slice_mut(serializedState as *mut u8, bytes.len(), "fmi2SerializeFMUstate", "serializedState") }?;
         dst.copy_from_slice(bytes);
         Ok(())
     })
@@ -511,13 +558,15 @@ pub unsafe extern "C" fn fmi2DeSerializeFMUstate(
 ) -> fmi2Status {
     call(c, "fmi2DeSerializeFMUstate", allowed::ANY_LIVE, |inst| {
         let p = out(FMUstate, "fmi2DeSerializeFMUstate", "FMUstate")?;
-        let src = slice(serializedState as *const u8, size, "fmi2DeSerializeFMUstate", "serializedState")?;
+        // SAFETY: the host passes an array of this length (FMI 2.0 Sec. 2.1); NULL and impossible lengths are refused inside.
+        let src = unsafe { slice(serializedState as *const u8, size, "fmi2DeSerializeFMUstate", "serializedState") }?;
         if let Err(m) = super::snapshot::read(inst.unit, src) {
             return error(format!("fmi2DeSerializeFMUstate: {m}"));
         }
         let s = Box::into_raw(Box::new(SavedState { bytes: src.to_vec() }));
         register(&STATES, s as usize);
-        *p = s as fmi2FMUstate;
+        // SAFETY: an output argument of the host, checked non-NULL by `out` above.
+        unsafe { *p = s as fmi2FMUstate };
         Ok(())
     })
 }
@@ -557,7 +606,8 @@ pub unsafe extern "C" fn fmi2NewDiscreteStates(c: fmi2Component, fmi2eventInfo: 
     me(c, "fmi2NewDiscreteStates", allowed::NEW_DISCRETE_STATES, |inst| {
         let p = out(fmi2eventInfo, "fmi2NewDiscreteStates", "fmi2eventInfo")?;
         inst.accept();
-        *p = fmi2EventInfo::default();
+        // SAFETY: an output argument of the host, checked non-NULL by `out` above.
+        unsafe { *p = fmi2EventInfo::default() };
         Ok(())
     })
 }
@@ -581,8 +631,10 @@ pub unsafe extern "C" fn fmi2CompletedIntegratorStep(
         let e = out(enterEventMode, "fmi2CompletedIntegratorStep", "enterEventMode")?;
         let t = out(terminateSimulation, "fmi2CompletedIntegratorStep", "terminateSimulation")?;
         // Nothing to do: between events the units stay on the branch of the last event (DESIGN 6).
-        *e = fmi2False;
-        *t = fmi2False;
+        // SAFETY: an output argument of the host, checked non-NULL by `out` above.
+        unsafe { *e = fmi2False };
+        // SAFETY: an output argument of the host, checked non-NULL by `out` above.
+        unsafe { *t = fmi2False };
         Ok(())
     })
 }
@@ -595,7 +647,8 @@ pub unsafe extern "C" fn fmi2SetTime(c: fmi2Component, time: fmi2Real) -> fmi2St
 #[no_mangle]
 pub unsafe extern "C" fn fmi2SetContinuousStates(c: fmi2Component, x: *const fmi2Real, nx: usize) -> fmi2Status {
     me(c, "fmi2SetContinuousStates", allowed::SET_CONTINUOUS_STATES, |inst| {
-        let x = slice(x, nx, "fmi2SetContinuousStates", "x")?;
+        // SAFETY: the host passes an array of this length (FMI 2.0 Sec. 2.1); NULL and impossible lengths are refused inside.
+        let x = unsafe { slice(x, nx, "fmi2SetContinuousStates", "x") }?;
         inst.set_continuous_states(x)
     })
 }
@@ -603,7 +656,8 @@ pub unsafe extern "C" fn fmi2SetContinuousStates(c: fmi2Component, x: *const fmi
 #[no_mangle]
 pub unsafe extern "C" fn fmi2GetDerivatives(c: fmi2Component, derivatives: *mut fmi2Real, nx: usize) -> fmi2Status {
     me(c, "fmi2GetDerivatives", allowed::GET_DERIVATIVES, |inst| {
-        let dx = slice_mut(derivatives, nx, "fmi2GetDerivatives", "derivatives")?;
+        // SAFETY: the host passes an array of this length (FMI 2.0 Sec. 2.1); NULL and impossible lengths are refused inside.
+        let dx = unsafe { slice_mut(derivatives, nx, "fmi2GetDerivatives", "derivatives") }?;
         inst.get_derivatives(dx)
     })
 }
@@ -611,7 +665,8 @@ pub unsafe extern "C" fn fmi2GetDerivatives(c: fmi2Component, derivatives: *mut 
 #[no_mangle]
 pub unsafe extern "C" fn fmi2GetEventIndicators(c: fmi2Component, eventIndicators: *mut fmi2Real, ni: usize) -> fmi2Status {
     me(c, "fmi2GetEventIndicators", allowed::GET_DERIVATIVES, |inst| {
-        let z = slice_mut(eventIndicators, ni, "fmi2GetEventIndicators", "eventIndicators")?;
+        // SAFETY: the host passes an array of this length (FMI 2.0 Sec. 2.1); NULL and impossible lengths are refused inside.
+        let z = unsafe { slice_mut(eventIndicators, ni, "fmi2GetEventIndicators", "eventIndicators") }?;
         inst.get_event_indicators(z)
     })
 }
@@ -619,7 +674,8 @@ pub unsafe extern "C" fn fmi2GetEventIndicators(c: fmi2Component, eventIndicator
 #[no_mangle]
 pub unsafe extern "C" fn fmi2GetContinuousStates(c: fmi2Component, x: *mut fmi2Real, nx: usize) -> fmi2Status {
     me(c, "fmi2GetContinuousStates", allowed::GET_DERIVATIVES, |inst| {
-        let x = slice_mut(x, nx, "fmi2GetContinuousStates", "x")?;
+        // SAFETY: the host passes an array of this length (FMI 2.0 Sec. 2.1); NULL and impossible lengths are refused inside.
+        let x = unsafe { slice_mut(x, nx, "fmi2GetContinuousStates", "x") }?;
         inst.get_continuous_states(x)
     })
 }
@@ -627,7 +683,8 @@ pub unsafe extern "C" fn fmi2GetContinuousStates(c: fmi2Component, x: *mut fmi2R
 #[no_mangle]
 pub unsafe extern "C" fn fmi2GetNominalsOfContinuousStates(c: fmi2Component, x_nominal: *mut fmi2Real, nx: usize) -> fmi2Status {
     me(c, "fmi2GetNominalsOfContinuousStates", allowed::GET_NOMINALS, |inst| {
-        let x = slice_mut(x_nominal, nx, "fmi2GetNominalsOfContinuousStates", "x_nominal")?;
+        // SAFETY: the host passes an array of this length (FMI 2.0 Sec. 2.1); NULL and impossible lengths are refused inside.
+        let x = unsafe { slice_mut(x_nominal, nx, "fmi2GetNominalsOfContinuousStates", "x_nominal") }?;
         inst.get_nominals(x)
     })
 }
@@ -696,7 +753,8 @@ pub unsafe extern "C" fn fmi2GetRealStatus(c: fmi2Component, s: fmi2StatusKind, 
         if s != fmi2LastSuccessfulTime {
             return status_kind_error("fmi2GetRealStatus", s);
         }
-        *p = inst.time;
+        // SAFETY: an output argument of the host, checked non-NULL by `out` above.
+        unsafe { *p = inst.time };
         Ok(())
     })
 }
@@ -713,7 +771,8 @@ pub unsafe extern "C" fn fmi2GetBooleanStatus(c: fmi2Component, s: fmi2StatusKin
         if s != fmi2Terminated {
             return status_kind_error("fmi2GetBooleanStatus", s);
         }
-        *p = fmi2False;
+        // SAFETY: an output argument of the host, checked non-NULL by `out` above.
+        unsafe { *p = fmi2False };
         Ok(())
     })
 }

@@ -120,7 +120,8 @@ pub struct Logger {
     pub categories: Vec<bool>,
 }
 
-// The environment pointer is the host's; we only hand it back to the host's logger.
+// SAFETY: the environment pointer is the host's and never dereferenced here; it is only handed back to
+// the host's logger, which FMI 2.0 lets the host call from the thread the instance is used on.
 unsafe impl Send for Logger {}
 
 impl Logger {
@@ -273,7 +274,7 @@ impl Instance {
         let n = self.unit.variables.len();
         for &vr in vrs {
             let Some(v) = self.unit.variables.get(vr as usize) else {
-                return error(format!("{function}: value reference {vr} does not exist (this unit has 0..{})", n - 1));
+                return error(format!("{function}: value reference {vr} does not exist (this unit has {n} variables, 0..{})", n.saturating_sub(1)));
             };
             if v.var_type != var_type {
                 return error(format!(

@@ -29,8 +29,8 @@ pub fn write(inst: &Instance) -> Result<Vec<u8>, String> {
     let mut b = Vec::with_capacity(4096);
     b.extend_from_slice(MAGIC);
     b.extend_from_slice(&VERSION.to_le_bytes());
-    put_str(&mut b, inst.unit.model_identifier);
-    put_str(&mut b, &inst.unit.guid());
+    put_str(&mut b, inst.unit.model_identifier)?;
+    put_str(&mut b, &inst.unit.guid())?;
     b.push(if inst.kind == Kind::ModelExchange { 0 } else { 1 });
     b.push(inst.mode as u8);
     b.extend_from_slice(&inst.time.to_le_bytes());
@@ -38,7 +38,7 @@ pub fn write(inst: &Instance) -> Result<Vec<u8>, String> {
     b.push(u8::from(inst.stop_time.is_some()));
     b.extend_from_slice(&inst.stop_time.unwrap_or(0.0).to_le_bytes());
     b.push(u8::from(inst.model_ready()));
-    b.extend_from_slice(&(inst.values.len() as u32).to_le_bytes());
+    b.extend_from_slice(&length(inst.values.len(), "value count")?.to_le_bytes());
     for v in &inst.values {
         match v {
             Value::Real(x) => {
@@ -55,21 +55,27 @@ pub fn write(inst: &Instance) -> Result<Vec<u8>, String> {
             }
             Value::String(s) => {
                 b.push(3);
-                put_str(&mut b, s);
+                put_str(&mut b, s)?;
             }
         }
     }
     let model = inst.model.save()?;
-    b.extend_from_slice(&(model.len() as u32).to_le_bytes());
+    b.extend_from_slice(&length(model.len(), "model state")?.to_le_bytes());
     b.extend_from_slice(&model);
     let sum = fnv1a(&b);
     b.extend_from_slice(&sum.to_le_bytes());
     Ok(b)
 }
 
-fn put_str(b: &mut Vec<u8>, s: &str) {
-    b.extend_from_slice(&(s.len() as u32).to_le_bytes());
+fn put_str(b: &mut Vec<u8>, s: &str) -> Result<(), String> {
+    b.extend_from_slice(&length(s.len(), "string")?.to_le_bytes());
     b.extend_from_slice(s.as_bytes());
+    Ok(())
+}
+
+/// A length as the format's u32, refused (not truncated) beyond it.
+fn length(n: usize, what: &str) -> Result<u32, String> {
+    u32::try_from(n).map_err(|_| format!("{what} of {n} bytes or entries is beyond the format's 4 GiB limit"))
 }
 
 /// The checksum that closes a saved state (public for the fuzzers, which repair it after a mutation).

@@ -204,7 +204,12 @@ macro_rules! define_any_law {
             ($d self_:ident, $d h:ident, $d law:ident, $d hist:ident => $d body:expr, $d wrap:expr, $d mismatch:expr) => {
                 match ($d self_, $d h) {
                     $((AnyLaw::$variant($d law), AnyHistory::$variant($d hist)) => $d wrap(AnyHistory::$variant, $d body),)*
-                    _ => $d mismatch,
+                    _ => {
+                        // A history of another law is a programming error (restored states are checked
+                        // by `Contact::remember`): loud in debug builds, a fresh history in release ones.
+                        debug_assert!(false, "a history of another law than {:?}", $d self_.model());
+                        $d mismatch
+                    }
                 }
             };
         }
