@@ -90,7 +90,7 @@ impl Case {
         Some(Outcome {
             rebound: y[1],
             max_overlap: sp.contact.max_overlap,
-            plastic_overlap: self.law.plastic_overlap(&sp.contact.history),
+            plastic_overlap: self.law.plastic_overlap(sp.contact.history()),
             separated: sp.contact.accepted.branch == Branch::Separated && y[1] > 0.0,
         })
     }
@@ -187,7 +187,7 @@ fn main() {
                 Outcome {
                     rebound: c.rebound_velocity,
                     max_overlap: c.max_overlap,
-                    plastic_overlap: case.law.plastic_overlap(&contact.history),
+                    plastic_overlap: case.law.plastic_overlap(contact.history()),
                     separated: !c.sticks,
                 }
             } else {
@@ -287,7 +287,7 @@ fn fidelity(figures: &std::path::Path) {
         let mut contact = Contact::new(law.clone(), NormalDamping::from_scene(&s, m), 1e-3 * r, 1.0);
         contact.accept(-1e-9, 1.0);
         contact.follow(0.3e-6);
-        let h = contact.history;
+        let h = *contact.history();
         let overlaps: Vec<f64> = (0..256).map(|i| -0.05e-6 + 0.35e-6 * i as f64 / 255.0).collect();
         let ns = median_ns(|| {
             for &a in &overlaps {

@@ -534,12 +534,62 @@ fn edit_distance(a: &str, b: &str) -> usize {
 mod tests {
     use super::*;
 
+    const REQUIRED: &str = r#""particle_radius":1e-6,"particle_density":1000,"particle_youngs_modulus":1e9,"particle_poisson_ratio":0.3"#;
+
     #[test]
     fn every_scene_field_has_a_key_and_keys_are_unique() {
         let mut names: Vec<_> = KEYS.iter().map(|k| k.name).collect();
         names.sort();
         names.dedup();
         assert_eq!(names.len(), KEYS.len());
+        // The fields of `Scene`, read off its Debug form: each is a key of the table.
+        let debug = format!("{:?}", Scene::from_json(&format!("{{{REQUIRED}}}")).unwrap());
+        let fields: Vec<&str> = debug.split(['{', ',']).skip(1).filter_map(|part| part.split(':').next()).map(str::trim).collect();
+        assert_eq!(fields.len(), KEYS.len(), "{fields:?}");
+        for f in fields {
+            assert!(KEYS.iter().any(|k| k.name == f), "Scene field `{f}` has no key in KEYS");
+        }
+    }
+
+    #[test]
+    fn every_key_reaches_its_field() {
+        let default = Scene::from_json(&format!("{{{REQUIRED}}}")).unwrap();
+        // A value each key accepts that differs from its default (choices: a second option).
+        let value = |key: &Key| -> String {
+            match key.name {
+                "contact_model" => r#""hertz""#.into(),
+                "contact_partner" => r#""particle""#.into(),
+                "yield_pressure_correlation" => r#""chang""#.into(),
+                "unloading_stiffness_law" => r#""sqrt_plus_plastic""#.into(),
+                "pull_off_law" => r#""curvature""#.into(),
+                "adhesive_stiffness_law" => r#""approximate""#.into(),
+                "pasha_stiffness_law" => r#""load_dependent""#.into(),
+                "particle_poisson_ratio" | "wall_poisson_ratio" => "0.25".into(),
+                "restitution_coefficient" | "tomas_area_coefficient" => "0.9".into(),
+                "tomas_repulsion_coefficient" => "0.2".into(),
+                "luding_plasticity_depth" => "0.1".into(),
+                "tomas_separation" => "5e-10".into(),
+                _ => match key.unit {
+                    "Pa" => "1e8",
+                    "N/m" => "100",
+                    "m" => "1e-9",
+                    "N" => "1e-6",
+                    _ => "0.45",
+                }
+                .into(),
+            }
+        };
+        for key in KEYS.iter().filter(|k| !REQUIRED.contains(&format!("\"{}\"", k.name))) {
+            let mut extra = format!(r#","{}":{}"#, key.name, value(key));
+            match key.name {
+                "unloading_stiffness_reference" => extra += r#","unloading_overlap_reference":1e-9"#,
+                "unloading_overlap_reference" => extra += r#","unloading_stiffness_reference":100"#,
+                "yield_stress_rate_coefficient" => extra = r#","yield_stress_rate_coefficient":0.5,"strain_rate":1,"reference_strain_rate":1"#.into(),
+                _ => {}
+            }
+            let scene = Scene::from_json(&format!("{{{REQUIRED}{extra}}}")).unwrap_or_else(|e| panic!("{}: {e}", key.name));
+            assert_ne!(scene, default, "key `{}` changed nothing in the scene", key.name);
+        }
     }
 
     #[test]

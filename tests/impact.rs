@@ -140,13 +140,13 @@ fn accepting_the_same_point_twice_changes_nothing() {
         c.accept(alpha, 1.0);
     }
     assert_eq!(c.accepted.branch, Branch::Plastic);
-    let (history, branch) = (c.history, c.accepted.branch);
+    let (history, branch) = (*c.history(), c.accepted.branch);
     c.accept(40e-9, 1.0);
-    assert_eq!((c.history, c.accepted.branch), (history, branch));
+    assert_eq!((*c.history(), c.accepted.branch), (history, branch));
     assert_eq!(c.force(40e-9, 1.0).branch, Branch::Plastic, "plastic loading goes on at the accepted point");
     c.accept(40e-9, -1.0);
     assert_eq!(c.accepted.branch, Branch::Elastic, "unloading from the turning point");
-    assert_eq!(c.history, history);
+    assert_eq!(*c.history(), history);
 }
 
 /// A contact of the default Nan scene with k_p < k_el, so that the plastic line differs from the elastic one.

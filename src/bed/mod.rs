@@ -9,6 +9,9 @@
 //! - `walls`: plane, cylinder (the die), sphere (the indenter) and piston, with motion and reaction force;
 //! - `kernel`: the force of one contact (normal law, damping, tangential spring, Coulomb, rolling);
 //! - `engine`: the time step (velocity Verlet), the thread pool and the force reduction;
+//! - `any`: `AnyEngine`, the engine compiled for the law of a scene (generated from `law_table!`);
+//! - `pool`: the engine's own thread pool, joined on drop;
+//! - `random`: the seeded random numbers of bed preparation;
 //! - `scene`: the bed scene (`BedScene`), read from JSON and checked;
 //! - `prepare`: fill, settle, consolidate, unload, relax (`004` Sec. 5.1.3);
 //! - `stress`: Bagi's stress tensor (`004` Eqs. 5.1-5.3);

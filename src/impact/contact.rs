@@ -36,8 +36,8 @@ pub struct Contact {
     pub alpha_nominal: f64,
     /// Overlap-rate scale of the rate indicators [m/s].
     pub rate_nominal: f64,
-    pub history: AnyHistory,
-    /// The evaluation at the accepted state (its branch and interval).
+    /// The evaluation at the accepted state: its branch, interval and the history accepted (the one place
+    /// the contact keeps its history; `history()`).
     pub accepted: Evaluation<AnyHistory>,
     /// The overlap at which `accepted` was evaluated [m].
     pub accepted_alpha: f64,
@@ -48,7 +48,6 @@ pub struct Contact {
 /// What a contact remembers beyond its parameters: the part of a saved FMU state.
 #[derive(Debug, Clone, Copy, Serialize, Deserialize)]
 pub struct Memory {
-    pub history: AnyHistory,
     pub accepted: Evaluation<AnyHistory>,
     pub accepted_alpha: f64,
     pub max_overlap: f64,
@@ -109,14 +108,18 @@ impl ContactForce {
 
 impl Contact {
     pub fn new(law: AnyLaw, damping: NormalDamping, alpha_nominal: f64, rate_nominal: f64) -> Contact {
-        let history = law.initial_history();
         // A placeholder until the unit accepts its initial state.
-        let accepted = Evaluation::separated(f64::INFINITY, history);
-        Contact { law, damping, alpha_nominal, rate_nominal, history, accepted, accepted_alpha: f64::NAN, max_overlap: f64::NEG_INFINITY }
+        let accepted = Evaluation::separated(f64::INFINITY, law.initial_history());
+        Contact { law, damping, alpha_nominal, rate_nominal, accepted, accepted_alpha: f64::NAN, max_overlap: f64::NEG_INFINITY }
+    }
+
+    /// The history accepted so far.
+    pub fn history(&self) -> &AnyHistory {
+        &self.accepted.history
     }
 
     pub fn memory(&self) -> Memory {
-        Memory { history: self.history, accepted: self.accepted, accepted_alpha: self.accepted_alpha, max_overlap: self.max_overlap }
+        Memory { accepted: self.accepted, accepted_alpha: self.accepted_alpha, max_overlap: self.max_overlap }
     }
 
     /// Takes back a saved memory; refuses one of another law, and one no contact of these parameters
@@ -125,16 +128,16 @@ impl Contact {
     pub fn remember(&mut self, m: Memory) -> Result<(), String> {
         // The indicator scale is a thousandth of R* (units::contact_parts::build).
         let radius = 1e3 * self.alpha_nominal;
-        if std::mem::discriminant(&m.history) != std::mem::discriminant(&self.law.initial_history()) {
+        if std::mem::discriminant(&m.accepted.history) != std::mem::discriminant(&self.law.initial_history()) {
             return Err("the saved state belongs to another contact_model than the parameters".into());
         }
         let fresh = self.law.initial_history();
         let crush = self.law.evaluate(0.5 * radius, &fresh).force.abs().max(self.law.evaluate(0.0, &fresh).force.abs());
         let force_limit = 1e3 * crush.max(f64::MIN_POSITIVE);
         let overlap_limit = 1e3 * radius;
-        let force = self.law.evaluate(m.accepted_alpha, &m.history).force;
-        let pull_off = self.law.pull_off_force(&m.history);
-        let plastic = self.law.plastic_overlap(&m.history);
+        let force = self.law.evaluate(m.accepted_alpha, &m.accepted.history).force;
+        let pull_off = self.law.pull_off_force(&m.accepted.history);
+        let plastic = self.law.plastic_overlap(&m.accepted.history);
         let plausible = m.accepted_alpha.is_finite()
             && pull_off.is_finite()
             && pull_off.abs() <= force_limit
@@ -153,7 +156,6 @@ impl Contact {
                 m.accepted_alpha
             ));
         }
-        self.history = m.history;
         self.accepted = m.accepted;
         self.accepted_alpha = m.accepted_alpha;
         self.max_overlap = m.max_overlap;
@@ -175,7 +177,7 @@ impl Contact {
     /// Force at overlap `alpha` with the law's own branch there and the accepted history, as a DEM force
     /// loop evaluates it (the `verlet` baseline): the branch may differ from the accepted one.
     pub fn law_force(&self, alpha: f64, rate: f64) -> ContactForce {
-        let e = self.law.evaluate(alpha, &self.history);
+        let e = self.law.evaluate(alpha, &self.accepted.history);
         self.with_damping(e, e.force, alpha, rate)
     }
 
@@ -195,7 +197,7 @@ impl Contact {
     /// stands for the branch, the law force and the overlap at which that evaluation was made.
     fn on_accepted_branch(&self, alpha: f64) -> (Evaluation<AnyHistory>, f64, f64) {
         let a = &self.accepted;
-        let e = self.law.evaluate(alpha, &self.history);
+        let e = self.law.evaluate(alpha, &self.accepted.history);
         if e.branch == a.branch || !self.accepted_alpha.is_finite() {
             return (e, e.force, alpha);
         }
@@ -206,8 +208,11 @@ impl Contact {
             // The law's inequality may put the end itself on the other side: one ulp inside then.
             candidates[1] = if alpha > self.accepted_alpha { next_down(end) } else { next_up(end) };
         }
-        let on_end =
-            candidates.into_iter().filter(|b| b.is_finite()).map(|b| (b, self.law.evaluate(b, &self.history))).find(|(_, eb)| eb.branch == a.branch);
+        let on_end = candidates
+            .into_iter()
+            .filter(|b| b.is_finite())
+            .map(|b| (b, self.law.evaluate(b, &self.accepted.history)))
+            .find(|(_, eb)| eb.branch == a.branch);
         let (b, eb) = on_end.unwrap_or((self.accepted_alpha, *a));
         // A vertical tangent (JKR at detachment) continues flat.
         let k = if eb.stiffness.is_finite() { eb.stiffness } else { 0.0 };
@@ -235,7 +240,7 @@ impl Contact {
         let before = self.accepted.branch;
         // First the history at alpha itself (a turning point of plastic loading keeps its alpha_max), then
         // the branch the motion goes into.
-        let here = self.law.evaluate(alpha, &self.history);
+        let here = self.law.evaluate(alpha, &self.accepted.history);
         let dir = direction(rate);
         let mut point = alpha;
         let mut into = self.law.evaluate(alpha, &here.history);
@@ -262,7 +267,6 @@ impl Contact {
         // The history is the one at alpha itself; the point beyond only names the branch and its bounds.
         // So accepting the same point twice changes nothing.
         into.history = here.history;
-        self.history = here.history;
         self.accepted = into;
         self.accepted_alpha = point;
         if alpha > self.max_overlap {
@@ -317,7 +321,7 @@ impl Contact {
     /// is the tangent at the accepted point.
     pub fn branch_line(&self) -> BranchLine {
         let alpha = self.accepted_alpha;
-        let e = self.law.evaluate(alpha, &self.history);
+        let e = self.law.evaluate(alpha, &self.accepted.history);
         let damping = if e.branch.in_contact() {
             let k = self.law.damping_stiffness(alpha, &e.history, e.stiffness);
             self.damping.coefficient(k, self.law.has_yielded(&e.history))
@@ -347,7 +351,7 @@ impl Contact {
             let moving = bound == self.accepted_alpha;
             let end = if moving || !bound.is_finite() || (bound - to) * dir >= 0.0 { to } else { bound };
             if (end - at) * dir > 0.0 {
-                let h = self.history;
+                let h = self.accepted.history;
                 work += tanh_sinh(|x| self.law.evaluate(x, &h).force, at, end);
             }
             self.accept(end, dir);

@@ -173,7 +173,7 @@ impl Model for ContactElement {
 
     fn nominals(&self, x: &mut [f64]) {
         x[0] = self.contact.as_ref().map_or(1.0, |c| {
-            let f = c.law.pull_off_force(&c.history).abs().max(1e-12);
+            let f = c.law.pull_off_force(c.history()).abs().max(1e-12);
             f * c.alpha_nominal
         });
     }
