@@ -147,8 +147,9 @@ impl NeighborList {
 
     /// Bytes held.
     pub fn memory_bytes(&self) -> usize {
-        (self.start.capacity() + self.partner.capacity() + self.cell_start.capacity() + self.cell_items.capacity() + self.cell_of.capacity()) * 4
-            + self.reference.capacity() * 24
+        (self.start.capacity() + self.partner.capacity() + self.cell_start.capacity() + self.cell_items.capacity() + self.cell_of.capacity())
+            * std::mem::size_of::<u32>()
+            + self.reference.capacity() * std::mem::size_of::<Vec3>()
     }
 }
 

@@ -85,8 +85,16 @@ impl Particles {
 
     /// Bytes held by the arrays.
     pub fn memory_bytes(&self) -> usize {
-        self.position.capacity() * 24 * 3
-            + self.radius.capacity() * 8 * 4
-            + self.species.capacity() * 2
+        fn bytes<T>(v: &Vec<T>) -> usize {
+            v.capacity() * std::mem::size_of::<T>()
+        }
+        bytes(&self.position)
+            + bytes(&self.velocity)
+            + bytes(&self.angular_velocity)
+            + bytes(&self.radius)
+            + bytes(&self.mass)
+            + bytes(&self.inv_mass)
+            + bytes(&self.inv_inertia)
+            + bytes(&self.species)
     }
 }

@@ -1,0 +1,217 @@
+//! The force loop: each part of the partition over its rows of the Verlet list (particle pairs) and its
+//! wall contacts, one `kernel::contact` per pair, accumulating into its `Sink`.
+
+use super::super::interaction::{BedLaw, Interaction};
+use super::super::kernel::{contact, surface_velocity};
+use super::super::neighbors::NeighborList;
+use super::super::particles::Particles;
+use super::super::walls::Wall;
+use super::super::{dot, sub, Vec3};
+use super::partition::Sink;
+use super::Engine;
+use rayon::prelude::*;
+
+/// Everything the force loop reads.
+struct Shared<'a, L: BedLaw> {
+    p: &'a Particles,
+    list: &'a NeighborList,
+    pairs: &'a [Interaction<L>],
+    wall_pairs: &'a [Vec<Interaction<L>>],
+    walls: &'a [Wall],
+    species: usize,
+    dt: f64,
+}
+
+/// One part of the force loop: rows [rows.0, rows.1) and what it may write.
+struct Part<'a, H> {
+    rows: (usize, usize),
+    slot0: usize,
+    normal: &'a mut [H],
+    spring: &'a mut [Vec3],
+    radius: &'a mut [f64],
+    /// Per wall: particles and their memory.
+    walls: Vec<WallMemory<'a, H>>,
+    sink: Sink<'a>,
+}
+
+/// One wall's contacts: the particle of each, and their memory (law history, tangential spring, contact radius).
+type WallMemory<'a, H> = (&'a [u32], &'a mut [H], &'a mut [Vec3], &'a mut [f64]);
+
+impl<L: BedLaw> Engine<L> {
+    /// The force loop over pairs and wall contacts, then (with threads) the ordered sum of the parts.
+    pub fn compute_forces(&mut self) {
+        self.with_pool(|e| e.forces_inner());
+    }
+
+    pub(super) fn forces_inner(&mut self) {
+        let shared = Shared {
+            p: &self.particles,
+            list: &self.list,
+            pairs: &self.pairs,
+            wall_pairs: &self.wall_pairs,
+            walls: &self.walls,
+            species: self.species,
+            dt: self.dt,
+        };
+        // Cut the memory into the parts' pieces.
+        let mut parts: Vec<Part<L::History>> = Vec::with_capacity(self.threads);
+        let mut normal: &mut [L::History] = &mut self.normal;
+        let mut spring: &mut [Vec3] = &mut self.spring;
+        let mut radius: &mut [f64] = &mut self.radius;
+        let mut wall_rest: Vec<WallMemory<'_, L::History>> =
+            self.wall_contacts.iter_mut().map(|wc| (&wc.particle[..], &mut wc.normal[..], &mut wc.spring[..], &mut wc.radius[..])).collect();
+        let mut consumed = 0usize;
+        let record = self.record_dipoles;
+        let mut own_f: &mut [Vec3] = &mut self.total.force;
+        let mut own_t: &mut [Vec3] = &mut self.total.torque;
+        let mut own_r: &mut [f64] = &mut self.total.rolling;
+        let mut own_d: &mut [[f64; 9]] = &mut self.total.dipole;
+        for (k, spill) in self.spill.iter_mut().enumerate() {
+            let (a, b) = (self.parts[k], self.parts[k + 1]);
+            let take = self.list.start[b] as usize - consumed;
+            let (mine_n, rest) = std::mem::take(&mut normal).split_at_mut(take);
+            normal = rest;
+            let (mine_s, rest) = std::mem::take(&mut spring).split_at_mut(take);
+            spring = rest;
+            let (mine_r, rest) = std::mem::take(&mut radius).split_at_mut(take);
+            radius = rest;
+            let mut walls = Vec::with_capacity(wall_rest.len());
+            for (ps, ns, ss, rs) in wall_rest.iter_mut() {
+                let cut = ps.partition_point(|&i| (i as usize) < b);
+                let (p_mine, p_rest) = ps.split_at(cut);
+                let (n_mine, n_rest) = std::mem::take(ns).split_at_mut(cut);
+                let (s_mine, s_rest) = std::mem::take(ss).split_at_mut(cut);
+                let (r_mine, r_rest) = std::mem::take(rs).split_at_mut(cut);
+                walls.push((p_mine, n_mine, s_mine, r_mine));
+                *ps = p_rest;
+                *ns = n_rest;
+                *ss = s_rest;
+                *rs = r_rest;
+            }
+            let (f, rest) = std::mem::take(&mut own_f).split_at_mut(b - a);
+            own_f = rest;
+            let (t, rest) = std::mem::take(&mut own_t).split_at_mut(b - a);
+            own_t = rest;
+            let (r, rest) = std::mem::take(&mut own_r).split_at_mut(b - a);
+            own_r = rest;
+            let (d, rest) = std::mem::take(&mut own_d).split_at_mut(if record { b - a } else { 0 });
+            own_d = rest;
+            let sink = Sink { base: a, split: b, force: f, torque: t, rolling: r, dipole: d, spill };
+            parts.push(Part { rows: (a, b), slot0: consumed, normal: mine_n, spring: mine_s, radius: mine_r, walls, sink });
+            consumed += take;
+        }
+        if self.threads > 1 {
+            parts.into_par_iter().for_each(|part| run_part(&shared, part));
+        } else {
+            parts.into_iter().for_each(|part| run_part(&shared, part));
+        }
+        self.add_spills();
+        for (w, wall) in self.walls.iter_mut().enumerate() {
+            wall.force = self.total.wall_force[w];
+        }
+    }
+}
+
+/// The force loop of one part.
+fn run_part<L: BedLaw>(s: &Shared<L>, part: Part<L::History>) {
+    let Part { rows, slot0, normal, spring, radius, walls, mut sink } = part;
+    sink.force.fill([0.0; 3]);
+    sink.torque.fill([0.0; 3]);
+    sink.rolling.fill(0.0);
+    sink.dipole.fill([0.0; 9]);
+    sink.spill.clear();
+    let p = s.p;
+    let dipoles = !sink.dipole.is_empty();
+    for i in rows.0..rows.1 {
+        let xi = p.position[i];
+        let vi = p.velocity[i];
+        let wi = p.angular_velocity[i];
+        let ri = p.radius[i];
+        let table = &s.pairs[p.species[i] as usize * s.species..];
+        let first = s.list.start[i] as usize;
+        for (k, &j) in (first..).zip(s.list.row(i)) {
+            let j = j as usize;
+            let d = sub(p.position[j], xi);
+            let dist2 = dot(d, d);
+            let rj = p.radius[j];
+            let it = &table[p.species[j] as usize];
+            let slot = k - slot0;
+            let range = ri + rj + it.reach;
+            if dist2 >= range * range && spring[slot] == [0.0; 3] && normal[slot] == it.initial {
+                continue; // apart, beyond any neck, and nothing to forget
+            }
+            let dist = dist2.sqrt();
+            let n = super::super::scale(d, 1.0 / dist);
+            let alpha = ri + rj - dist;
+            let (li, lj) = (ri - 0.5 * alpha, rj - 0.5 * alpha);
+            let v = surface_velocity(vi, wi, li, p.velocity[j], p.angular_velocity[j], lj, n);
+            if let Some(c) = contact(it, alpha, n, v, &mut normal[slot], &mut spring[slot], &mut radius[slot], s.dt) {
+                let tq = super::super::cross(n, c.tangential);
+                let fi = sink.force(i);
+                for q in 0..3 {
+                    fi[q] += c.force[q];
+                }
+                let fj = sink.force(j);
+                for q in 0..3 {
+                    fj[q] -= c.force[q];
+                }
+                let t_i = sink.torque(i);
+                for q in 0..3 {
+                    t_i[q] += li * tq[q];
+                }
+                let t_j = sink.torque(j);
+                for q in 0..3 {
+                    t_j[q] += lj * tq[q];
+                }
+                *sink.rolling(i) += c.rolling_load;
+                *sink.rolling(j) += c.rolling_load;
+                if dipoles {
+                    // |x_c - x_p| n_i F_j for both particles (004 Eq. 5.1); the partner sees -n and -F.
+                    for a in 0..3 {
+                        for b in 0..3 {
+                            sink.dipole(i)[3 * a + b] += li * n[a] * c.force[b];
+                            sink.dipole(j)[3 * a + b] += lj * n[a] * c.force[b];
+                        }
+                    }
+                }
+            }
+        }
+    }
+    for (w, (particles, normal, spring, radius)) in walls.into_iter().enumerate() {
+        let wall = &s.walls[w];
+        let table = &s.wall_pairs[w];
+        for (slot, &i) in particles.iter().enumerate() {
+            let i = i as usize;
+            let ri = p.radius[i];
+            let t = wall.touch(p.position[i], ri);
+            let it = &table[p.species[i] as usize];
+            if t.overlap < -it.reach && spring[slot] == [0.0; 3] && normal[slot] == it.initial {
+                continue;
+            }
+            let li = ri - 0.5 * t.overlap;
+            let v = surface_velocity(p.velocity[i], p.angular_velocity[i], li, wall.velocity, [0.0; 3], 0.0, t.normal);
+            if let Some(c) = contact(it, t.overlap, t.normal, v, &mut normal[slot], &mut spring[slot], &mut radius[slot], s.dt) {
+                let fi = sink.force(i);
+                for q in 0..3 {
+                    fi[q] += c.force[q];
+                }
+                for q in 0..3 {
+                    sink.spill.wall_force[w][q] -= c.force[q];
+                }
+                let tq = super::super::cross(t.normal, c.tangential);
+                let t_i = sink.torque(i);
+                for q in 0..3 {
+                    t_i[q] += li * tq[q];
+                }
+                *sink.rolling(i) += c.rolling_load;
+                if dipoles {
+                    for a in 0..3 {
+                        for b in 0..3 {
+                            sink.dipole(i)[3 * a + b] += li * t.normal[a] * c.force[b];
+                        }
+                    }
+                }
+            }
+        }
+    }
+}

@@ -1,0 +1,80 @@
+//! Contact memory across rebuilds of the Verlet list: a pair that stays in the list keeps its law
+//! history, tangential spring and contact radius (the rows are merged in order); a new pair starts with
+//! the initial history of its own interaction; a pair that leaves the list forgets. Wall contacts alike.
+
+use super::super::interaction::BedLaw;
+use super::super::neighbors::carry;
+use super::super::Vec3;
+use super::Engine;
+
+/// Contacts of one wall: the particles within range (ascending) and their memory.
+#[derive(Debug, Clone)]
+pub struct WallContacts<H> {
+    pub particle: Vec<u32>,
+    pub normal: Vec<H>,
+    pub spring: Vec<Vec3>,
+    /// Contact radius of the last step (the JKR laws' starting guess), 0 if none.
+    pub radius: Vec<f64>,
+}
+
+impl<L: BedLaw> Engine<L> {
+    /// Rebuilds the Verlet list and the wall contact lists, carrying every contact's memory across.
+    pub fn rebuild(&mut self) {
+        let old_start = std::mem::take(&mut self.list.start);
+        let old_partner = std::mem::take(&mut self.list.partner);
+        self.list.build(&self.particles.position, &self.particles.radius);
+        // For each new slot, the old slot of the same pair (or none): the pair keeps its memory; a new
+        // pair starts with the initial history of its own interaction.
+        let old_slots: Vec<u32> = (0..old_partner.len() as u32).collect();
+        let from = carry(&old_start, &old_partner, &old_slots, &self.list, u32::MAX);
+        let s = self.species;
+        let mut normal = Vec::with_capacity(from.len());
+        let mut spring = Vec::with_capacity(from.len());
+        let mut radius = Vec::with_capacity(from.len());
+        for i in 0..self.list.rows() {
+            let a = self.particles.species[i] as usize;
+            for k in self.list.start[i] as usize..self.list.start[i + 1] as usize {
+                if from[k] == u32::MAX {
+                    let b = self.particles.species[self.list.partner[k] as usize] as usize;
+                    normal.push(self.pairs[a * s + b].initial);
+                    spring.push([0.0; 3]);
+                    radius.push(0.0);
+                } else {
+                    normal.push(self.normal[from[k] as usize]);
+                    spring.push(self.spring[from[k] as usize]);
+                    radius.push(self.radius[from[k] as usize]);
+                }
+            }
+        }
+        self.normal = normal;
+        self.spring = spring;
+        self.radius = radius;
+        let skin = self.list.skin;
+        self.wall_reference = self.walls.iter().map(|w| w.position).collect();
+        for (w, wall) in self.walls.iter().enumerate() {
+            let old = std::mem::replace(&mut self.wall_contacts[w], WallContacts { particle: vec![], normal: vec![], spring: vec![], radius: vec![] });
+            let mut k_old = 0;
+            let new = &mut self.wall_contacts[w];
+            for i in 0..self.particles.len() {
+                let t = wall.touch(self.particles.position[i], self.particles.radius[i]);
+                if t.overlap > -skin {
+                    while k_old < old.particle.len() && (old.particle[k_old] as usize) < i {
+                        k_old += 1;
+                    }
+                    new.particle.push(i as u32);
+                    if k_old < old.particle.len() && old.particle[k_old] as usize == i {
+                        new.normal.push(old.normal[k_old]);
+                        new.spring.push(old.spring[k_old]);
+                        new.radius.push(old.radius[k_old]);
+                    } else {
+                        new.normal.push(self.wall_pairs[w][self.particles.species[i] as usize].initial);
+                        new.spring.push([0.0; 3]);
+                        new.radius.push(0.0);
+                    }
+                }
+            }
+        }
+        self.partition();
+        self.resize_buffers();
+    }
+}

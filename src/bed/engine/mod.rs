@@ -1,0 +1,370 @@
+//! The DEM engine for one normal law: the time step of the bed, velocity Verlet (kick, drift, forces, kick;
+//! symplectic for the conservative forces, as LAMMPS' `fix nve/sphere`), with the Verlet list rebuilt on
+//! displacement. One job a file:
+//! - here: the engine, its set-up and the integration (kicks, drift, walls, when to rebuild);
+//! - `memory`: carrying every contact's memory (law history, tangential spring, contact radius) across
+//!   list rebuilds;
+//! - `partition`: the fixed partition of the particles into parts of equal work, each part's spill
+//!   buffer, and the sum of the spills in part order, so a run is bitwise the same for a given thread
+//!   count;
+//! - `force_loop`: the force loop of one part over its pairs and wall contacts.
+
+mod force_loop;
+mod memory;
+mod partition;
+
+pub use memory::WallContacts;
+pub use partition::Accum;
+
+use super::interaction::{BedLaw, Interaction};
+use super::neighbors::NeighborList;
+use super::particles::Particles;
+use super::pool::Pool;
+use super::walls::Wall;
+use super::{dot, sub, Vec3};
+use crate::law;
+use rayon::prelude::*;
+
+/// The DEM engine for one normal law `L` (particle-particle and particle-wall contacts both use it,
+/// each pair of species and each species-wall pair with its own parameters).
+pub struct Engine<L: BedLaw> {
+    pub particles: Particles,
+    pub walls: Vec<Wall>,
+    /// Interactions of species pairs, `pairs[a * species + b]`.
+    pub pairs: Vec<Interaction<L>>,
+    /// Interactions of each wall with each species, `wall_pairs[w][s]`.
+    pub wall_pairs: Vec<Vec<Interaction<L>>>,
+    pub species: usize,
+    pub gravity: Vec3,
+    /// Time step [s].
+    pub dt: f64,
+    /// Simulated time [s] and steps taken.
+    pub time: f64,
+    pub steps: u64,
+    pub list: NeighborList,
+    /// Normal-law history and tangential spring of each list slot.
+    pub normal: Vec<L::History>,
+    pub spring: Vec<Vec3>,
+    /// Contact radius of each slot at the last step (the JKR laws' starting guess), 0 if none.
+    pub radius: Vec<f64>,
+    pub wall_contacts: Vec<WallContacts<L::History>>,
+    /// Wall positions at the last rebuild.
+    wall_reference: Vec<Vec3>,
+    /// Largest reach of any interaction [m].
+    reach: f64,
+    /// Forces, torques, rolling loads (and dipoles) of the last step.
+    total: Accum,
+    /// Each part's spill buffer (see `Sink`).
+    spill: Vec<Accum>,
+    /// First row of each part of the force loop (len parts + 1).
+    parts: Vec<usize>,
+    pool: Option<Pool>,
+    threads: usize,
+    record_dipoles: bool,
+}
+
+impl<L: BedLaw> std::fmt::Debug for Engine<L> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "Engine({} particles, {} walls, {} threads)", self.particles.len(), self.walls.len(), self.threads)
+    }
+}
+
+impl<L: BedLaw> Engine<L> {
+    /// An engine over these particles and walls. `threads` >= 1; more than one starts a pool the engine
+    /// owns. The skin must exceed every interaction's reach.
+    #[allow(clippy::too_many_arguments)] // the engine's whole set-up, each argument named at the one call site
+    pub fn new(
+        particles: Particles,
+        walls: Vec<Wall>,
+        pairs: Vec<Interaction<L>>,
+        wall_pairs: Vec<Vec<Interaction<L>>>,
+        species: usize,
+        gravity: Vec3,
+        dt: f64,
+        skin: f64,
+        threads: usize,
+    ) -> Result<Engine<L>, String> {
+        assert_eq!(pairs.len(), species * species);
+        assert_eq!(wall_pairs.len(), walls.len());
+        if particles.species.iter().any(|&s| s as usize >= species) {
+            return Err("a particle has a species beyond the interaction table".into());
+        }
+        let reach = pairs.iter().chain(wall_pairs.iter().flatten()).map(|it| it.reach).fold(0.0, f64::max);
+        if !(skin > reach) {
+            return Err(format!(
+                "skin = {skin:e} m must exceed the reach of the adhesive necks, {reach:e} m (the largest separation at which a contact still pulls)"
+            ));
+        }
+        if !(1..=256).contains(&threads) {
+            return Err(format!("threads = {threads} is out of range: allowed [1, 256]"));
+        }
+        let pool = if threads > 1 { Some(Pool::new(threads)?) } else { None };
+        let n_walls = walls.len();
+        let mut e = Engine {
+            particles,
+            wall_contacts: (0..n_walls).map(|_| WallContacts { particle: vec![], normal: vec![], spring: vec![], radius: vec![] }).collect(),
+            wall_reference: walls.iter().map(|w| w.position).collect(),
+            walls,
+            pairs,
+            wall_pairs,
+            species,
+            gravity,
+            dt,
+            time: 0.0,
+            steps: 0,
+            list: NeighborList::new(skin),
+            normal: vec![],
+            spring: vec![],
+            radius: vec![],
+            reach,
+            total: Accum::default(),
+            spill: (0..threads).map(|_| Accum::default()).collect(),
+            parts: vec![],
+            pool,
+            threads,
+            record_dipoles: false,
+        };
+        e.rebuild();
+        e.compute_forces();
+        Ok(e)
+    }
+
+    pub fn threads(&self) -> usize {
+        self.threads
+    }
+
+    /// The forces of the last step.
+    pub fn totals(&self) -> &Accum {
+        &self.total
+    }
+
+    /// Sets the forces of the last step (a bed loaded from a file continues exactly).
+    pub fn set_totals(&mut self, force: &[Vec3], torque: &[Vec3], rolling: &[f64]) {
+        let t = &mut self.total;
+        t.force.copy_from_slice(force);
+        t.torque.copy_from_slice(torque);
+        t.rolling.copy_from_slice(rolling);
+    }
+
+    /// Per particle sum of |x_c - x_p| n_i F_j over its contacts (Bagi, 004 Eq. 5.1) for the current
+    /// state. The force loop runs once more with a zero spring increment, which reproduces the last
+    /// step's forces and leaves every history as it was.
+    pub fn measure_dipoles(&mut self) -> Vec<[f64; 9]> {
+        self.record_dipoles = true;
+        self.resize_buffers();
+        self.compute_forces_without_increment();
+        let dipoles = self.totals().dipole.clone();
+        self.record_dipoles = false;
+        self.resize_buffers();
+        self.compute_forces_without_increment();
+        dipoles
+    }
+
+    /// The force loop with a zero tangential increment: the forces of the current state, with every
+    /// contact's memory left exactly as it is.
+    pub fn compute_forces_without_increment(&mut self) {
+        // The pass re-projects springs onto the tangent plane and the Coulomb limit, which moves them by
+        // rounding; the memory is put back as it was so the pass leaves no trace.
+        let (normal, spring, radius) = (self.normal.clone(), self.spring.clone(), self.radius.clone());
+        let walls: Vec<_> = self.wall_contacts.iter().map(|w| (w.normal.clone(), w.spring.clone(), w.radius.clone())).collect();
+        let dt = self.dt;
+        self.dt = 0.0;
+        self.compute_forces();
+        self.dt = dt;
+        self.normal = normal;
+        self.spring = spring;
+        self.radius = radius;
+        for (w, (n, s, r)) in self.wall_contacts.iter_mut().zip(walls) {
+            w.normal = n;
+            w.spring = s;
+            w.radius = r;
+        }
+    }
+
+    /// Runs `f` with the engine's workers ready: every parallel loop inside it runs on the engine's own
+    /// pool, in one `install` per call, so the workers do not fall asleep between the loops of a step.
+    fn with_pool<R: Send>(&mut self, f: impl FnOnce(&mut Self) -> R + Send) -> R {
+        match self.pool.take() {
+            Some(pool) => {
+                let r = pool.install(|| f(&mut *self));
+                self.pool = Some(pool);
+                r
+            }
+            None => f(self),
+        }
+    }
+
+    /// One step of velocity Verlet.
+    pub fn step(&mut self) {
+        self.with_pool(|e| e.step_inner());
+    }
+
+    /// Several steps.
+    pub fn run(&mut self, steps: u64) {
+        self.with_pool(|e| {
+            for _ in 0..steps {
+                e.step_inner();
+            }
+        });
+    }
+
+    fn step_inner(&mut self) {
+        let h = 0.5 * self.dt;
+        // Rebuild when a particle or a wall has moved half of (skin - reach): no pair can then have
+        // closed the whole margin unseen.
+        let limit = 0.5 * (self.list.skin - self.reach);
+        let moved = self.kick(h, true);
+        self.move_walls();
+        let wall_moved = self.walls.iter().zip(&self.wall_reference).any(|(w, r)| {
+            let d = sub(w.position, *r);
+            dot(d, d) > limit * limit
+        });
+        if wall_moved || moved > limit * limit || self.list.rows() != self.particles.len() {
+            self.rebuild();
+        }
+        self.forces_inner();
+        self.kick(h, false);
+        self.time += self.dt;
+        self.steps += 1;
+    }
+
+    /// Half a kick: v += (F/m + g) h, w += T/I h, and rolling friction against the spin; with `drift`
+    /// also x += v dt. Returns the largest squared displacement since the last list build (with drift).
+    fn kick(&mut self, h: f64, drift: bool) -> f64 {
+        let threads = self.threads;
+        let acc = &self.total;
+        let p = &mut self.particles;
+        let reference = self.list.reference();
+        let dt = if drift { self.dt } else { 0.0 };
+        let g = self.gravity;
+        if threads == 1 {
+            return kick_range(0, &mut p.velocity, &mut p.angular_velocity, &mut p.position, &p.inv_mass, &p.inv_inertia, &p.radius, acc, reference, g, h, dt);
+        }
+        let chunk = p.len().div_ceil(threads).max(1);
+        let chunks: Vec<_> = p
+            .velocity
+            .chunks_mut(chunk)
+            .zip(p.angular_velocity.chunks_mut(chunk))
+            .zip(p.position.chunks_mut(chunk))
+            .zip(p.inv_mass.chunks(chunk).zip(p.inv_inertia.chunks(chunk)).zip(p.radius.chunks(chunk)))
+            .enumerate()
+            .collect();
+        chunks
+            .into_par_iter()
+            .map(|(k, (((v, w), x), ((im, ii), r)))| kick_range(k * chunk, v, w, x, im, ii, r, acc, reference, g, h, dt))
+            .reduce(|| 0.0, f64::max)
+    }
+
+    fn move_walls(&mut self) {
+        for w in &mut self.walls {
+            for c in 0..3 {
+                w.position[c] += w.velocity[c] * self.dt;
+            }
+        }
+    }
+
+    /// Bytes held by the engine's arrays (particles, list, contact memory, buffers).
+    pub fn memory_bytes(&self) -> usize {
+        use std::mem::size_of;
+        let (h, v, f, u) = (size_of::<L::History>(), size_of::<Vec3>(), size_of::<f64>(), size_of::<u32>());
+        let acc = |a: &Accum| {
+            (a.force.capacity() + a.torque.capacity() + a.wall_force.capacity()) * v
+                + a.rolling.capacity() * f
+                + a.dipole.capacity() * size_of::<[f64; 9]>()
+        };
+        self.particles.memory_bytes()
+            + self.list.memory_bytes()
+            + self.normal.capacity() * h
+            + self.spring.capacity() * v
+            + self.radius.capacity() * f
+            + self.wall_contacts.iter().map(|w| w.particle.capacity() * u + w.normal.capacity() * h + w.spring.capacity() * v + w.radius.capacity() * f).sum::<usize>()
+            + self.spill.iter().map(acc).sum::<usize>()
+            + acc(&self.total)
+    }
+
+    /// The particle-particle pairs in contact now: (i, j, overlap [m]).
+    fn touching(&self) -> impl Iterator<Item = (usize, usize, f64)> + '_ {
+        let p = &self.particles;
+        (0..self.list.rows()).flat_map(move |i| {
+            (self.list.start[i] as usize..).zip(self.list.row(i)).filter_map(move |(k, &j)| {
+                let j = j as usize;
+                let alpha = p.radius[i] + p.radius[j] - super::norm(sub(p.position[j], p.position[i]));
+                let it = &self.pairs[p.species[i] as usize * self.species + p.species[j] as usize];
+                law::NormalLaw::evaluate(&it.law, alpha, &self.normal[k]).branch.in_contact().then_some((i, j, alpha))
+            })
+        })
+    }
+
+    /// Contacts carrying force now, and their mean overlap [m] (particle-particle only).
+    pub fn contact_statistics(&self) -> (usize, f64) {
+        let (count, sum) = self.touching().fold((0usize, 0.0), |(c, s), (_, _, alpha)| (c + 1, s + alpha));
+        (count, if count > 0 { sum / count as f64 } else { 0.0 })
+    }
+
+    /// Per particle: number of particle contacts carrying force now.
+    pub fn coordination(&self) -> Vec<u32> {
+        let mut z = vec![0u32; self.particles.len()];
+        for (i, j, _) in self.touching() {
+            z[i] += 1;
+            z[j] += 1;
+        }
+        z
+    }
+
+    /// The largest reach of any interaction [m].
+    pub fn reach(&self) -> f64 {
+        self.reach
+    }
+}
+
+/// Half a kick of the particles from `base` on (their slices), and the drift x += v dt (dt = 0: none).
+/// Returns the largest squared displacement from `reference` (the positions of the last list build).
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn kick_range(
+    base: usize,
+    v: &mut [Vec3],
+    w: &mut [Vec3],
+    x: &mut [Vec3],
+    im: &[f64],
+    ii: &[f64],
+    r: &[f64],
+    acc: &Accum,
+    reference: &[Vec3],
+    g: Vec3,
+    h: f64,
+    dt: f64,
+) -> f64 {
+    let n = v.len();
+    let (force, torque, rolling) = (&acc.force[base..base + n], &acc.torque[base..base + n], &acc.rolling[base..base + n]);
+    let (w, x, im, ii, r) = (&mut w[..n], &mut x[..n], &im[..n], &ii[..n], &r[..n]);
+    let mut moved: f64 = 0.0;
+    for q in 0..n {
+        let (f, t) = (force[q], torque[q]);
+        for c in 0..3 {
+            v[q][c] += (f[c] * im[q] + g[c]) * h;
+            w[q][c] += t[c] * ii[q] * h;
+        }
+        // Constant directional rolling torque mu_r |f_n| R against the spin, limited so that it stops the
+        // spin but never reverses it within a step.
+        let load = rolling[q];
+        if load > 0.0 {
+            let spin = super::norm(w[q]);
+            let brake = load * r[q] * ii[q] * h;
+            let keep = if spin > brake { 1.0 - brake / spin } else { 0.0 };
+            w[q] = super::scale(w[q], keep);
+        }
+        if dt != 0.0 {
+            for c in 0..3 {
+                x[q][c] += v[q][c] * dt;
+            }
+            if let Some(x0) = reference.get(base + q) {
+                let d = sub(x[q], *x0);
+                moved = moved.max(dot(d, d));
+            } else {
+                moved = f64::INFINITY;
+            }
+        }
+    }
+    moved
+}

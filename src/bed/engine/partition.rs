@@ -1,0 +1,153 @@
+//! The partition of the force loop over threads: the rows cut into parts of about equal work, each
+//! part writing its own rows straight into the totals and the partners beyond them into its spill
+//! buffer, and the spills added in part order after the loop, so a run is bitwise the same for a given
+//! thread count.
+
+use super::super::interaction::BedLaw;
+use super::super::Vec3;
+use super::Engine;
+
+/// Forces accumulated by one part of the force loop.
+#[derive(Debug, Clone, Default)]
+pub struct Accum {
+    pub force: Vec<Vec3>,
+    pub torque: Vec<Vec3>,
+    pub rolling: Vec<f64>,
+    /// Per particle sum of |x_c - x_p| n_i F_j over its contacts (Bagi, 004 Eq. 5.1), when recorded.
+    pub dipole: Vec<[f64; 9]>,
+    pub wall_force: Vec<Vec3>,
+}
+
+impl Accum {
+    pub(super) fn resize(&mut self, n: usize, walls: usize, dipole: bool) {
+        self.force.resize(n, [0.0; 3]);
+        self.torque.resize(n, [0.0; 3]);
+        self.rolling.resize(n, 0.0);
+        self.dipole.resize(if dipole { n } else { 0 }, [0.0; 9]);
+        self.wall_force.resize(walls, [0.0; 3]);
+    }
+
+    pub(super) fn clear(&mut self) {
+        self.force.fill([0.0; 3]);
+        self.torque.fill([0.0; 3]);
+        self.rolling.fill(0.0);
+        self.dipole.fill([0.0; 9]);
+        self.wall_force.fill([0.0; 3]);
+    }
+}
+
+/// Where one part of the force loop writes: its own rows [base, split) straight into the totals, and
+/// partners beyond its rows, [split, split + spill length), into its spill buffer (j > i, so no partner
+/// is below `base`). The spills are added in part order after the loop.
+pub(super) struct Sink<'a> {
+    pub(super) base: usize,
+    pub(super) split: usize,
+    pub(super) force: &'a mut [Vec3],
+    pub(super) torque: &'a mut [Vec3],
+    pub(super) rolling: &'a mut [f64],
+    pub(super) dipole: &'a mut [[f64; 9]],
+    pub(super) spill: &'a mut Accum,
+}
+
+impl Sink<'_> {
+    #[inline(always)]
+    pub(super) fn force(&mut self, i: usize) -> &mut Vec3 {
+        if i < self.split {
+            &mut self.force[i - self.base]
+        } else {
+            &mut self.spill.force[i - self.split]
+        }
+    }
+
+    #[inline(always)]
+    pub(super) fn torque(&mut self, i: usize) -> &mut Vec3 {
+        if i < self.split {
+            &mut self.torque[i - self.base]
+        } else {
+            &mut self.spill.torque[i - self.split]
+        }
+    }
+
+    #[inline(always)]
+    pub(super) fn rolling(&mut self, i: usize) -> &mut f64 {
+        if i < self.split {
+            &mut self.rolling[i - self.base]
+        } else {
+            &mut self.spill.rolling[i - self.split]
+        }
+    }
+
+    #[inline(always)]
+    pub(super) fn dipole(&mut self, i: usize) -> &mut [f64; 9] {
+        if i < self.split {
+            &mut self.dipole[i - self.base]
+        } else {
+            &mut self.spill.dipole[i - self.split]
+        }
+    }
+}
+
+impl<L: BedLaw> Engine<L> {
+    /// Splits the rows into `threads` parts of about equal work (list slots plus one per row), and sizes
+    /// each part's spill buffer for the partners beyond its rows.
+    pub(super) fn partition(&mut self) {
+        let n = self.particles.len();
+        let t = self.threads;
+        let total = self.list.partner.len() + n;
+        self.parts.clear();
+        self.parts.push(0);
+        let mut i = 0;
+        for k in 1..t {
+            let target = total * k / t;
+            while i < n && (self.list.start[i] as usize + i) < target {
+                i += 1;
+            }
+            self.parts.push(i);
+        }
+        self.parts.push(n);
+        self.resize_buffers();
+    }
+
+    pub(super) fn resize_buffers(&mut self) {
+        let n = self.particles.len();
+        let w = self.walls.len();
+        let d = self.record_dipoles;
+        self.total.resize(n, w, d);
+        for k in 0..self.threads {
+            let (a, b) = (self.parts[k], self.parts[k + 1]);
+            let hi = (a..b).filter_map(|i| self.list.row(i).last().map(|&j| j as usize + 1)).max().unwrap_or(b).max(b);
+            let spill = &mut self.spill[k];
+            spill.force.clear();
+            spill.torque.clear();
+            spill.rolling.clear();
+            spill.dipole.clear();
+            spill.resize(hi - b, w, d);
+        }
+    }
+
+    /// Adds each part's spill to the totals, in part order, and sums the wall reactions.
+    pub(super) fn add_spills(&mut self) {
+        let total = &mut self.total;
+        total.wall_force.fill([0.0; 3]);
+        for (k, spill) in self.spill.iter().enumerate() {
+            let b = self.parts[k + 1];
+            for q in 0..spill.force.len() {
+                for c in 0..3 {
+                    total.force[b + q][c] += spill.force[q][c];
+                    total.torque[b + q][c] += spill.torque[q][c];
+                }
+                total.rolling[b + q] += spill.rolling[q];
+            }
+            for q in 0..spill.dipole.len() {
+                for c in 0..9 {
+                    total.dipole[b + q][c] += spill.dipole[q][c];
+                }
+            }
+            for (w, f) in spill.wall_force.iter().enumerate() {
+                for c in 0..3 {
+                    total.wall_force[w][c] += f[c];
+                }
+            }
+        }
+    }
+}
