@@ -15,7 +15,7 @@
 #[path = "../tests/common/mod.rs"]
 mod common;
 
-use powderfmu::impact::{Contact, Solver, Sphere, Wall};
+use powderfmu::impact::{Contact, Solver, Sphere, WallMotion};
 use powderfmu::law::damping::NormalDamping;
 use powderfmu::law::params::Effective;
 use powderfmu::law::{AnyLaw, Branch, NormalLaw};
@@ -80,7 +80,7 @@ impl Case {
     /// One impact at `v` integrated from 0 to `t_end` in a single communication step.
     fn run(&self, solver: Solver, tolerance: f64, v: f64, t_end: f64) -> Option<Outcome> {
         let mut sp = self.sphere(solver, tolerance, v);
-        let wall = Wall { t0: 0.0, position: 0.0, velocity: 0.0 };
+        let wall = WallMotion { t0: 0.0, position: 0.0, velocity: 0.0 };
         let mut y = [self.gap(), -v, 0.0];
         sp.accept(&wall, 0.0, &y);
         if let Err(e) = sp.advance(&wall, 0.0, t_end, &mut y) {
@@ -98,7 +98,7 @@ impl Case {
     /// When the tight reference leaves the wall (or, if it sticks, ten loading times).
     fn end_time(&self, v: f64) -> f64 {
         let mut sp = self.sphere(Solver::Adaptive, 1e-12, v);
-        let wall = Wall { t0: 0.0, position: 0.0, velocity: 0.0 };
+        let wall = WallMotion { t0: 0.0, position: 0.0, velocity: 0.0 };
         let mut y = [self.gap(), -v, 0.0];
         sp.accept(&wall, 0.0, &y);
         let approach = self.gap() / v;

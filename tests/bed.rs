@@ -9,7 +9,7 @@ use powderfmu::bed::prepare::{self, bed_height, DIE, FLOOR};
 use powderfmu::bed::stress::{bagi, Region};
 use powderfmu::bed::walls::Wall;
 use powderfmu::bed::{AnyEngine, BedScene};
-use powderfmu::impact::{Contact, Solver, Sphere, Wall as ImpactWall};
+use powderfmu::impact::{Contact, Solver, Sphere, WallMotion};
 use powderfmu::law::damping::NormalDamping;
 use powderfmu::law::params::Effective;
 use powderfmu::law::{AnyLaw, Branch};
@@ -82,7 +82,7 @@ fn unit_collision(law: &Value, radius: f64, v: f64) -> f64 {
     let eff = Effective::from_scene(&s).unwrap();
     let contact = Contact::new(AnyLaw::from_scene(&s).unwrap(), NormalDamping::from_scene(&s, eff.mass), 1e-3 * radius, v);
     let mut sp = Sphere::new(eff.mass, 0.0, contact, Solver::Adaptive, 1e-11);
-    let wall = ImpactWall { t0: 0.0, position: 0.0, velocity: 0.0 };
+    let wall = WallMotion { t0: 0.0, position: 0.0, velocity: 0.0 };
     let mut y = [1e-3 * radius, -v, 0.0];
     sp.accept(&wall, 0.0, &y);
     let (mut t, dt) = (0.0, 1e-3 * radius / v);

@@ -4,7 +4,7 @@
 
 mod common;
 use common::*;
-use powderfmu::impact::{Contact, Solver, Sphere, State, Wall};
+use powderfmu::impact::{Contact, Solver, Sphere, State, WallMotion};
 use powderfmu::law::damping::NormalDamping;
 use powderfmu::law::params::Effective;
 use powderfmu::law::{AnyHistory, AnyLaw, Branch, NormalLaw};
@@ -35,7 +35,7 @@ fn closed_form(s: &Scene, v: f64) -> ImpactOutcome {
 /// the wall (or `t_max`). Returns the final state and the sphere.
 fn impact(s: &Scene, v: f64, solver: Solver, dt: f64, t_max: f64) -> (State, Sphere) {
     let mut sp = sphere_at(s, solver, 0.0, v);
-    let wall = Wall { t0: 0.0, position: 0.0, velocity: 0.0 };
+    let wall = WallMotion { t0: 0.0, position: 0.0, velocity: 0.0 };
     let mut y = [1e-3 * s.particle_radius, -v, 0.0];
     sp.accept(&wall, 0.0, &y);
     let mut t = 0.0;
@@ -110,7 +110,7 @@ fn undamped_sticking_oscillation_keeps_its_energy_over_1e6_oscillations() {
     // 1 m/s is below V_ys = 1.86 m/s (000 Table 6); after 1 us the sphere oscillates in its well.
     let t0 = 1e-6;
     let (mut y, mut sp) = impact(&s, 1.0, Solver::Exact, t0, t0);
-    let wall = Wall { t0: 0.0, position: 0.0, velocity: 0.0 };
+    let wall = WallMotion { t0: 0.0, position: 0.0, velocity: 0.0 };
     let m = sp.mass;
     let h = *sp.contact.history();
     let law = sp.contact.law.clone();
@@ -172,7 +172,7 @@ fn sphere_comes_to_rest_under_gravity_without_chatter_or_drift() {
         s.restitution_coefficient = 0.5;
         let g = 9.81;
         let mut sp = sphere_at(&s, solver, g, 1.0);
-        let wall = Wall { t0: 0.0, position: 0.0, velocity: 0.0 };
+        let wall = WallMotion { t0: 0.0, position: 0.0, velocity: 0.0 };
         let mut y = [1e-6, -0.05, 0.0];
         sp.accept(&wall, 0.0, &y);
         let dt = 1e-3;
@@ -217,7 +217,7 @@ fn recontact_after_detachment_follows_the_plastic_history() {
     // A wall chasing the sphere at twice its speed brings it back into contact.
     let t0 = 1e-6;
     let u = 2.0 * y[1] + 1.0;
-    let wall = Wall { t0, position: 0.0, velocity: u };
+    let wall = WallMotion { t0, position: 0.0, velocity: u };
     // Overlap and force sampled in short steps through the reloading.
     let law = sp.contact.law.clone();
     let dt = 2e-11;
@@ -259,7 +259,7 @@ fn wall_driven_into_the_sphere_at_100_m_per_s() {
     for (solver, tol) in [(Solver::Exact, 1e-12), (Solver::Adaptive, 1e-8)] {
         let mut sp = sphere_at(&s, solver, 0.0, 1.0);
         let u = 100.0;
-        let wall = Wall { t0: 0.0, position: -1e-9, velocity: u };
+        let wall = WallMotion { t0: 0.0, position: -1e-9, velocity: u };
         let mut y = [0.0, 0.0, 0.0];
         sp.accept(&wall, 0.0, &y);
         let dt = 1e-9;
@@ -286,7 +286,7 @@ fn a_deeper_second_impact_within_one_step_updates_the_largest_overlap() {
         assert!(rel(sp.contact.max_overlap, (m / 1e6f64).sqrt()) < tol, "{solver:?}: first impact");
         // The wall chases the sphere (leaving at 1 m/s) at 3 m/s: a second impact at 2 m/s relative, twice
         // as deep, in one 1 ms step.
-        let wall = Wall { t0: 1e-3, position: 0.0, velocity: 3.0 };
+        let wall = WallMotion { t0: 1e-3, position: 0.0, velocity: 3.0 };
         sp.advance(&wall, 1e-3, 2e-3, &mut y).unwrap();
         let want = 2.0 * (m / 1e6f64).sqrt();
         assert!(rel(sp.contact.max_overlap, want) < tol, "{solver:?}: max overlap {:e} vs {want:e}", sp.contact.max_overlap);
@@ -315,13 +315,13 @@ fn bouncing_ball_on_a_vibrating_plate_stays_on_the_period_one_orbit() {
     let per_period = 200;
     let dt = 1.0 / f / per_period as f64;
     let mut y = [plate(0.0) + 1e-12, v_orbit, 0.0];
-    sp.accept(&Wall { t0: 0.0, position: plate(0.0), velocity: 0.0 }, 0.0, &y);
+    sp.accept(&WallMotion { t0: 0.0, position: plate(0.0), velocity: 0.0 }, 0.0, &y);
     let periods = 10_000;
     let (mut bounces, mut takeoffs, mut pending) = (0, Vec::new(), false);
     for k in 0..periods * per_period {
         let t = k as f64 * dt;
         // The master's linear interpolation: position now, velocity the secant to the next sample.
-        let wall = Wall { t0: t, position: plate(t), velocity: (plate(t + dt) - plate(t)) / dt };
+        let wall = WallMotion { t0: t, position: plate(t), velocity: (plate(t + dt) - plate(t)) / dt };
         let v_before = y[1];
         sp.advance(&wall, t, t + dt, &mut y).unwrap();
         if k >= (periods - 100) * per_period {
@@ -412,7 +412,7 @@ fn verlet_converges_at_first_order_to_the_closed_form() {
         gaps.iter()
             .map(|&gap| {
                 let mut sp = sphere_at(&s, Solver::Verlet { step }, 0.0, v);
-                let wall = Wall { t0: 0.0, position: 0.0, velocity: 0.0 };
+                let wall = WallMotion { t0: 0.0, position: 0.0, velocity: 0.0 };
                 let mut y = [gap, -v, 0.0];
                 sp.accept(&wall, 0.0, &y);
                 sp.advance(&wall, 0.0, 2e-7, &mut y).unwrap();

@@ -4,7 +4,7 @@
 
 mod common;
 use common::*;
-use powderfmu::impact::{Contact, Solver, Sphere, Wall};
+use powderfmu::impact::{Contact, Solver, Sphere, WallMotion};
 use powderfmu::law::damping::NormalDamping;
 use powderfmu::law::params::Effective;
 use powderfmu::law::{AnyLaw, Branch};
@@ -31,7 +31,7 @@ fn run(s: &Scene, v: f64, tolerance: f64) -> ([f64; 3], f64, Sphere) {
 
 fn run_with(s: &Scene, v: f64, solver: Solver, tolerance: f64) -> ([f64; 3], f64, Sphere) {
     let (mut sp, _) = sphere_with(s, solver, tolerance);
-    let wall = Wall { t0: 0.0, position: 0.0, velocity: 0.0 };
+    let wall = WallMotion { t0: 0.0, position: 0.0, velocity: 0.0 };
     // Farther than any attraction tail (Tomas: 99 a_F = 40 nm), so the approach does all its work.
     let gap = 0.05 * s.particle_radius;
     let mut y = [gap, -v, 0.0];

@@ -40,7 +40,7 @@ fn make_genuine() -> Vec<u8> {
 }
 
 fn with_checksum(mut body: Vec<u8>) -> Vec<u8> {
-    let sum = powderfmu::fmi2::snapshot::fnv1a(&body);
+    let sum = powderfmu::fmi2::saved_state::fnv1a(&body);
     body.extend_from_slice(&sum.to_le_bytes());
     body
 }

@@ -13,7 +13,7 @@ use crate::law::tangential::TangentialSpring;
 
 /// What a contact gives the two bodies.
 #[derive(Debug, Clone, Copy, Default)]
-pub struct ContactForce {
+pub struct PairForce {
     /// Force on the first body [N] (the partner gets the opposite).
     pub force: Vec3,
     /// Tangential force on the first body [N], for the torques.
@@ -37,7 +37,7 @@ pub fn contact<L: BedLaw>(
     spring: &mut Vec3,
     radius_guess: &mut f64,
     dt: f64,
-) -> Option<ContactForce> {
+) -> Option<PairForce> {
     let law = &it.law;
     let (ev, k_damp, radius) = law.evaluate_near(alpha, history, *radius_guess);
     // Most contacts keep their history from step to step: skip the store (Nan's is 72 bytes).
@@ -51,7 +51,7 @@ pub fn contact<L: BedLaw>(
             return None;
         }
         // The Tomas attraction outside contact: a normal force only.
-        return Some(ContactForce { force: scale(normal, -ev.force), tangential: [0.0; 3], rolling_load: 0.0 });
+        return Some(PairForce { force: scale(normal, -ev.force), tangential: [0.0; 3], rolling_load: 0.0 });
     }
     let approach = dot(relative_velocity, normal);
     let yielded = law.has_yielded(&ev.history);
@@ -95,7 +95,7 @@ pub fn contact<L: BedLaw>(
         };
         force = super::add(force, tangential);
     }
-    Some(ContactForce { force, tangential, rolling_load: it.rolling_friction * ev.force.abs() })
+    Some(PairForce { force, tangential, rolling_load: it.rolling_friction * ev.force.abs() })
 }
 
 /// The velocity of body 1's surface relative to body 2's at a contact along `normal` (1 -> 2), with

@@ -15,12 +15,13 @@
 //! - `scene`: the bed scene (`BedScene`), read from JSON and checked;
 //! - `prepare`: fill, settle, consolidate, unload, relax (`004` Sec. 5.1.3);
 //! - `stress`: Bagi's stress tensor (`004` Eqs. 5.1-5.3);
-//! - `file`: the versioned bed file; `snapshot`: VTK/CSV output; `render`: the PNG cross-section;
+//! - `file`: the versioned bed file; `export`: VTK/CSV output; `render`: the PNG cross-section;
 //! - `lammps`: the LAMMPS data file export for the side-by-side benchmark.
 
 #[macro_use]
 pub mod any;
 pub mod engine;
+pub mod export;
 pub mod file;
 pub mod interaction;
 pub mod kernel;
@@ -33,7 +34,6 @@ pub mod psd;
 pub mod random;
 pub mod render;
 pub mod scene;
-pub mod snapshot;
 pub mod stress;
 pub mod walls;
 

@@ -3,7 +3,7 @@
 use powderfmu::bed::file::{self, BedFile};
 use powderfmu::bed::prepare::{self, Progress};
 use powderfmu::bed::stress::{bagi, Region};
-use powderfmu::bed::{render, snapshot, AnyEngine, BedScene};
+use powderfmu::bed::{export, render, AnyEngine, BedScene};
 use powderfmu::with_engine;
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
@@ -216,9 +216,9 @@ fn snapshot_cmd(args: &[String]) -> Result<(), String> {
     let (path, out) = (a.need(0, "the bed file")?, a.need(1, "the output file (.vtk or .csv)")?);
     let (engine, _) = load(path, Some(1))?;
     let text = if out.ends_with(".vtk") {
-        snapshot::vtk(&engine)
+        export::vtk(&engine)
     } else if out.ends_with(".csv") {
-        snapshot::csv(&engine)
+        export::csv(&engine)
     } else {
         return Err(format!("output `{out}`: give a file ending in .vtk or .csv"));
     };

@@ -37,7 +37,7 @@ fn unregister(set: &Mutex<BTreeSet<usize>>, p: usize) -> bool {
     set.lock().map(|mut s| s.remove(&p)).unwrap_or(false)
 }
 
-/// A saved FMU state: the bytes of `snapshot`.
+/// A saved FMU state: the bytes of `saved_state`.
 struct SavedState {
     bytes: Vec<u8>,
 }
@@ -560,7 +560,7 @@ pub unsafe extern "C" fn fmi2DeSerializeFMUstate(
         let p = out(FMUstate, "fmi2DeSerializeFMUstate", "FMUstate")?;
         // SAFETY: the host passes an array of this length (FMI 2.0 Sec. 2.1); NULL and impossible lengths are refused inside.
         let src = unsafe { slice(serializedState as *const u8, size, "fmi2DeSerializeFMUstate", "serializedState") }?;
-        if let Err(m) = super::snapshot::read(inst.unit, src) {
+        if let Err(m) = super::saved_state::read(inst.unit, src) {
             return error(format!("fmi2DeSerializeFMUstate: {m}"));
         }
         let s = Box::into_raw(Box::new(SavedState { bytes: src.to_vec() }));

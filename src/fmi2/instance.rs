@@ -2,7 +2,7 @@
 //! the variable values indexed by value reference, logging, and the calls into the unit's `Model`. All
 //! of it is safe Rust; `exports` turns C pointers into slices before calling here.
 
-use super::snapshot;
+use super::saved_state;
 use super::types::*;
 use crate::units::variables::{Causality, Value, VarType, Variability};
 use crate::units::{Model, UnitInfo, LOG_CATEGORIES};
@@ -432,11 +432,11 @@ impl Instance {
     /// The saved state; a model that cannot serialize itself is an error the host sees (fmi2Error), never
     /// an empty state that would restore as "not initialized".
     pub fn save(&self) -> Call<Vec<u8>> {
-        snapshot::write(self).map_err(|m| Failure { status: fmi2Error, message: format!("FMU state not saved: {m}"), enters_error_state: false })
+        saved_state::write(self).map_err(|m| Failure { status: fmi2Error, message: format!("FMU state not saved: {m}"), enters_error_state: false })
     }
 
     pub fn restore(&mut self, bytes: &[u8]) -> Call {
-        let s = snapshot::read(self.unit, bytes).map_err(|m| Failure {
+        let s = saved_state::read(self.unit, bytes).map_err(|m| Failure {
             status: fmi2Error,
             message: format!("FMU state rejected: {m}"),
             enters_error_state: false,

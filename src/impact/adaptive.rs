@@ -4,7 +4,7 @@
 //! and the history is accepted there. Works for every law; the nonlinear ones (Hertz, JKR, Thornton-Ning,
 //! Tomas) need it.
 
-use super::sphere::{Sphere, State, StepError, Wall, MAX_STEPS};
+use super::sphere::{Sphere, State, StepError, WallMotion, MAX_STEPS};
 use crate::numeric::first_outside;
 
 // Dormand-Prince 5(4) coefficients (Hairer, Norsett & Wanner, Table II.5.2).
@@ -23,7 +23,7 @@ const B4: [f64; 7] = [5179.0 / 57600.0, 0.0, 7571.0 / 16695.0, 393.0 / 640.0, -9
 
 impl Sphere {
     /// One Dormand-Prince step: the 5th-order solution and the error estimate.
-    fn dp_step(&self, wall: &Wall, t: f64, y: &State, h: f64) -> (State, State) {
+    fn dp_step(&self, wall: &WallMotion, t: f64, y: &State, h: f64) -> (State, State) {
         let mut k = [[0.0; 3]; 7];
         for s in 0..7 {
             let mut ys = *y;
@@ -55,7 +55,7 @@ impl Sphere {
     }
 
     /// Advances the state from `t` to `t_end` with the wall moving as `wall`, landing on branch switches.
-    pub(super) fn advance_adaptive(&mut self, wall: &Wall, t: f64, t_end: f64, y: &mut State) -> Result<(), StepError> {
+    pub(super) fn advance_adaptive(&mut self, wall: &WallMotion, t: f64, t_end: f64, y: &mut State) -> Result<(), StepError> {
         let mut t = t;
         let mut h = if self.last_step > 0.0 { self.last_step } else { self.initial_step(y) };
         let mut steps = 0u64;
@@ -114,7 +114,7 @@ impl Sphere {
     }
 
     /// The smallest step in (0, h] after which one of the `crossed` indicators has changed sign, to 1e-13 h.
-    fn locate(&self, wall: &Wall, t: f64, y: &State, h: f64, crossed: &[bool; 3]) -> f64 {
+    fn locate(&self, wall: &WallMotion, t: f64, y: &State, h: f64, crossed: &[bool; 3]) -> f64 {
         let g = |tau: f64| -> f64 {
             let (y_tau, _) = self.dp_step(wall, t, y, tau);
             let z = self.indicators(wall, t + tau, &y_tau);

@@ -13,7 +13,7 @@
 //! within its first two turning points it never will on this branch.
 
 use super::contact::{BranchLine, Line};
-use super::sphere::{Sphere, State, StepError, Wall, MAX_STEPS};
+use super::sphere::{Sphere, State, StepError, WallMotion, MAX_STEPS};
 use crate::numeric::first_outside;
 use std::f64::consts::PI;
 
@@ -200,7 +200,7 @@ const MAX_STALLS: u32 = 16;
 impl Sphere {
     /// Advances by closed-form segments from branch switch to branch switch. The contact work is the
     /// energy the sphere lost in the wall's frame: W = m g (x_1 - x_0) - m (x_1'^2 - x_0'^2) / 2.
-    pub(super) fn advance_exact(&mut self, wall: &Wall, t: f64, t_end: f64, y: &mut State) -> Result<(), StepError> {
+    pub(super) fn advance_exact(&mut self, wall: &WallMotion, t: f64, t_end: f64, y: &mut State) -> Result<(), StepError> {
         let u = wall.velocity;
         let mut t = t;
         let mut x = [wall.at(t) - y[0], u - y[1]];

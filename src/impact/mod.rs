@@ -9,4 +9,4 @@ pub mod sphere;
 pub mod verlet;
 
 pub use contact::{Contact, ContactForce};
-pub use sphere::{Solver, Sphere, State, StepError, Wall};
+pub use sphere::{Solver, Sphere, State, StepError, WallMotion};

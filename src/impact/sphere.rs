@@ -17,13 +17,13 @@ pub type State = [f64; 3];
 
 /// The wall's motion over one communication step.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Wall {
+pub struct WallMotion {
     pub t0: f64,
     pub position: f64,
     pub velocity: f64,
 }
 
-impl Wall {
+impl WallMotion {
     pub fn at(&self, t: f64) -> f64 {
         self.position + self.velocity * (t - self.t0)
     }
@@ -96,7 +96,7 @@ impl Sphere {
     }
 
     /// Advances the state from `t` to `t_end` with the wall moving as `wall`.
-    pub fn advance(&mut self, wall: &Wall, t: f64, t_end: f64, y: &mut State) -> Result<(), StepError> {
+    pub fn advance(&mut self, wall: &WallMotion, t: f64, t_end: f64, y: &mut State) -> Result<(), StepError> {
         self.follow_jump(wall, t, y);
         match self.solver {
             Solver::Exact => self.advance_exact(wall, t, t_end, y),
@@ -107,7 +107,7 @@ impl Sphere {
 
     /// A wall the master moved between steps: the contact walks from the accepted overlap to the new one
     /// along a straight path (the sphere cannot move in no time), adding that path's work.
-    fn follow_jump(&mut self, wall: &Wall, t: f64, y: &mut State) {
+    fn follow_jump(&mut self, wall: &WallMotion, t: f64, y: &mut State) {
         let (alpha, rate) = self.overlap(wall, t, y);
         if self.jumped(wall, t, y) {
             y[2] += self.contact.follow(alpha);
@@ -117,7 +117,7 @@ impl Sphere {
 
     /// Whether the overlap at this state differs from the accepted one by more than the rounding of the
     /// absolute positions it is made of (a wall the master moved between steps).
-    pub fn jumped(&self, wall: &Wall, t: f64, y: &State) -> bool {
+    pub fn jumped(&self, wall: &WallMotion, t: f64, y: &State) -> bool {
         let (alpha, _) = self.overlap(wall, t, y);
         let from = self.contact.accepted_alpha;
         let resolution = 8.0 * f64::EPSILON * (wall.at(t).abs() + y[0].abs());
@@ -125,25 +125,25 @@ impl Sphere {
     }
 
     /// Overlap and overlap rate of a state at time t.
-    pub fn overlap(&self, wall: &Wall, t: f64, y: &State) -> (f64, f64) {
+    pub fn overlap(&self, wall: &WallMotion, t: f64, y: &State) -> (f64, f64) {
         (wall.at(t) - y[0], wall.velocity - y[1])
     }
 
     /// dy/dt on the accepted branch and its continuation (`Contact::force`).
-    pub fn derivatives(&self, wall: &Wall, t: f64, y: &State) -> State {
+    pub fn derivatives(&self, wall: &WallMotion, t: f64, y: &State) -> State {
         let (alpha, rate) = self.overlap(wall, t, y);
         let f = self.contact.force(alpha, rate).total();
         [y[1], f / self.mass - self.gravity, f * rate]
     }
 
     /// The event indicators at a state.
-    pub fn indicators(&self, wall: &Wall, t: f64, y: &State) -> [f64; 3] {
+    pub fn indicators(&self, wall: &WallMotion, t: f64, y: &State) -> [f64; 3] {
         let (alpha, rate) = self.overlap(wall, t, y);
         self.contact.indicators(alpha, rate)
     }
 
     /// Accepts a state into the contact history; returns whether the branch changed.
-    pub fn accept(&mut self, wall: &Wall, t: f64, y: &State) -> bool {
+    pub fn accept(&mut self, wall: &WallMotion, t: f64, y: &State) -> bool {
         let (alpha, rate) = self.overlap(wall, t, y);
         let (before, after) = self.contact.accept(alpha, rate);
         before != after

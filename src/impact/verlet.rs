@@ -3,10 +3,10 @@
 //! history is accepted after every step with no event location: the baseline the other two are measured
 //! against. The communication step is cut into equal steps no longer than the chosen one.
 
-use super::sphere::{Sphere, State, StepError, Wall, MAX_STEPS};
+use super::sphere::{Sphere, State, StepError, WallMotion, MAX_STEPS};
 
 impl Sphere {
-    pub(super) fn advance_verlet(&mut self, step: f64, wall: &Wall, t0: f64, t_end: f64, y: &mut State) -> Result<(), StepError> {
+    pub(super) fn advance_verlet(&mut self, step: f64, wall: &WallMotion, t0: f64, t_end: f64, y: &mut State) -> Result<(), StepError> {
         let span = t_end - t0;
         if span <= 4.0 * f64::EPSILON * t_end.abs() {
             return Ok(());

@@ -10,7 +10,7 @@ use super::scene_params;
 use super::variables::{Causality, Role, Value, VarType, Variable};
 use super::{Model, UnitInfo};
 use crate::impact::contact::Memory;
-use crate::impact::{Solver, Sphere, State, Wall};
+use crate::impact::{Solver, Sphere, State, WallMotion};
 use crate::law::{AnyLaw, NormalLaw};
 use crate::scene::{ModelKind, Partner};
 use crate::theory::time_step;
@@ -217,11 +217,11 @@ impl ParticleWallImpact {
 
     /// The wall at the current time: as given (CS, and ME at an input update), or moved on with its
     /// velocity since the inputs were last given (ME, `SeenWall`).
-    fn wall(&self, values: &[Value]) -> Wall {
+    fn wall(&self, values: &[Value]) -> WallMotion {
         let (position, velocity) = (real(values, self.refs.wall_displacement), real(values, self.refs.wall_velocity));
         match self.me_wall {
-            Some(s) if s.position == position && s.velocity == velocity => Wall { t0: s.t, position, velocity },
-            _ => Wall { t0: self.t, position, velocity },
+            Some(s) if s.position == position && s.velocity == velocity => WallMotion { t0: s.t, position, velocity },
+            _ => WallMotion { t0: self.t, position, velocity },
         }
     }
 
@@ -284,7 +284,7 @@ impl Model for ParticleWallImpact {
         self.y = [w + gap, -v0, 0.0];
         self.radius = radius;
         self.cs_wall = None;
-        let wall = Wall { t0, position: w, velocity: real(values, self.refs.wall_velocity) };
+        let wall = WallMotion { t0, position: w, velocity: real(values, self.refs.wall_velocity) };
         self.me_wall = model_exchange.then_some(SeenWall { position: wall.position, velocity: wall.velocity, t: t0 });
         sphere.accept(&wall, t0, &self.y);
         sphere.contact.max_overlap = f64::NEG_INFINITY;
