@@ -15,7 +15,7 @@
 #[path = "../tests/common/mod.rs"]
 mod common;
 
-use powderfmu::impact::{Contact, Solver, Sphere, WallMotion};
+use powderfmu::impact::{Contact, Solver, Sphere, State, WallMotion};
 use powderfmu::law::damping::NormalDamping;
 use powderfmu::law::params::Effective;
 use powderfmu::law::{AnyLaw, Branch, NormalLaw};
@@ -81,17 +81,17 @@ impl Case {
     fn run(&self, solver: Solver, tolerance: f64, v: f64, t_end: f64) -> Option<Outcome> {
         let mut sp = self.sphere(solver, tolerance, v);
         let wall = WallMotion { t0: 0.0, position: 0.0, velocity: 0.0 };
-        let mut y = [self.gap(), -v, 0.0];
+        let mut y = State::new(self.gap(), -v, 0.0);
         sp.accept(&wall, 0.0, &y);
         if let Err(e) = sp.advance(&wall, 0.0, t_end, &mut y) {
             eprintln!("work_precision: {} {solver:?} tolerance {tolerance:e} at {v} m/s: {e}", self.label);
             return None;
         }
         Some(Outcome {
-            rebound: y[1],
+            rebound: y.velocity,
             max_overlap: sp.contact.max_overlap,
             plastic_overlap: self.law.plastic_overlap(sp.contact.history()),
-            separated: sp.contact.accepted.branch == Branch::Separated && y[1] > 0.0,
+            separated: sp.contact.accepted.branch == Branch::Separated && y.velocity > 0.0,
         })
     }
 
@@ -99,7 +99,7 @@ impl Case {
     fn end_time(&self, v: f64) -> f64 {
         let mut sp = self.sphere(Solver::Adaptive, 1e-12, v);
         let wall = WallMotion { t0: 0.0, position: 0.0, velocity: 0.0 };
-        let mut y = [self.gap(), -v, 0.0];
+        let mut y = State::new(self.gap(), -v, 0.0);
         sp.accept(&wall, 0.0, &y);
         let approach = self.gap() / v;
         let dt = approach / 50.0;
@@ -107,7 +107,7 @@ impl Case {
         while t < 2000.0 * approach {
             sp.advance(&wall, t, t + dt, &mut y).expect("reference run");
             t += dt;
-            if y[1] > 0.0 && sp.contact.accepted.branch == Branch::Separated {
+            if y.velocity > 0.0 && sp.contact.accepted.branch == Branch::Separated {
                 // A little free flight after separation, the same for every solver.
                 return t + 10.0 * dt;
             }

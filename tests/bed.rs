@@ -9,7 +9,7 @@ use powderfmu::bed::prepare::{self, bed_height, DIE, FLOOR};
 use powderfmu::bed::stress::{bagi, Region};
 use powderfmu::bed::walls::Wall;
 use powderfmu::bed::{AnyEngine, BedScene};
-use powderfmu::impact::{Contact, Solver, Sphere, WallMotion};
+use powderfmu::impact::{Contact, Solver, Sphere, State, WallMotion};
 use powderfmu::law::damping::NormalDamping;
 use powderfmu::law::params::Effective;
 use powderfmu::law::{AnyLaw, Branch};
@@ -83,15 +83,15 @@ fn unit_collision(law: &Value, radius: f64, v: f64) -> f64 {
     let contact = Contact::new(AnyLaw::from_scene(&s).unwrap(), NormalDamping::from_scene(&s, eff.mass), 1e-3 * radius, v);
     let mut sp = Sphere::new(eff.mass, 0.0, contact, Solver::Adaptive, 1e-11);
     let wall = WallMotion { t0: 0.0, position: 0.0, velocity: 0.0 };
-    let mut y = [1e-3 * radius, -v, 0.0];
+    let mut y = State::new(1e-3 * radius, -v, 0.0);
     sp.accept(&wall, 0.0, &y);
     let (mut t, dt) = (0.0, 1e-3 * radius / v);
-    while !(y[1] > 0.0 && sp.contact.accepted.branch == Branch::Separated) {
+    while !(y.velocity > 0.0 && sp.contact.accepted.branch == Branch::Separated) {
         sp.advance(&wall, t, t + dt, &mut y).unwrap();
         t += dt;
         assert!(t < 1.0, "the unit's sphere never left");
     }
-    y[1] / v
+    y.velocity / v
 }
 
 #[test]

@@ -36,13 +36,13 @@ fn closed_form(s: &Scene, v: f64) -> ImpactOutcome {
 fn impact(s: &Scene, v: f64, solver: Solver, dt: f64, t_max: f64) -> (State, Sphere) {
     let mut sp = sphere_at(s, solver, 0.0, v);
     let wall = WallMotion { t0: 0.0, position: 0.0, velocity: 0.0 };
-    let mut y = [1e-3 * s.particle_radius, -v, 0.0];
+    let mut y = State::new(1e-3 * s.particle_radius, -v, 0.0);
     sp.accept(&wall, 0.0, &y);
     let mut t = 0.0;
     while t < t_max {
         sp.advance(&wall, t, t + dt, &mut y).unwrap();
         t += dt;
-        if y[1] > 0.0 && sp.contact.accepted.branch == Branch::Separated {
+        if y.velocity > 0.0 && sp.contact.accepted.branch == Branch::Separated {
             break;
         }
     }
@@ -85,7 +85,7 @@ fn adhesion_induced_plasticity_and_impacts_within_1e_6_of_the_sticking_velocity(
         assert!(sp.contact.accepted.branch.in_contact(), "{below} m/s (V_ys {v_ys}) must stick, branch {:?}", sp.contact.accepted.branch);
         let (y, _) = impact(&s, above, Solver::Exact, 1e-7, 2e-6);
         let want = closed_form(&s, above).rebound_velocity;
-        assert!(want > 0.0 && rel(y[1], want) < 1e-6, "{above} m/s: rebound {:e} vs closed form {want:e}", y[1]);
+        assert!(want > 0.0 && rel(y.velocity, want) < 1e-6, "{above} m/s: rebound {:e} vs closed form {want:e}", y.velocity);
     }
 }
 
@@ -115,7 +115,7 @@ fn undamped_sticking_oscillation_keeps_its_energy_over_1e6_oscillations() {
     let h = *sp.contact.history();
     let law = sp.contact.law.clone();
     let alpha_p = nan_points(&h).points.alpha_p;
-    let energy = |y: &State| 0.5 * m * y[1] * y[1] + potential(&law, &h, alpha_p, wall.at(0.0) - y[0]);
+    let energy = |y: &State| 0.5 * m * y.velocity * y.velocity + potential(&law, &h, alpha_p, wall.at(0.0) - y.bottom);
     let e0 = energy(&y);
     // The elastic half-cycles alone take 2 pi sqrt(m / k_e); the E-F part adds to that.
     let k_e = nan_points(&h).points.k_e;
@@ -138,12 +138,12 @@ fn stiff_contact_in_one_long_step_and_soft_contact_in_many_short_steps() {
     let v = 3.0 * sticking_velocity(&du);
     let want = closed_form(&du, v).rebound_velocity;
     let (y, sp) = impact(&du, v, Solver::Exact, 1e-3, 1e-3);
-    assert!(rel(y[1], want) < 1e-12, "exact: {} vs {want}", y[1]);
+    assert!(rel(y.velocity, want) < 1e-12, "exact: {} vs {want}", y.velocity);
     // The sphere flew on freely for the rest of the millisecond.
-    assert!(y[0] > 0.9e-3 * want, "height after 1 ms: {:e} m", y[0]);
+    assert!(y.bottom > 0.9e-3 * want, "height after 1 ms: {:e} m", y.bottom);
     assert!(sp.events >= 3, "contact, turning point and separation are events: {}", sp.events);
     let (y, _) = impact(&du, v, Solver::Adaptive, 1e-3, 1e-3);
-    assert!(rel(y[1], want) < 1e-8, "adaptive: {} vs {want}", y[1]);
+    assert!(rel(y.velocity, want) < 1e-8, "adaptive: {} vs {want}", y.velocity);
 
     let mut soft = table5(ModelKind::Nan, 10e-3, 30e6);
     soft.particle_youngs_modulus = 1e8;
@@ -153,9 +153,9 @@ fn stiff_contact_in_one_long_step_and_soft_contact_in_many_short_steps() {
     assert!(contact_steps > 100.0, "the contact must span many communication steps: {contact_steps}");
     let want = want.rebound_velocity;
     let (y, _) = impact(&soft, v, Solver::Exact, 1e-6, 1.0);
-    assert!(rel(y[1], want) < 1e-12, "exact over {contact_steps} steps: {} vs {want}", y[1]);
+    assert!(rel(y.velocity, want) < 1e-12, "exact over {contact_steps} steps: {} vs {want}", y.velocity);
     let (y, _) = impact(&soft, v, Solver::Adaptive, 1e-6, 1.0);
-    assert!(rel(y[1], want) < 1e-8, "adaptive: {} vs {want}", y[1]);
+    assert!(rel(y.velocity, want) < 1e-8, "adaptive: {} vs {want}", y.velocity);
 }
 
 fn sticking_velocity(s: &Scene) -> f64 {
@@ -173,7 +173,7 @@ fn sphere_comes_to_rest_under_gravity_without_chatter_or_drift() {
         let g = 9.81;
         let mut sp = sphere_at(&s, solver, g, 1.0);
         let wall = WallMotion { t0: 0.0, position: 0.0, velocity: 0.0 };
-        let mut y = [1e-6, -0.05, 0.0];
+        let mut y = State::new(1e-6, -0.05, 0.0);
         sp.accept(&wall, 0.0, &y);
         let dt = 1e-3;
         let mut t = 0.0;
@@ -181,7 +181,7 @@ fn sphere_comes_to_rest_under_gravity_without_chatter_or_drift() {
             sp.advance(&wall, t, t + dt, &mut y).unwrap();
             t += dt;
         }
-        let (z, events) = (y[0], sp.events);
+        let (z, events) = (y.bottom, sp.events);
         for _ in 0..1000 {
             sp.advance(&wall, t, t + dt, &mut y).unwrap();
             t += dt;
@@ -197,8 +197,8 @@ fn sphere_comes_to_rest_under_gravity_without_chatter_or_drift() {
             _ => (1e-6, 1e-10, 1e-15),
         };
         assert!((f - weight).abs() < force_tol * weight, "{solver:?}: force {f:e} N vs weight {weight:e} N");
-        assert!(y[1].abs() < speed_tol, "{solver:?}: still moving at {:e} m/s", y[1]);
-        assert!((y[0] - z).abs() < creep_tol, "{solver:?}: crept {:e} m in 1 s", y[0] - z);
+        assert!(y.velocity.abs() < speed_tol, "{solver:?}: still moving at {:e} m/s", y.velocity);
+        assert!((y.bottom - z).abs() < creep_tol, "{solver:?}: crept {:e} m in 1 s", y.bottom - z);
         assert_eq!(sp.events, events, "{solver:?}: branch events while at rest");
     }
 }
@@ -216,7 +216,7 @@ fn recontact_after_detachment_follows_the_plastic_history() {
     let pts = h.points;
     // A wall chasing the sphere at twice its speed brings it back into contact.
     let t0 = 1e-6;
-    let u = 2.0 * y[1] + 1.0;
+    let u = 2.0 * y.velocity + 1.0;
     let wall = WallMotion { t0, position: 0.0, velocity: u };
     // Overlap and force sampled in short steps through the reloading.
     let law = sp.contact.law.clone();
@@ -260,16 +260,16 @@ fn wall_driven_into_the_sphere_at_100_m_per_s() {
         let mut sp = sphere_at(&s, solver, 0.0, 1.0);
         let u = 100.0;
         let wall = WallMotion { t0: 0.0, position: -1e-9, velocity: u };
-        let mut y = [0.0, 0.0, 0.0];
+        let mut y = State::new(0.0, 0.0, 0.0);
         sp.accept(&wall, 0.0, &y);
         let dt = 1e-9;
         let mut t = 0.0;
-        while !(y[1] > u && sp.contact.accepted.branch == Branch::Separated) {
+        while !(y.velocity > u && sp.contact.accepted.branch == Branch::Separated) {
             sp.advance(&wall, t, t + dt, &mut y).unwrap();
             t += dt;
             assert!(t < 1e-6, "{solver:?}: the sphere never left the wall");
         }
-        assert!(rel(y[1] - u, want.rebound_velocity) < tol, "{solver:?}: {} vs {}", y[1] - u, want.rebound_velocity);
+        assert!(rel(y.velocity - u, want.rebound_velocity) < tol, "{solver:?}: {} vs {}", y.velocity - u, want.rebound_velocity);
         assert!(rel(sp.contact.max_overlap, want.max_overlap) < tol, "{solver:?}: max overlap");
     }
 }
@@ -290,7 +290,7 @@ fn a_deeper_second_impact_within_one_step_updates_the_largest_overlap() {
         sp.advance(&wall, 1e-3, 2e-3, &mut y).unwrap();
         let want = 2.0 * (m / 1e6f64).sqrt();
         assert!(rel(sp.contact.max_overlap, want) < tol, "{solver:?}: max overlap {:e} vs {want:e}", sp.contact.max_overlap);
-        assert!(rel(y[1] - 3.0, 2.0) < tol, "{solver:?}: leaves at 2 m/s relative to the wall, not {}", y[1] - 3.0);
+        assert!(rel(y.velocity - 3.0, 2.0) < tol, "{solver:?}: leaves at 2 m/s relative to the wall, not {}", y.velocity - 3.0);
     }
 }
 
@@ -314,7 +314,7 @@ fn bouncing_ball_on_a_vibrating_plate_stays_on_the_period_one_orbit() {
     let mut sp = sphere_at(&s, Solver::Exact, g, 1.0);
     let per_period = 200;
     let dt = 1.0 / f / per_period as f64;
-    let mut y = [plate(0.0) + 1e-12, v_orbit, 0.0];
+    let mut y = State::new(plate(0.0) + 1e-12, v_orbit, 0.0);
     sp.accept(&WallMotion { t0: 0.0, position: plate(0.0), velocity: 0.0 }, 0.0, &y);
     let periods = 10_000;
     let (mut bounces, mut takeoffs, mut pending) = (0, Vec::new(), false);
@@ -322,17 +322,17 @@ fn bouncing_ball_on_a_vibrating_plate_stays_on_the_period_one_orbit() {
         let t = k as f64 * dt;
         // The master's linear interpolation: position now, velocity the secant to the next sample.
         let wall = WallMotion { t0: t, position: plate(t), velocity: (plate(t + dt) - plate(t)) / dt };
-        let v_before = y[1];
+        let v_before = y.velocity;
         sp.advance(&wall, t, t + dt, &mut y).unwrap();
         if k >= (periods - 100) * per_period {
             // A bounce turns the fall into a rise (once, even where a step ends inside the contact).
-            if v_before < 0.0 && y[1] > 0.0 {
+            if v_before < 0.0 && y.velocity > 0.0 {
                 bounces += 1;
                 pending = true;
             }
             // The first free-flight sample after a bounce, at most one step g dt = 0.5 % after take-off.
             if pending && sp.contact.accepted.branch == Branch::Separated {
-                takeoffs.push(y[1]);
+                takeoffs.push(y.velocity);
                 pending = false;
             }
         }
@@ -361,13 +361,13 @@ fn extreme_ratios_radii_and_no_adhesion_against_the_closed_forms() {
             assert!(sp.contact.accepted.branch.in_contact(), "{what}: must stick");
             return 0.0;
         } else {
-            assert!(rel(y[1], want.rebound_velocity) < 1e-11, "{what}: exact {} vs {}", y[1], want.rebound_velocity);
+            assert!(rel(y.velocity, want.rebound_velocity) < 1e-11, "{what}: exact {} vs {}", y.velocity, want.rebound_velocity);
             let (ya, _) = impact(s, v, Solver::Adaptive, dt, 5000.0 * dt);
             // Error control acts on the whole motion: the error is relative to the impact speed.
             assert!((ya[1] - want.rebound_velocity).abs() < 1e-7 * v, "{what}: adaptive {} vs {}", ya[1], want.rebound_velocity);
         }
         // The simulated restitution (0 where the sphere stuck).
-        y[1] / v
+        y.velocity / v
     };
     let base = table5(ModelKind::Nan, 2.45e-6, 30e6);
     let AnyLaw::Nan(law) = AnyLaw::from_scene(&base).unwrap() else { unreachable!() };
@@ -413,10 +413,10 @@ fn verlet_converges_at_first_order_to_the_closed_form() {
             .map(|&gap| {
                 let mut sp = sphere_at(&s, Solver::Verlet { step }, 0.0, v);
                 let wall = WallMotion { t0: 0.0, position: 0.0, velocity: 0.0 };
-                let mut y = [gap, -v, 0.0];
+                let mut y = State::new(gap, -v, 0.0);
                 sp.accept(&wall, 0.0, &y);
                 sp.advance(&wall, 0.0, 2e-7, &mut y).unwrap();
-                rel(y[1], want)
+                rel(y.velocity, want)
             })
             .sum::<f64>()
             / gaps.len() as f64

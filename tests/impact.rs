@@ -4,7 +4,7 @@
 
 mod common;
 use common::*;
-use powderfmu::impact::{Contact, Solver, Sphere, WallMotion};
+use powderfmu::impact::{Contact, Solver, Sphere, State, WallMotion};
 use powderfmu::law::damping::NormalDamping;
 use powderfmu::law::params::Effective;
 use powderfmu::law::{AnyLaw, Branch};
@@ -25,16 +25,16 @@ fn sphere_with(s: &Scene, solver: Solver, tolerance: f64) -> (Sphere, f64) {
 
 /// Runs an impact at speed `v` until the sphere has left the wall; returns the final
 /// state [z, v, W] and the largest overlap.
-fn run(s: &Scene, v: f64, tolerance: f64) -> ([f64; 3], f64, Sphere) {
+fn run(s: &Scene, v: f64, tolerance: f64) -> (State, f64, Sphere) {
     run_with(s, v, Solver::Adaptive, tolerance)
 }
 
-fn run_with(s: &Scene, v: f64, solver: Solver, tolerance: f64) -> ([f64; 3], f64, Sphere) {
+fn run_with(s: &Scene, v: f64, solver: Solver, tolerance: f64) -> (State, f64, Sphere) {
     let (mut sp, _) = sphere_with(s, solver, tolerance);
     let wall = WallMotion { t0: 0.0, position: 0.0, velocity: 0.0 };
     // Farther than any attraction tail (Tomas: 99 a_F = 40 nm), so the approach does all its work.
     let gap = 0.05 * s.particle_radius;
-    let mut y = [gap, -v, 0.0];
+    let mut y = State::new(gap, -v, 0.0);
     sp.accept(&wall, 0.0, &y);
     let mut t = 0.0;
     let dt = 1e-9;
@@ -42,7 +42,7 @@ fn run_with(s: &Scene, v: f64, solver: Solver, tolerance: f64) -> ([f64; 3], f64
         sp.advance(&wall, t, t + dt, &mut y).unwrap();
         t += dt;
         // Left the wall: separated (beyond any adhesive neck or attraction tail) and moving away.
-        if y[1] > 0.0 && sp.contact.accepted.branch == Branch::Separated {
+        if y.velocity > 0.0 && sp.contact.accepted.branch == Branch::Separated {
             break;
         }
     }
@@ -70,12 +70,12 @@ fn every_law_rebounds_as_its_energy_balance_says() {
         let want = energy_balance::impact(&law, m, v, s.particle_radius).unwrap();
         let (y, max, sp) = run(&s, v, 1e-10);
         assert!(!want.sticks, "{model:?}");
-        assert!(rel(y[1], want.rebound_velocity) < 1e-6, "{model:?}: rebound {} vs energy balance {}", y[1], want.rebound_velocity);
+        assert!(rel(y.velocity, want.rebound_velocity) < 1e-6, "{model:?}: rebound {} vs energy balance {}", y.velocity, want.rebound_velocity);
         assert!(rel(max, want.max_overlap) < 1e-6, "{model:?}: max overlap {max:e} vs {:e}", want.max_overlap);
         // The contact work is what the sphere lost.
-        let lost = 0.5 * m * (v * v - y[1] * y[1]);
+        let lost = 0.5 * m * (v * v - y.velocity * y.velocity);
         let e_in = 0.5 * m * v * v;
-        assert!((y[2] - lost).abs() < 1e-8 * e_in, "{model:?}: work {:e} vs kinetic energy lost {lost:e}", y[2]);
+        assert!((y.work - lost).abs() < 1e-8 * e_in, "{model:?}: work {:e} vs kinetic energy lost {lost:e}", y.work);
         assert!(sp.events >= 2, "{model:?}: contact and separation must be events");
     }
 }
@@ -89,10 +89,10 @@ fn exact_rebounds_as_the_closed_form_to_1e_12_for_every_piecewise_linear_law() {
         for v in [3.0, 5.0, 20.0] {
             let want = restitution::closed_form(&law, m, v).unwrap();
             let (y, max, _sp) = run_with(&s, v, Solver::Exact, 0.0);
-            assert!(rel(y[1], want.rebound_velocity) < 1e-12, "{model:?} at {v} m/s: rebound {} vs energy balance {}", y[1], want.rebound_velocity);
+            assert!(rel(y.velocity, want.rebound_velocity) < 1e-12, "{model:?} at {v} m/s: rebound {} vs energy balance {}", y.velocity, want.rebound_velocity);
             assert!(rel(max, want.max_overlap) < 1e-12, "{model:?}: max overlap {max:e} vs {:e}", want.max_overlap);
-            let lost = 0.5 * m * (v * v - y[1] * y[1]);
-            assert!((y[2] - lost).abs() < 1e-12 * 0.5 * m * v * v, "{model:?}: work {:e} vs {lost:e}", y[2]);
+            let lost = 0.5 * m * (v * v - y.velocity * y.velocity);
+            assert!((y.work - lost).abs() < 1e-12 * 0.5 * m * v * v, "{model:?}: work {:e} vs {lost:e}", y.work);
         }
     }
 }
@@ -101,10 +101,10 @@ fn exact_rebounds_as_the_closed_form_to_1e_12_for_every_piecewise_linear_law() {
 fn hertz_without_damping_is_perfectly_elastic_and_with_damping_restitutes_less() {
     let mut s = scene(ModelKind::Hertz);
     let (y, _, _) = run(&s, 2.0, 1e-10);
-    assert!(rel(y[1], 2.0) < 1e-8, "{}", y[1]);
+    assert!(rel(y.velocity, 2.0) < 1e-8, "{}", y.velocity);
     s.restitution_coefficient = 0.7;
     let (y, _, _) = run(&s, 2.0, 1e-10);
-    assert!(y[1] > 0.3 && y[1] < 2.0 * 0.95, "{}", y[1]);
+    assert!(y.velocity > 0.3 && y.velocity < 2.0 * 0.95, "{}", y.velocity);
 }
 
 #[test]
@@ -113,9 +113,9 @@ fn below_the_sticking_velocity_the_nan_sphere_stays_on_the_wall() {
     // 000 Table 6: V_ys = 1.86 m/s for this sphere.
     let (y, _, sp) = run(&s, 1.8, 1e-10);
     assert!(sp.contact.accepted.branch.in_contact(), "{:?}", sp.contact.accepted.branch);
-    assert!(y[0] < 1e-3 * s.particle_radius);
+    assert!(y.bottom < 1e-3 * s.particle_radius);
     let (y, _, _) = run(&s, 1.9, 1e-10);
-    assert!(y[1] > 0.0);
+    assert!(y.velocity > 0.0);
 }
 
 #[test]

@@ -24,7 +24,7 @@ const B4: [f64; 7] = [5179.0 / 57600.0, 0.0, 7571.0 / 16695.0, 393.0 / 640.0, -9
 impl Sphere {
     /// One Dormand-Prince step: the 5th-order solution and the error estimate.
     fn dp_step(&self, wall: &WallMotion, t: f64, y: &State, h: f64) -> (State, State) {
-        let mut k = [[0.0; 3]; 7];
+        let mut k = [State::default(); 7];
         for s in 0..7 {
             let mut ys = *y;
             for (j, kj) in k.iter().enumerate().take(s) {
@@ -35,7 +35,7 @@ impl Sphere {
             k[s] = self.derivatives(wall, t + C[s] * h, &ys);
         }
         let mut y5 = *y;
-        let mut err = [0.0; 3];
+        let mut err = State::default();
         for s in 0..7 {
             for i in 0..3 {
                 y5[i] += h * B5[s] * k[s][i];
@@ -47,10 +47,10 @@ impl Sphere {
 
     fn error_norm(&self, y0: &State, y1: &State, err: &State) -> f64 {
         let tol = self.tolerance;
-        let scale_z = tol * (self.contact.alpha_nominal + y0[0].abs().max(y1[0].abs()));
-        let scale_v = tol * (self.contact.rate_nominal + y0[1].abs().max(y1[1].abs()));
-        let ez = err[0] / scale_z;
-        let ev = err[1] / scale_v;
+        let scale_z = tol * (self.contact.alpha_nominal + y0.bottom.abs().max(y1.bottom.abs()));
+        let scale_v = tol * (self.contact.rate_nominal + y0.velocity.abs().max(y1.velocity.abs()));
+        let ez = err.bottom / scale_z;
+        let ev = err.velocity / scale_v;
         ((ez * ez + ev * ev) / 2.0).sqrt()
     }
 
@@ -74,7 +74,7 @@ impl Sphere {
                 return Err(StepError::StepTooSmall { t });
             }
             let (y1, err) = self.dp_step(wall, t, y, h_try);
-            if !y1.iter().all(|x| x.is_finite()) {
+            if !y1.to_array().iter().all(|x| x.is_finite()) {
                 if h_try < 1e-300 {
                     return Err(StepError::NotFinite { t });
                 }
@@ -125,7 +125,7 @@ impl Sphere {
     }
 
     fn initial_step(&self, y: &State) -> f64 {
-        let speed = y[1].abs().max(self.contact.rate_nominal);
+        let speed = y.velocity.abs().max(self.contact.rate_nominal);
         1e-2 * self.contact.alpha_nominal / speed
     }
 }

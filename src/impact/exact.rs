@@ -203,7 +203,7 @@ impl Sphere {
     pub(super) fn advance_exact(&mut self, wall: &WallMotion, t: f64, t_end: f64, y: &mut State) -> Result<(), StepError> {
         let u = wall.velocity;
         let mut t = t;
-        let mut x = [wall.at(t) - y[0], u - y[1]];
+        let mut x = [wall.at(t) - y.bottom, u - y.velocity];
         // The branch the motion goes into now: the master may have turned the wall around.
         self.contact.accept(x[0], x[1]);
         let (mut segments, mut stalls) = (0u64, 0u32);
@@ -223,7 +223,7 @@ impl Sphere {
             if !(x1[0].is_finite() && x1[1].is_finite()) {
                 return Err(StepError::NotFinite { t });
             }
-            y[2] += self.mass * (self.gravity * (x1[0] - x[0]) - 0.5 * (x1[1] * x1[1] - x[1] * x[1]));
+            y.work += self.mass * (self.gravity * (x1[0] - x[0]) - 0.5 * (x1[1] * x1[1] - x[1] * x[1]));
             x = x1;
             self.steps += 1;
             if crossing.is_some() {
@@ -240,8 +240,8 @@ impl Sphere {
             }
             self.contact.accept(x[0], x[1]);
         }
-        y[0] = wall.at(t) - x[0];
-        y[1] = u - x[1];
+        y.bottom = wall.at(t) - x[0];
+        y.velocity = u - x[1];
         Ok(())
     }
 }

@@ -12,8 +12,59 @@
 
 use super::contact::Contact;
 
-/// The state of the sphere: [z, v, W] with W the work done on the contact (the integral of f d alpha).
-pub type State = [f64; 3];
+/// The state of the sphere, also Model Exchange's continuous states in this order.
+#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize, serde::Deserialize)]
+pub struct State {
+    /// z: height of the sphere's lowest point [m].
+    pub bottom: f64,
+    /// v: velocity, positive away from the wall [m/s].
+    pub velocity: f64,
+    /// W: work done on the contact, the integral of f d alpha [J].
+    pub work: f64,
+}
+
+impl State {
+    pub fn new(bottom: f64, velocity: f64, work: f64) -> State {
+        State { bottom, velocity, work }
+    }
+
+    /// [z, v, W], the order of the ME states.
+    pub fn to_array(self) -> [f64; 3] {
+        [self.bottom, self.velocity, self.work]
+    }
+
+    pub fn from_slice(x: &[f64]) -> State {
+        State { bottom: x[0], velocity: x[1], work: x[2] }
+    }
+}
+
+impl From<[f64; 3]> for State {
+    fn from(a: [f64; 3]) -> State {
+        State::from_slice(&a)
+    }
+}
+
+/// The Runge-Kutta arithmetic of `adaptive` runs over the three components by index.
+impl std::ops::Index<usize> for State {
+    type Output = f64;
+    fn index(&self, i: usize) -> &f64 {
+        match i {
+            0 => &self.bottom,
+            1 => &self.velocity,
+            _ => &self.work,
+        }
+    }
+}
+
+impl std::ops::IndexMut<usize> for State {
+    fn index_mut(&mut self, i: usize) -> &mut f64 {
+        match i {
+            0 => &mut self.bottom,
+            1 => &mut self.velocity,
+            _ => &mut self.work,
+        }
+    }
+}
 
 /// The wall's motion over one communication step.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -110,7 +161,7 @@ impl Sphere {
     fn follow_jump(&mut self, wall: &WallMotion, t: f64, y: &mut State) {
         let (alpha, rate) = self.overlap(wall, t, y);
         if self.jumped(wall, t, y) {
-            y[2] += self.contact.follow(alpha);
+            y.work += self.contact.follow(alpha);
             self.contact.accept(alpha, rate);
         }
     }
@@ -120,20 +171,20 @@ impl Sphere {
     pub fn jumped(&self, wall: &WallMotion, t: f64, y: &State) -> bool {
         let (alpha, _) = self.overlap(wall, t, y);
         let from = self.contact.accepted_alpha;
-        let resolution = 8.0 * f64::EPSILON * (wall.at(t).abs() + y[0].abs());
+        let resolution = 8.0 * f64::EPSILON * (wall.at(t).abs() + y.bottom.abs());
         from.is_finite() && (alpha - from).abs() > resolution
     }
 
     /// Overlap and overlap rate of a state at time t.
     pub fn overlap(&self, wall: &WallMotion, t: f64, y: &State) -> (f64, f64) {
-        (wall.at(t) - y[0], wall.velocity - y[1])
+        (wall.at(t) - y.bottom, wall.velocity - y.velocity)
     }
 
     /// dy/dt on the accepted branch and its continuation (`Contact::force`).
     pub fn derivatives(&self, wall: &WallMotion, t: f64, y: &State) -> State {
         let (alpha, rate) = self.overlap(wall, t, y);
         let f = self.contact.force(alpha, rate).total();
-        [y[1], f / self.mass - self.gravity, f * rate]
+        State { bottom: y.velocity, velocity: f / self.mass - self.gravity, work: f * rate }
     }
 
     /// The event indicators at a state.

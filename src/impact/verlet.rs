@@ -21,17 +21,17 @@ impl Sphere {
         let mut alpha = alpha;
         for i in 0..n as u64 {
             let t1 = t0 + (i + 1) as f64 * h;
-            let v_half = y[1] + 0.5 * h * (f / self.mass - self.gravity);
-            y[0] += h * v_half;
-            let (alpha1, rate1) = (wall.at(t1) - y[0], wall.velocity - v_half);
+            let v_half = y.velocity + 0.5 * h * (f / self.mass - self.gravity);
+            y.bottom += h * v_half;
+            let (alpha1, rate1) = (wall.at(t1) - y.bottom, wall.velocity - v_half);
             let f1 = self.contact.law_force(alpha1, rate1).total();
-            y[1] = v_half + 0.5 * h * (f1 / self.mass - self.gravity);
+            y.velocity = v_half + 0.5 * h * (f1 / self.mass - self.gravity);
             // Trapezoidal contact work, the accuracy of the scheme.
-            y[2] += 0.5 * (f + f1) * (alpha1 - alpha);
-            if !(y[0].is_finite() && y[1].is_finite()) {
+            y.work += 0.5 * (f + f1) * (alpha1 - alpha);
+            if !(y.bottom.is_finite() && y.velocity.is_finite()) {
                 return Err(StepError::NotFinite { t: t1 });
             }
-            self.contact.accept(alpha1, wall.velocity - y[1]);
+            self.contact.accept(alpha1, wall.velocity - y.velocity);
             self.steps += 1;
             f = f1;
             alpha = alpha1;

@@ -183,7 +183,7 @@ impl ParticleWallImpact {
             variables: u.variables.clone(),
             radius: 0.0,
             sphere: None,
-            y: [0.0; 3],
+            y: State::default(),
             t: 0.0,
             cs_wall: None,
             me_wall: None,
@@ -281,7 +281,7 @@ impl Model for ParticleWallImpact {
         let w = finite(values, self.refs.wall_displacement, "wall_displacement", "m")?;
         let v0 = real(values, self.refs.initial_velocity);
         self.t = t0;
-        self.y = [w + gap, -v0, 0.0];
+        self.y = State::new(w + gap, -v0, 0.0);
         self.radius = radius;
         self.cs_wall = None;
         let wall = WallMotion { t0, position: w, velocity: real(values, self.refs.wall_velocity) };
@@ -312,12 +312,12 @@ impl Model for ParticleWallImpact {
             &sphere.contact
         };
         let f = r.outputs.write(values, c, alpha, rate);
-        values[r.sphere_position] = Value::Real(self.y[0] + self.radius);
-        values[r.sphere_velocity] = Value::Real(self.y[1]);
-        values[r.dissipated_energy] = Value::Real(self.y[2]);
-        values[r.sphere_bottom] = Value::Real(self.y[0]);
+        values[r.sphere_position] = Value::Real(self.y.bottom + self.radius);
+        values[r.sphere_velocity] = Value::Real(self.y.velocity);
+        values[r.dissipated_energy] = Value::Real(self.y.work);
+        values[r.sphere_bottom] = Value::Real(self.y.bottom);
         // The derivatives of `Sphere::derivatives`, from the force just evaluated.
-        values[r.der_bottom] = Value::Real(self.y[1]);
+        values[r.der_bottom] = Value::Real(self.y.velocity);
         values[r.der_velocity] = Value::Real(f / sphere.mass - sphere.gravity);
         values[r.der_energy] = Value::Real(f * rate);
     }
@@ -327,17 +327,17 @@ impl Model for ParticleWallImpact {
     }
 
     fn get_states(&self, x: &mut [f64]) {
-        x.copy_from_slice(&self.y);
+        x.copy_from_slice(&self.y.to_array());
     }
 
     fn set_states(&mut self, x: &[f64]) {
-        self.y.copy_from_slice(x);
+        self.y = State::from_slice(x);
     }
 
     fn derivatives(&mut self, values: &[Value], dx: &mut [f64]) {
         self.see_inputs(values);
         if let Some(sphere) = &self.sphere {
-            dx.copy_from_slice(&sphere.derivatives(&self.wall(values), self.t, &self.y));
+            dx.copy_from_slice(&sphere.derivatives(&self.wall(values), self.t, &self.y).to_array());
         }
     }
 
@@ -415,11 +415,11 @@ impl Model for ParticleWallImpact {
         let snap: Snapshot = super::decode(bytes)?;
         let (mut sphere, radius) = self.build(values)?;
         // Finite, and a speed no impact of powder reaches (a corrupted state that passed the checksum).
-        if !(snap.y.iter().all(|x| x.is_finite()) && snap.t.is_finite() && snap.last_step.is_finite() && snap.last_step >= 0.0)
-            || snap.y[1].abs() > MAX_SPEED
+        if !(snap.y.to_array().iter().all(|x| x.is_finite()) && snap.t.is_finite() && snap.last_step.is_finite() && snap.last_step >= 0.0)
+            || snap.y.velocity.abs() > MAX_SPEED
             || snap.me_wall.is_some_and(|w| !(w.position.is_finite() && w.t.is_finite() && w.velocity.abs() <= MAX_SPEED))
         {
-            return Err(format!("the saved sphere state is not plausible (velocity {:e} m/s; allowed finite and at most {MAX_SPEED:e})", snap.y[1]));
+            return Err(format!("the saved sphere state is not plausible (velocity {:e} m/s; allowed finite and at most {MAX_SPEED:e})", snap.y.velocity));
         }
         sphere.contact.remember(snap.contact)?;
         sphere.last_step = snap.last_step;
