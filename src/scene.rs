@@ -6,6 +6,7 @@
 
 use crate::error::{check_closed_low, check_open, ParamError};
 use serde_json::{Map, Value};
+use std::sync::LazyLock;
 
 /// The names of the laws as one literal (for `concat!`).
 macro_rules! model_names {
@@ -23,8 +24,8 @@ pub struct Key {
     pub doc: &'static str,
 }
 
-/// Every scene key, in the order the help prints them.
-pub const KEYS: &[Key] = &[
+/// The keys every scene has: the particle, the wall, damping, friction and the stiffnesses the laws share.
+const COMMON_KEYS: &[Key] = &[
     Key { name: "contact_model", unit: "-", default: "nan", doc: concat!("normal contact law: ", crate::law_table!(model_names; $)) },
     Key { name: "contact_partner", unit: "-", default: "wall", doc: "wall (a flat of the wall_* properties) or particle (an identical particle: R* = R/2, m* = m/2)" },
     Key { name: "particle_radius", unit: "m", default: "required", doc: "sphere radius R" },
@@ -49,25 +50,6 @@ pub const KEYS: &[Key] = &[
     Key { name: "unloading_stiffness_reference", unit: "N/m", default: "none", doc: "k_e0 of a measured unloading line; with unloading_overlap_reference gives k_el by 000 Eqs. 45 and 29 (or 49)" },
     Key { name: "unloading_overlap_reference", unit: "m", default: "none", doc: "alpha_max0, the overlap at which the measured unloading line with k_e0 starts (000 Eq. 43)" },
     Key { name: "plastic_stiffness", unit: "N/m", default: "elastic_stiffness", doc: "k_p, plastic loading stiffness (000 Eq. 18, 004 Eq. 4.3); must not exceed k_el" },
-    Key { name: "unloading_stiffness_law", unit: "-", default: "sqrt", doc: "nan k_e after yield: sqrt, k_e = k_el sqrt(alpha_max/alpha_y) (000 Eq. 46); sqrt_plus_plastic, k_e = k_p + (k_el - k_p) sqrt(alpha_max/alpha_y) (000 Eqs. 47-49)" },
-    Key { name: "pull_off_law", unit: "-", default: "energy", doc: "nan f_cp: energy (000 Eq. 59), pasha (Eq. 61), curvature (Eq. 64), work_ratio (Eq. 67)" },
-    Key { name: "adhesive_stiffness_law", unit: "-", default: "exact", doc: "nan k_cl: exact (000 Eq. 36 with W_JKR of Eq. 37) or approximate (Eq. 38)" },
-    Key { name: "pasha_stiffness_law", unit: "-", default: "constant", doc: "pasha k_e: constant, or load_dependent k_e = k_p + (r/R*)^2 (k_e_max - k_p), r^2 = 2 R* alpha_max - alpha_max^2 (004 Eqs. 4.21-4.23)" },
-    Key { name: "pasha_max_elastic_stiffness", unit: "N/m", default: "none", doc: "k_e_max of 004 Eq. 4.23 (the stiffness at an overlap of R*); required with load_dependent" },
-    Key { name: "pasha_pull_off_stiffness", unit: "N/m", default: "0", doc: "k_cp, slope of the linear pull-off locus f_cp = k_cp alpha_cp + f_0p (004 Eq. 4.17; pasha_simplified)" },
-    Key { name: "pasha_pull_off_intercept", unit: "N", default: "f_ce", doc: "f_0p of the linear pull-off locus (004 Eq. 4.17; pasha_simplified); at least 8/9 f_ce" },
-    Key { name: "luding_loading_stiffness", unit: "N/m", default: "plastic_stiffness, else pi R* p_y", doc: "k_1, plastic loading stiffness (003 Eq. 4)" },
-    Key { name: "luding_max_unloading_stiffness", unit: "N/m", default: "5 k_1", doc: "k_2 hat, the unloading stiffness reached at alpha* (004 Eqs. 3.71, 3.74)" },
-    Key { name: "luding_adhesion_stiffness", unit: "N/m", default: "0", doc: "k_c, slope of the adhesion limit -k_c alpha - f_0 (003 Eq. 4)" },
-    Key { name: "luding_plasticity_depth", unit: "-", default: "0.05", doc: "phi_f, dimensionless plasticity depth: alpha* = k2/(k2 - k1) phi_f 2 R* (004 Eq. 3.71)" },
-    Key { name: "luding_contact_adhesion_force", unit: "N", default: "8/9 f_ce", doc: "f_0, attraction at first contact (003 Eq. 4; 004 Table 4.2 sets it to 8/9 f_ce)" },
-    Key { name: "tomas_yield_strength", unit: "Pa", default: "p_y", doc: "p_f, plastic micro-yield strength of the contact (003 Table 1)" },
-    Key { name: "tomas_area_coefficient", unit: "-", default: "0.834", doc: "kappa_A, elastic-plastic contact area coefficient in [2/3, 1] (004 Sec. 3.4.4.3); default from 003 Sec. 3.3 limestone" },
-    Key { name: "tomas_repulsion_coefficient", unit: "-", default: "0.152", doc: "kappa_p, plastic repulsion coefficient p_vdW/p_f in [0, kappa_A) (003 Sec. 3.3 limestone)" },
-    Key { name: "tomas_contact_adhesion_force", unit: "N", default: "2 pi Gamma R*", doc: "F_H0, van der Waals attraction at contact (004 Eqs. 3.50, 3.61)" },
-    Key { name: "tomas_separation", unit: "m", default: "4e-10", doc: "a_F=0, minimum centre separation of the van der Waals force (004 Eq. 3.61: 0.3-0.4 nm)" },
-    Key { name: "linear_stiffness", unit: "N/m", default: "elastic_stiffness", doc: "k_n of the linear spring (004 Eq. 3.9)" },
-    Key { name: "walton_braun_stiffening_slope", unit: "1/m", default: "0", doc: "S of k_e = k_p + S F_max (004 Eq. 3.38); 0 keeps k_e constant" },
 ];
 
 /// Defines `ModelKind` from the rows of `law_table!`.
@@ -121,6 +103,14 @@ impl ModelKind {
         })
     }
 }
+
+/// Every scene key, in the order the help prints them: the common ones, then each law's own
+/// (`LawInfo::KEYS`, declared beside the law) in the order of the law table.
+pub static KEYS: LazyLock<Vec<Key>> = LazyLock::new(|| {
+    let mut keys = COMMON_KEYS.to_vec();
+    keys.extend(ModelKind::ALL.iter().flat_map(|m| m.own_keys().iter().copied()));
+    keys
+});
 
 /// What the particle touches.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -84,7 +84,7 @@ fn analyze_prints_every_required_key_with_its_unit() {
 fn help_lists_every_scene_key_and_output_with_units() {
     let (code, out, _) = run(&["analyze", "--help"]);
     assert_eq!(code, 0);
-    for k in KEYS {
+    for k in KEYS.iter() {
         assert!(out.contains(k.name) && out.contains(&format!("[{}]", k.unit)), "help misses {}", k.name);
     }
     for o in OUTPUTS {

@@ -21,7 +21,7 @@ pub mod tomas;
 pub mod walton_braun;
 
 use crate::error::ParamError;
-use crate::scene::{ModelKind, Scene};
+use crate::scene::{Key, ModelKind, Scene};
 use params::Effective;
 use tangential::TangentialModel;
 
@@ -148,6 +148,8 @@ pub trait LawInfo: NormalLaw + Sized {
     const TANGENTIAL: TangentialModel = TangentialModel::Ratio;
     /// beta of 000 Eq. 26 after yield when the scene gives none; `None`: the one before yield (004 Eq. 4.25).
     const PLASTIC_DAMPING_FACTOR: Option<f64> = None;
+    /// The law's own scene keys (composed into `scene::KEYS` after the common ones).
+    const KEYS: &'static [Key] = &[];
     /// The law of a scene, its parameters derived and checked; an error names the parameter.
     fn from_scene(s: &Scene, eff: &Effective) -> Result<Self, ParamError>;
 }
@@ -188,6 +190,13 @@ macro_rules! define_any_law {
             pub fn tangential_model(self) -> TangentialModel {
                 match self {
                     $(ModelKind::$variant => <$ty as LawInfo>::TANGENTIAL,)*
+                }
+            }
+
+            /// The law's own scene keys (`LawInfo::KEYS`).
+            pub fn own_keys(self) -> &'static [Key] {
+                match self {
+                    $(ModelKind::$variant => <$ty as LawInfo>::KEYS,)*
                 }
             }
 
