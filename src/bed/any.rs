@@ -2,7 +2,7 @@
 //! its law with no dispatch inside it. `with_engine!` runs one expression on whichever is inside.
 
 use super::engine::Engine;
-use super::interaction::{BedLaw, Interaction};
+use super::interaction::{BedLaw, Interaction, PairScene};
 use super::particles::Particles;
 use super::scene::BedScene;
 use super::walls::Wall;
@@ -75,17 +75,21 @@ pub type InteractionTables<L> = (Vec<Interaction<L>>, Vec<Vec<Interaction<L>>>);
 /// The interaction tables of a scene for law `L`: species pairs, and each wall with each species.
 pub fn interactions<L: BedLaw>(scene: &BedScene, walls: &[Wall]) -> Result<InteractionTables<L>, ParamError> {
     let sp = scene.species();
+    // Each scene parsed once; every pair mixes its own R* and m* into it.
+    let r0 = sp.first().map_or(0.5e-3, |s| s.0);
+    let particle = PairScene::particle(&scene.particle_particle, r0, scene.density)?;
+    let wall = PairScene::wall(&scene.particle_wall, r0, scene.density)?;
     let mut pairs = Vec::with_capacity(sp.len() * sp.len());
     for &(r1, m1) in &sp {
         for &(r2, m2) in &sp {
-            pairs.push(Interaction::particle_pair(&scene.particle_particle, r1, m1, r2, m2, scene.rolling_friction)?);
+            pairs.push(Interaction::particle_pair(&particle, r1, m1, r2, m2, scene.rolling_friction)?);
         }
     }
     let mut wall_pairs = Vec::with_capacity(walls.len());
     for w in walls {
         let mut row = Vec::with_capacity(sp.len());
         for &(r, m) in &sp {
-            row.push(Interaction::particle_wall(&scene.particle_wall, r, m, w.curvature_radius(), scene.wall_rolling_friction)?);
+            row.push(Interaction::particle_wall(&wall, r, m, w.curvature_radius(), scene.wall_rolling_friction)?);
         }
         wall_pairs.push(row);
     }

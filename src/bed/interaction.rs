@@ -3,19 +3,21 @@
 //! tangential stiffness model and Coulomb limit (`000` Eqs. 22-23), and the rolling friction coefficient
 //! (`004` Table 5.3).
 //!
-//! A pair of unequal spheres (R1, m1), (R2, m2) is built as the scene of two equal spheres of radius
-//! 2 R* and mass 2 m*: every law and correlation of the seeds depends on the radii only through
-//! R* = R1 R2 / (R1 + R2) and on the masses only through m* (000 Sec. 3; 004 Eq. 3.15), so this gives
-//! each law exactly its pair parameters without a second constructor per law.
+//! Each pair is mixed from the scene once parsed, as LAMMPS's `mix_coeffs` does: the effective
+//! properties of the scene (E*, G*, p_y, Gamma) with the pair's own R* = R1 R2 / (R1 + R2) and
+//! m* = m1 m2 / (m1 + m2) (a wall: the particle's radius against the wall's curvature, and its mass).
+//! Every law and correlation of the seeds depends on the radii only through R* and on the masses only
+//! through m* (000 Sec. 3; 004 Eq. 3.15), and each law is built from these pair properties
+//! (`AnyLaw::from_pair`).
 
 use crate::error::ParamError;
 use crate::law::damping::{gamma, NormalDamping};
 use crate::law::tangential::TangentialStiffness;
-use crate::law::{self, AnyLaw, Branch, NormalLaw};
+use crate::law::params::Effective;
+use crate::law::{AnyLaw, Branch, NormalLaw};
 use crate::scene::Scene;
 use serde::{de::DeserializeOwned, Serialize};
 use serde_json::{Map, Value};
-use std::f64::consts::PI;
 
 /// A normal law the bed can step: every law of the core.
 pub trait BedLaw: NormalLaw<History: Send + Sync + Serialize + DeserializeOwned> + Clone + Send + Sync + 'static {
@@ -37,6 +39,37 @@ macro_rules! bed_law {
 }
 
 crate::law_table!(bed_law; $);
+
+/// A bed scene's contact scene, parsed once, with its effective properties (E*, G*, p_y, Gamma) that
+/// every pair shares; each pair sets its own R* and m*.
+#[derive(Debug, Clone)]
+pub struct PairScene {
+    pub scene: Scene,
+    pub effective: Effective,
+}
+
+impl PairScene {
+    /// The particle-particle scene of a bed (`contact_partner` particle). `radius` and `density` are
+    /// any species', for the checks of the scene; the pairs set their own R* and m*.
+    pub fn particle(map: &Map<String, Value>, radius: f64, density: f64) -> Result<PairScene, ParamError> {
+        PairScene::with_partner(map, "particle", radius, density)
+    }
+
+    /// The particle-wall scene of a bed (`contact_partner` wall).
+    pub fn wall(map: &Map<String, Value>, radius: f64, density: f64) -> Result<PairScene, ParamError> {
+        PairScene::with_partner(map, "wall", radius, density)
+    }
+
+    fn with_partner(map: &Map<String, Value>, partner: &str, radius: f64, density: f64) -> Result<PairScene, ParamError> {
+        let mut map = map.clone();
+        map.insert("contact_partner".into(), Value::from(partner));
+        map.insert("particle_radius".into(), Value::from(radius));
+        map.insert("particle_density".into(), Value::from(density));
+        let scene = Scene::from_map(&map)?;
+        let effective = Effective::from_scene(&scene)?;
+        Ok(PairScene { scene, effective })
+    }
+}
 
 /// The parameters of one pair of species, or of one species against one wall.
 #[derive(Debug, Clone)]
@@ -65,15 +98,15 @@ pub struct Interaction<L: BedLaw> {
 }
 
 impl<L: BedLaw> Interaction<L> {
-    /// Builds the interaction of a scene whose radius and mass are already the pair's (see module doc).
-    fn from_scene(scene: &Scene, radius: f64, mass: f64, rolling_friction: f64) -> Result<Interaction<L>, ParamError> {
-        let any = AnyLaw::from_scene(scene)?;
+    /// Builds the interaction of a scene's law for a pair of these effective properties.
+    fn from_pair(scene: &Scene, pair: &Effective, rolling_friction: f64) -> Result<Interaction<L>, ParamError> {
+        let any = AnyLaw::from_pair(scene, pair)?;
         let model = any.model();
         let law = L::from_any(any).ok_or_else(|| ParamError::Inconsistent {
             name: "contact_model",
             why: format!("the particle-wall law must be of the same kind as the particle-particle law ({model:?} given)"),
         })?;
-        let eff = law::params::Effective::from_scene(scene)?;
+        let (radius, mass) = (pair.radius, pair.mass);
         let damping = NormalDamping::from_scene(scene, mass);
         let initial = law.initial_history();
         let mut it = Interaction {
@@ -82,7 +115,7 @@ impl<L: BedLaw> Interaction<L> {
             reach: 0.0,
             damping_elastic: 2.0 * gamma(damping.restitution, damping.beta_elastic) * mass.sqrt(),
             damping_plastic: 2.0 * gamma(damping.restitution, damping.beta_plastic) * mass.sqrt(),
-            tangential: TangentialStiffness::for_model(model.tangential_model(), eff.shear_modulus, eff.youngs_modulus, eff.radius),
+            tangential: TangentialStiffness::for_model(model.tangential_model(), pair.shear_modulus, pair.youngs_modulus, radius),
             tangential_root_ratio: None,
             friction: scene.friction_coefficient,
             rolling_friction,
@@ -94,33 +127,23 @@ impl<L: BedLaw> Interaction<L> {
         Ok(it)
     }
 
-    /// The interaction of two particles of radii and masses (r1, m1), (r2, m2), from a particle-particle
-    /// scene map (any scene key; `particle_radius` is set here).
-    pub fn particle_pair(map: &Map<String, Value>, r1: f64, m1: f64, r2: f64, m2: f64, rolling: f64) -> Result<Interaction<L>, ParamError> {
-        let radius = r1 * r2 / (r1 + r2);
-        let mass = m1 * m2 / (m1 + m2);
-        let mut map = map.clone();
-        map.insert("contact_partner".into(), Value::from("particle"));
-        map.insert("particle_radius".into(), Value::from(2.0 * radius));
-        map.insert("particle_density".into(), Value::from(2.0 * mass / (4.0 / 3.0 * PI * (2.0 * radius).powi(3))));
-        let scene = Scene::from_map(&map)?;
-        Interaction::from_scene(&scene, radius, mass, rolling)
+    /// The interaction of two particles of radii and masses (r1, m1), (r2, m2) under a particle-particle
+    /// scene (`PairScene::particle`).
+    pub fn particle_pair(base: &PairScene, r1: f64, m1: f64, r2: f64, m2: f64, rolling: f64) -> Result<Interaction<L>, ParamError> {
+        let pair = Effective { radius: r1 * r2 / (r1 + r2), mass: m1 * m2 / (m1 + m2), ..base.effective };
+        Interaction::from_pair(&base.scene, &pair, rolling)
     }
 
     /// The interaction of a particle (r, m) with a wall whose surface has radius of curvature
     /// `wall_radius` (convex, the indenter) or none (plane, and the die's inside, whose curvature
-    /// 1/19.5 mm is neglected beside the particle's).
-    pub fn particle_wall(map: &Map<String, Value>, r: f64, m: f64, wall_radius: Option<f64>, rolling: f64) -> Result<Interaction<L>, ParamError> {
+    /// 1/19.5 mm is neglected beside the particle's), under a particle-wall scene (`PairScene::wall`).
+    pub fn particle_wall(base: &PairScene, r: f64, m: f64, wall_radius: Option<f64>, rolling: f64) -> Result<Interaction<L>, ParamError> {
         let radius = match wall_radius {
             Some(rw) => r * rw / (r + rw),
             None => r,
         };
-        let mut map = map.clone();
-        map.insert("contact_partner".into(), Value::from("wall"));
-        map.insert("particle_radius".into(), Value::from(radius));
-        map.insert("particle_density".into(), Value::from(m / (4.0 / 3.0 * PI * radius.powi(3))));
-        let scene = Scene::from_map(&map)?;
-        Interaction::from_scene(&scene, radius, m, rolling)
+        let pair = Effective { radius, mass: m, ..base.effective };
+        Interaction::from_pair(&base.scene, &pair, rolling)
     }
 
     /// Follows the law along loading to a set of peak overlaps and back along its unloading branches

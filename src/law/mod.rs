@@ -172,9 +172,15 @@ macro_rules! define_any_law {
         impl AnyLaw {
             /// Builds the scene's law with its parameters derived and checked.
             pub fn from_scene(s: &Scene) -> Result<AnyLaw, ParamError> {
-                let eff = Effective::from_scene(s)?;
+                AnyLaw::from_pair(s, &Effective::from_scene(s)?)
+            }
+
+            /// Builds the scene's law for a pair of given effective properties (R*, m*, E*, G*, p_y,
+            /// Gamma): the scene gives the law and its options, `pair` the geometry and materials. The
+            /// bed mixes each pair of species into one (`bed::interaction`).
+            pub fn from_pair(s: &Scene, pair: &Effective) -> Result<AnyLaw, ParamError> {
                 Ok(match s.contact_model {
-                    $(ModelKind::$variant => AnyLaw::$variant(<$ty as LawInfo>::from_scene(s, &eff)?),)*
+                    $(ModelKind::$variant => AnyLaw::$variant(<$ty as LawInfo>::from_scene(s, pair)?),)*
                 })
             }
 
