@@ -479,7 +479,7 @@ mod tests {
     struct Unserializable;
 
     impl Model for Unserializable {
-        fn initialize(&mut self, _: &[Value], _: f64, _: bool) -> Result<(), String> {
+        fn initialize(&mut self, _: &[Value], _: f64, _: bool) -> Result<(), crate::units::UnitError> {
             Ok(())
         }
         fn compute(&mut self, _: &mut [Value], _: bool) {}
@@ -492,13 +492,13 @@ mod tests {
         fn accept(&mut self, _: &[Value]) -> Option<String> {
             None
         }
-        fn do_step(&mut self, _: &[Value], _: f64, _: f64) -> Result<(), String> {
+        fn do_step(&mut self, _: &[Value], _: f64, _: f64) -> Result<(), crate::units::UnitError> {
             Ok(())
         }
-        fn save(&self) -> Result<Vec<u8>, String> {
-            Err("a failure of the serializer".into())
+        fn save(&self) -> Result<Vec<u8>, crate::units::UnitError> {
+            Err(crate::units::UnitError::SavedState("a failure of the serializer".into()))
         }
-        fn restore(&mut self, _: &[Value], _: &[u8]) -> Result<(), String> {
+        fn restore(&mut self, _: &[Value], _: &[u8]) -> Result<(), crate::units::UnitError> {
             Ok(())
         }
     }

@@ -59,7 +59,7 @@ pub fn write(inst: &Instance) -> Result<Vec<u8>, String> {
             }
         }
     }
-    let model = inst.model.save()?;
+    let model = inst.model.save().map_err(|e| e.to_string())?;
     b.extend_from_slice(&length(model.len(), "model state")?.to_le_bytes());
     b.extend_from_slice(&model);
     let sum = fnv1a(&b);

@@ -10,7 +10,7 @@
 use super::contact_parts::{self, Outputs};
 use super::scene_params;
 use super::variables::{Role, Value, VarType, Variable};
-use super::{Model, UnitInfo};
+use super::{Model, UnitError, UnitInfo};
 use crate::impact::contact::Memory;
 use crate::impact::Contact;
 use crate::law::NormalLaw;
@@ -101,10 +101,10 @@ impl ContactElement {
         }
     }
 
-    fn build(&self, values: &[Value]) -> Result<(Contact, f64), String> {
+    fn build(&self, values: &[Value]) -> Result<(Contact, f64), UnitError> {
         let gap = values[self.refs.initial_gap].as_real();
         if !gap.is_finite() {
-            return Err(format!("parameter `initial_gap` = {gap} m is not a finite number"));
+            return Err(UnitError::Variable { name: "initial_gap", why: format!("parameter `initial_gap` = {gap} m is not a finite number") });
         }
         let rate_nominal = values[self.refs.wall_velocity].as_real().abs().max(1e-3);
         let (contact, _, _) = contact_parts::build(&self.variables, values, rate_nominal)?;
@@ -118,12 +118,15 @@ impl ContactElement {
 }
 
 impl Model for ContactElement {
-    fn initialize(&mut self, values: &[Value], _t0: f64, _model_exchange: bool) -> Result<(), String> {
+    fn initialize(&mut self, values: &[Value], _t0: f64, _model_exchange: bool) -> Result<(), UnitError> {
         let (mut contact, gap) = self.build(values)?;
         self.gap = gap;
         let (alpha, rate) = self.inputs(values);
         if !alpha.is_finite() || !rate.is_finite() {
-            return Err(format!("inputs `wall_displacement` = {alpha} m and `wall_velocity` = {rate} m/s must be finite"));
+            return Err(UnitError::Variable {
+                name: "wall_displacement",
+                why: format!("inputs `wall_displacement` = {alpha} m and `wall_velocity` = {rate} m/s must be finite"),
+            });
         }
         contact.accept(alpha, rate);
         self.contact = Some(contact);
@@ -190,9 +193,9 @@ impl Model for ContactElement {
 
     /// The inputs are held over the step: the history walks to the overlap of the step's start and the
     /// work of the law's force along that walk, plus the damping force times the walk, is added.
-    fn do_step(&mut self, values: &[Value], _t: f64, _h: f64) -> Result<(), String> {
+    fn do_step(&mut self, values: &[Value], _t: f64, _h: f64) -> Result<(), UnitError> {
         let (alpha, rate) = self.inputs(values);
-        let c = self.contact.as_mut().ok_or("the unit is not initialized")?;
+        let c = self.contact.as_mut().ok_or(UnitError::NotInitialized)?;
         let from = c.accepted_alpha;
         let law_work = c.follow(alpha);
         let damping = c.force(alpha, rate).damping;
@@ -201,20 +204,20 @@ impl Model for ContactElement {
         Ok(())
     }
 
-    fn save(&self) -> Result<Vec<u8>, String> {
+    fn save(&self) -> Result<Vec<u8>, UnitError> {
         let Some(c) = &self.contact else { return Ok(Vec::new()) };
         let snap = Snapshot { work: self.work, contact: c.memory() };
         contact_parts::encode(&snap)
     }
 
-    fn restore(&mut self, values: &[Value], bytes: &[u8]) -> Result<(), String> {
+    fn restore(&mut self, values: &[Value], bytes: &[u8]) -> Result<(), UnitError> {
         if bytes.is_empty() {
             self.contact = None;
             return Ok(());
         }
         let snap: Snapshot = super::decode(bytes)?;
         let (mut c, gap) = self.build(values)?;
-        c.remember(snap.contact)?;
+        c.remember(snap.contact).map_err(UnitError::SavedState)?;
         self.contact = Some(c);
         self.gap = gap;
         self.work = snap.work;

@@ -2,6 +2,7 @@
 //! both report with the same meaning, and writing those outputs.
 
 use super::scene_params;
+use super::UnitError;
 use super::variables::{Value, VarType, Variable};
 use crate::impact::Contact;
 use crate::law::damping::NormalDamping;
@@ -11,10 +12,10 @@ use crate::scene::Scene;
 
 /// The contact of the scene in `values`: law, damping with the scene's m*, indicator scales 1e-3 R* and
 /// `rate_nominal`. Errors name the parameter.
-pub fn build(variables: &[Variable], values: &[Value], rate_nominal: f64) -> Result<(Contact, Scene, Effective), String> {
-    let scene = scene_params::scene(variables, values).map_err(|e| e.to_string())?;
-    let law = AnyLaw::from_scene(&scene).map_err(|e| e.to_string())?;
-    let eff = Effective::from_scene(&scene).map_err(|e| e.to_string())?;
+pub fn build(variables: &[Variable], values: &[Value], rate_nominal: f64) -> Result<(Contact, Scene, Effective), UnitError> {
+    let scene = scene_params::scene(variables, values)?;
+    let law = AnyLaw::from_scene(&scene)?;
+    let eff = Effective::from_scene(&scene)?;
     let damping = NormalDamping::from_scene(&scene, eff.mass);
     Ok((Contact::new(law, damping, 1e-3 * eff.radius, rate_nominal), scene, eff))
 }
@@ -77,6 +78,6 @@ impl Outputs {
 
 /// Serializes a unit's snapshot; a failure is an error the host sees, never an empty state (which
 /// `restore` would read as "not initialized").
-pub fn encode<T: serde::Serialize>(snapshot: &T) -> Result<Vec<u8>, String> {
-    bincode::serialize(snapshot).map_err(|e| format!("the model state cannot be serialized: {e}"))
+pub fn encode<T: serde::Serialize>(snapshot: &T) -> Result<Vec<u8>, UnitError> {
+    bincode::serialize(snapshot).map_err(|e| UnitError::SavedState(format!("the model state cannot be serialized: {e}")))
 }

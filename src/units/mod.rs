@@ -3,12 +3,14 @@
 
 pub mod contact_element;
 pub mod contact_parts;
+pub mod error;
 pub mod model_description;
 pub mod particle_wall_impact;
 pub mod scene_params;
 pub mod variables;
 
 use std::sync::OnceLock;
+pub use error::UnitError;
 use variables::Value;
 
 /// The log categories of every unit (FMI 2.0 Sec. 2.2.4), name and meaning.
@@ -25,7 +27,7 @@ pub const LOG_CATEGORIES: &[(&str, &str)] = &[
 pub trait Model: Send {
     /// Reads the parameters and inputs and sets the initial state at `t0` (fmi2ExitInitializationMode)
     /// for Model Exchange or Co-Simulation. An error names the parameter and its allowed range.
-    fn initialize(&mut self, values: &[Value], t0: f64, model_exchange: bool) -> Result<(), String>;
+    fn initialize(&mut self, values: &[Value], t0: f64, model_exchange: bool) -> Result<(), UnitError>;
     /// Writes the outputs and locals for the current time, state and inputs into `values`.
     /// `between_events` is Model Exchange's Continuous-Time Mode: everything stays on the branch accepted
     /// at the last event (discrete outputs included). Elsewhere (initialization, Event Mode,
@@ -44,10 +46,10 @@ pub trait Model: Send {
     /// branch changed.
     fn accept(&mut self, values: &[Value]) -> Option<String>;
     /// CS: advance from `t` by `h` with the current inputs.
-    fn do_step(&mut self, values: &[Value], t: f64, h: f64) -> Result<(), String>;
+    fn do_step(&mut self, values: &[Value], t: f64, h: f64) -> Result<(), UnitError>;
     /// The dynamic state (not the parameters) as bytes (empty: not initialized); `restore` reads it back.
-    fn save(&self) -> Result<Vec<u8>, String>;
-    fn restore(&mut self, values: &[Value], bytes: &[u8]) -> Result<(), String>;
+    fn save(&self) -> Result<Vec<u8>, UnitError>;
+    fn restore(&mut self, values: &[Value], bytes: &[u8]) -> Result<(), UnitError>;
 }
 
 /// One unit: identifier, variables, sizes and a constructor of its model.
@@ -121,12 +123,12 @@ pub fn by_identifier(id: &str) -> Option<&'static UnitInfo> {
 
 /// Reads a model snapshot written by `bincode::serialize`, refusing anything larger than 1 MiB or with
 /// bytes left over.
-pub(crate) fn decode<T: serde::de::DeserializeOwned>(bytes: &[u8]) -> Result<T, String> {
+pub(crate) fn decode<T: serde::de::DeserializeOwned>(bytes: &[u8]) -> Result<T, UnitError> {
     use bincode::Options;
     bincode::DefaultOptions::new()
         .with_fixint_encoding()
         .with_limit(1 << 20)
         .reject_trailing_bytes()
         .deserialize(bytes)
-        .map_err(|e| format!("the saved model state cannot be read: {e}"))
+        .map_err(|e| UnitError::SavedState(format!("the saved model state cannot be read: {e}")))
 }

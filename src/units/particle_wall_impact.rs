@@ -8,7 +8,7 @@
 use super::contact_parts::{self, Outputs};
 use super::scene_params;
 use super::variables::{Causality, Role, Value, VarType, Variable};
-use super::{Model, UnitInfo};
+use super::{Model, UnitError, UnitInfo};
 use crate::impact::contact::Memory;
 use crate::impact::{Solver, Sphere, State, WallMotion};
 use crate::law::{AnyLaw, NormalLaw};
@@ -191,23 +191,29 @@ impl ParticleWallImpact {
     }
 
     /// The sphere of the current parameters (law, damping, mass, tolerances); the state is not touched.
-    fn build(&self, values: &[Value]) -> Result<(Sphere, f64), String> {
+    fn build(&self, values: &[Value]) -> Result<(Sphere, f64), UnitError> {
         let refs = self.refs;
         let rate_nominal = real(values, refs.initial_velocity).abs().max(real(values, refs.wall_velocity).abs()).max(1e-3);
         let (contact, scene, eff) = contact_parts::build(&self.variables, values, rate_nominal)?;
         if scene.contact_partner != Partner::Wall {
-            return Err("parameter `contact_partner` = \"particle\" is not allowed in ParticleWallImpact: the sphere hits a wall; use \"wall\" (two identical particles: use ContactElement)".into());
+            return Err(UnitError::Variable {
+                name: "contact_partner",
+                why: "parameter `contact_partner` = \"particle\" is not allowed in ParticleWallImpact: the sphere hits a wall; use \"wall\" (two identical particles: use ContactElement)".into(),
+            });
         }
         within(values, refs.initial_velocity, "initial_velocity", MAX_SPEED, "m/s")?;
         let g = within(values, refs.gravity, "gravity", MAX_GRAVITY, "m/s2")?;
         let tol = finite(values, refs.tolerance, "tolerance", "")?;
         if !(1e-14..=1e-2).contains(&tol) {
-            return Err(format!("parameter `tolerance` = {tol:e} is out of range: allowed [1e-14, 1e-2]"));
+            return Err(UnitError::Variable { name: "tolerance", why: format!("parameter `tolerance` = {tol:e} is out of range: allowed [1e-14, 1e-2]") });
         }
         within(values, refs.wall_velocity, "wall_velocity", MAX_SPEED, "m/s")?;
         let fraction = finite(values, refs.rayleigh_fraction, "rayleigh_fraction", "")?;
         if !(fraction > 0.0 && fraction <= 1.0) {
-            return Err(format!("parameter `rayleigh_fraction` = {fraction:e} is out of range: allowed (0, 1]"));
+            return Err(UnitError::Variable {
+                name: "rayleigh_fraction",
+                why: format!("parameter `rayleigh_fraction` = {fraction:e} is out of range: allowed (0, 1]"),
+            });
         }
         let rayleigh =
             time_step::rayleigh_time_step(scene.particle_radius, scene.particle_density, eff.particle_shear_modulus, scene.particle_poisson_ratio);
@@ -237,46 +243,52 @@ impl ParticleWallImpact {
 }
 
 /// The integrator the `solver` parameter names for this law.
-fn solver(name: &str, law: &AnyLaw, verlet_step: f64) -> Result<Solver, String> {
+fn solver(name: &str, law: &AnyLaw, verlet_step: f64) -> Result<Solver, UnitError> {
     match name {
         "auto" if law.is_piecewise_linear() => Ok(Solver::Exact),
         "auto" | "adaptive" => Ok(Solver::Adaptive),
         "exact" if law.is_piecewise_linear() => Ok(Solver::Exact),
-        "exact" => Err(format!(
+        "exact" => Err(UnitError::Variable {
+            name: "solver",
+            why: format!(
             "parameter `solver` = \"exact\" needs a piecewise-linear contact_model ({}), not \"{}\"; use \"adaptive\" or \"auto\"",
             ModelKind::piecewise_linear_names(),
             law.model().name()
-        )),
+            ),
+        }),
         "verlet" => Ok(Solver::Verlet { step: verlet_step }),
-        other => Err(format!("parameter `solver` = \"{other}\" is not one of {}", Solver::NAMES.join(", "))),
+        other => Err(UnitError::Variable { name: "solver", why: format!("parameter `solver` = \"{other}\" is not one of {}", Solver::NAMES.join(", ")) }),
     }
 }
 
 /// A real parameter or input with |x| <= max, or an error naming it and the range.
-fn within(values: &[Value], vr: usize, name: &str, max: f64, unit: &str) -> Result<f64, String> {
+fn within(values: &[Value], vr: usize, name: &'static str, max: f64, unit: &str) -> Result<f64, UnitError> {
     let x = finite(values, vr, name, unit)?;
     if x.abs() > max {
-        return Err(format!("`{name}` = {x:e} {unit} is out of range: allowed [-{max:e}, {max:e}] {unit}"));
+        return Err(UnitError::Variable { name, why: format!("`{name}` = {x:e} {unit} is out of range: allowed [-{max:e}, {max:e}] {unit}") });
     }
     Ok(x)
 }
 
 /// A finite real parameter or input, or an error naming it.
-fn finite(values: &[Value], vr: usize, name: &str, unit: &str) -> Result<f64, String> {
+fn finite(values: &[Value], vr: usize, name: &'static str, unit: &str) -> Result<f64, UnitError> {
     let x = real(values, vr);
     if x.is_finite() {
         Ok(x)
     } else {
-        Err(format!("`{name}` = {x} {unit} is not a finite number"))
+        Err(UnitError::Variable { name, why: format!("`{name}` = {x} {unit} is not a finite number") })
     }
 }
 
 impl Model for ParticleWallImpact {
-    fn initialize(&mut self, values: &[Value], t0: f64, model_exchange: bool) -> Result<(), String> {
+    fn initialize(&mut self, values: &[Value], t0: f64, model_exchange: bool) -> Result<(), UnitError> {
         let (mut sphere, radius) = self.build(values)?;
         let gap = finite(values, self.refs.initial_gap, "initial_gap", "m")?;
         if gap < 0.0 {
-            return Err(format!("parameter `initial_gap` = {gap:e} m is out of range: allowed >= 0 (the sphere starts out of contact)"));
+            return Err(UnitError::Variable {
+                name: "initial_gap",
+                why: format!("parameter `initial_gap` = {gap:e} m is out of range: allowed >= 0 (the sphere starts out of contact)"),
+            });
         }
         let w = finite(values, self.refs.wall_displacement, "wall_displacement", "m")?;
         let v0 = real(values, self.refs.initial_velocity);
@@ -378,7 +390,7 @@ impl Model for ParticleWallImpact {
         None
     }
 
-    fn do_step(&mut self, values: &[Value], t: f64, h: f64) -> Result<(), String> {
+    fn do_step(&mut self, values: &[Value], t: f64, h: f64) -> Result<(), UnitError> {
         let mut wall = self.wall(values);
         wall.t0 = t;
         if let Some((input_used, wall_end)) = self.cs_wall {
@@ -386,13 +398,13 @@ impl Model for ParticleWallImpact {
                 wall.position = wall_end;
             }
         }
-        let sphere = self.sphere.as_mut().ok_or("the unit is not initialized")?;
+        let sphere = self.sphere.as_mut().ok_or(UnitError::NotInitialized)?;
         let saved = (sphere.clone(), self.y);
         let mut y = self.y;
         if let Err(e) = sphere.advance(&wall, t, t + h, &mut y) {
             // Nothing half-done: the state stays at the start of the step.
             (*sphere, self.y) = saved;
-            return Err(e.to_string());
+            return Err(e.into());
         }
         self.y = y;
         self.t = t + h;
@@ -400,14 +412,14 @@ impl Model for ParticleWallImpact {
         Ok(())
     }
 
-    fn save(&self) -> Result<Vec<u8>, String> {
+    fn save(&self) -> Result<Vec<u8>, UnitError> {
         let Some(s) = &self.sphere else { return Ok(Vec::new()) };
         let snap =
             Snapshot { y: self.y, t: self.t, contact: s.contact.memory(), last_step: s.last_step, cs_wall: self.cs_wall, me_wall: self.me_wall };
         contact_parts::encode(&snap)
     }
 
-    fn restore(&mut self, values: &[Value], bytes: &[u8]) -> Result<(), String> {
+    fn restore(&mut self, values: &[Value], bytes: &[u8]) -> Result<(), UnitError> {
         if bytes.is_empty() {
             self.sphere = None;
             return Ok(());
@@ -419,9 +431,12 @@ impl Model for ParticleWallImpact {
             || snap.y.velocity.abs() > MAX_SPEED
             || snap.me_wall.is_some_and(|w| !(w.position.is_finite() && w.t.is_finite() && w.velocity.abs() <= MAX_SPEED))
         {
-            return Err(format!("the saved sphere state is not plausible (velocity {:e} m/s; allowed finite and at most {MAX_SPEED:e})", snap.y.velocity));
+            return Err(UnitError::SavedState(format!(
+                "the saved sphere state is not plausible (velocity {:e} m/s; allowed finite and at most {MAX_SPEED:e})",
+                snap.y.velocity
+            )));
         }
-        sphere.contact.remember(snap.contact)?;
+        sphere.contact.remember(snap.contact).map_err(UnitError::SavedState)?;
         sphere.last_step = snap.last_step;
         self.sphere = Some(sphere);
         self.radius = radius;

@@ -1,0 +1,73 @@
+//! Why a unit refused or failed a call. The FMI glue logs the message (which names the parameter, the
+//! input or the cause) and returns fmi2Error; the kind tells the host's code what went wrong.
+
+use crate::error::ParamError;
+use crate::impact::StepError;
+use std::fmt;
+
+#[derive(Debug, Clone, PartialEq)]
+pub enum UnitError {
+    /// A scene parameter out of its range or inconsistent with another (named, with the allowed range).
+    Param(ParamError),
+    /// A unit's own parameter or input refused; the message names it and its allowed range.
+    Variable { name: &'static str, why: String },
+    /// The integrator could not complete the step (the state stays that of the step's start).
+    Step(StepError),
+    /// A saved state that cannot be read, or that no contact of these parameters can be in.
+    SavedState(String),
+    /// A call that needs an initialized unit.
+    NotInitialized,
+}
+
+impl fmt::Display for UnitError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            UnitError::Param(e) => write!(f, "{e}"),
+            UnitError::Variable { why, .. } => write!(f, "{why}"),
+            UnitError::Step(e) => write!(f, "{e}"),
+            UnitError::SavedState(why) => write!(f, "{why}"),
+            UnitError::NotInitialized => write!(f, "the unit is not initialized"),
+        }
+    }
+}
+
+impl std::error::Error for UnitError {}
+
+impl From<ParamError> for UnitError {
+    fn from(e: ParamError) -> UnitError {
+        UnitError::Param(e)
+    }
+}
+
+impl From<StepError> for UnitError {
+    fn from(e: StepError) -> UnitError {
+        UnitError::Step(e)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::units::variables::Value;
+
+    fn pwi_with(name: &str, value: Value) -> Result<(), UnitError> {
+        let u = crate::units::by_identifier("ParticleWallImpact").unwrap();
+        let mut values = u.start_values();
+        values[u.vr_of(name)] = value;
+        (u.new_model)(u).initialize(&values, 0.0, false)
+    }
+
+    #[test]
+    fn each_refusal_says_what_kind_it_is_and_names_the_variable() {
+        assert!(matches!(pwi_with("tolerance", Value::Real(1.0)), Err(UnitError::Variable { name: "tolerance", .. })));
+        assert!(matches!(pwi_with("solver", Value::String("euler".into())), Err(UnitError::Variable { name: "solver", .. })));
+        assert!(matches!(
+            pwi_with("particle_radius", Value::Real(-1.0)),
+            Err(UnitError::Param(ParamError::OutOfRange { name: "particle_radius", .. }))
+        ));
+        assert_eq!(pwi_with("tolerance", Value::Real(1e-8)), Ok(()));
+        let u = crate::units::by_identifier("ContactElement").unwrap();
+        let values = u.start_values();
+        assert_eq!((u.new_model)(u).do_step(&values, 0.0, 1e-3), Err(UnitError::NotInitialized));
+    }
+}
