@@ -15,41 +15,56 @@ macro_rules! model_names {
     };
 }
 
-/// One scene key: name, unit, default (as text) and what it means (with its seed reference).
+/// What kind of value a key takes, and so how it reaches an FMU (`units::scene_params`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum KeyKind {
+    /// One of a set of names (a String parameter).
+    Choice,
+    /// A number every scene must give.
+    Required,
+    /// A number with a fixed default (`default` is that number).
+    Number,
+    /// A number whose default is derived from other keys (an FMU's Real parameter uses 0 for "derive").
+    Derived,
+}
+
+/// One scene key: name, unit, kind, default (as text) and what it means (with its seed reference).
 #[derive(Debug, Clone, Copy)]
 pub struct Key {
     pub name: &'static str,
     pub unit: &'static str,
+    pub kind: KeyKind,
+    /// The default as the help prints it (a number, a name, or how it is derived).
     pub default: &'static str,
     pub doc: &'static str,
 }
 
 /// The keys every scene has: the particle, the wall, damping, friction and the stiffnesses the laws share.
 const COMMON_KEYS: &[Key] = &[
-    Key { name: "contact_model", unit: "-", default: "nan", doc: concat!("normal contact law: ", crate::law_table!(model_names; $)) },
-    Key { name: "contact_partner", unit: "-", default: "wall", doc: "wall (a flat of the wall_* properties) or particle (an identical particle: R* = R/2, m* = m/2)" },
-    Key { name: "particle_radius", unit: "m", default: "required", doc: "sphere radius R" },
-    Key { name: "particle_density", unit: "kg/m^3", default: "required", doc: "solid density rho" },
-    Key { name: "particle_youngs_modulus", unit: "Pa", default: "required", doc: "Young's modulus E of the particle" },
-    Key { name: "particle_poisson_ratio", unit: "-", default: "required", doc: "Poisson ratio nu of the particle, in (-1, 0.5)" },
-    Key { name: "particle_yield_pressure", unit: "Pa", default: "none", doc: "limiting contact pressure p_y of the particle (000 Sec. 3.1); or give particle_yield_stress" },
-    Key { name: "particle_yield_stress", unit: "Pa", default: "none", doc: "compressive yield stress sigma_y; p_y = C sigma_y by yield_pressure_correlation (000 Eqs. 32-33)" },
-    Key { name: "yield_pressure_correlation", unit: "-", default: "jackson_green", doc: "jackson_green: C = 1.295 exp(0.736 nu) (000 Eq. 32); chang: p_y = (0.454 + 0.41 nu) 2.8 sigma_y (000 Eq. 33)" },
-    Key { name: "yield_stress_rate_coefficient", unit: "-", default: "0", doc: "Y of the strain-rate law sigma_y = sigma_y^s (1 + Y ln(V_i/V_0)) (000 Eq. 34); scales p_y" },
-    Key { name: "strain_rate", unit: "1/s", default: "none", doc: "characteristic strain rate V_i of the simulation (000 Eq. 34)" },
-    Key { name: "reference_strain_rate", unit: "1/s", default: "none", doc: "quasi-static strain rate V_0 at which the yield stress was measured (000 Eq. 34)" },
-    Key { name: "wall_youngs_modulus", unit: "Pa", default: "rigid", doc: "Young's modulus of the wall; omit for a rigid wall" },
-    Key { name: "wall_poisson_ratio", unit: "-", default: "0.3", doc: "Poisson ratio of the wall, in (-1, 0.5)" },
-    Key { name: "wall_yield_pressure", unit: "Pa", default: "none", doc: "limiting contact pressure of the wall; p_y = min(particle, wall)" },
-    Key { name: "surface_energy", unit: "J/m^2", default: "0", doc: "interface energy Gamma (work of adhesion): f_ce = 1.5 pi Gamma R* (000 Eq. 5)" },
-    Key { name: "restitution_coefficient", unit: "-", default: "1", doc: "elastic restitution e_0 of the viscous damping, in (0, 1] (000 Eq. 26, 004 Eq. 4.25)" },
-    Key { name: "damping_factor_elastic", unit: "-", default: "1", doc: "beta of 000 Eq. 26 before yield" },
-    Key { name: "damping_factor_plastic", unit: "-", default: "0.1 (nan), 1 (other laws)", doc: "beta of 000 Eq. 26 after yield: 0.1 for nan (000 Sec. 2.3); the other laws' papers damp with beta = 1 throughout (004 Eq. 4.25)" },
-    Key { name: "friction_coefficient", unit: "-", default: "0.5", doc: "sliding friction mu (000 Eq. 23)" },
-    Key { name: "elastic_stiffness", unit: "N/m", default: "pi R* p_y", doc: "k_el, elastic stiffness before yield (nan); constant k_e (pasha, pasha_simplified); unloading k_e (walton_braun). Default 000 Eq. 52" },
-    Key { name: "unloading_stiffness_reference", unit: "N/m", default: "none", doc: "k_e0 of a measured unloading line; with unloading_overlap_reference gives k_el by 000 Eqs. 45 and 29 (or 49)" },
-    Key { name: "unloading_overlap_reference", unit: "m", default: "none", doc: "alpha_max0, the overlap at which the measured unloading line with k_e0 starts (000 Eq. 43)" },
-    Key { name: "plastic_stiffness", unit: "N/m", default: "elastic_stiffness", doc: "k_p, plastic loading stiffness (000 Eq. 18, 004 Eq. 4.3); must not exceed k_el" },
+    Key { name: "contact_model", unit: "-", kind: KeyKind::Choice, default: "nan", doc: concat!("normal contact law: ", crate::law_table!(model_names; $)) },
+    Key { name: "contact_partner", unit: "-", kind: KeyKind::Choice, default: "wall", doc: "wall (a flat of the wall_* properties) or particle (an identical particle: R* = R/2, m* = m/2)" },
+    Key { name: "particle_radius", unit: "m", kind: KeyKind::Required, default: "required", doc: "sphere radius R" },
+    Key { name: "particle_density", unit: "kg/m^3", kind: KeyKind::Required, default: "required", doc: "solid density rho" },
+    Key { name: "particle_youngs_modulus", unit: "Pa", kind: KeyKind::Required, default: "required", doc: "Young's modulus E of the particle" },
+    Key { name: "particle_poisson_ratio", unit: "-", kind: KeyKind::Required, default: "required", doc: "Poisson ratio nu of the particle, in (-1, 0.5)" },
+    Key { name: "particle_yield_pressure", unit: "Pa", kind: KeyKind::Derived, default: "none", doc: "limiting contact pressure p_y of the particle (000 Sec. 3.1); or give particle_yield_stress" },
+    Key { name: "particle_yield_stress", unit: "Pa", kind: KeyKind::Derived, default: "none", doc: "compressive yield stress sigma_y; p_y = C sigma_y by yield_pressure_correlation (000 Eqs. 32-33)" },
+    Key { name: "yield_pressure_correlation", unit: "-", kind: KeyKind::Choice, default: "jackson_green", doc: "jackson_green: C = 1.295 exp(0.736 nu) (000 Eq. 32); chang: p_y = (0.454 + 0.41 nu) 2.8 sigma_y (000 Eq. 33)" },
+    Key { name: "yield_stress_rate_coefficient", unit: "-", kind: KeyKind::Number, default: "0", doc: "Y of the strain-rate law sigma_y = sigma_y^s (1 + Y ln(V_i/V_0)) (000 Eq. 34); scales p_y" },
+    Key { name: "strain_rate", unit: "1/s", kind: KeyKind::Derived, default: "none", doc: "characteristic strain rate V_i of the simulation (000 Eq. 34)" },
+    Key { name: "reference_strain_rate", unit: "1/s", kind: KeyKind::Derived, default: "none", doc: "quasi-static strain rate V_0 at which the yield stress was measured (000 Eq. 34)" },
+    Key { name: "wall_youngs_modulus", unit: "Pa", kind: KeyKind::Derived, default: "rigid", doc: "Young's modulus of the wall; omit for a rigid wall" },
+    Key { name: "wall_poisson_ratio", unit: "-", kind: KeyKind::Number, default: "0.3", doc: "Poisson ratio of the wall, in (-1, 0.5)" },
+    Key { name: "wall_yield_pressure", unit: "Pa", kind: KeyKind::Derived, default: "none", doc: "limiting contact pressure of the wall; p_y = min(particle, wall)" },
+    Key { name: "surface_energy", unit: "J/m^2", kind: KeyKind::Number, default: "0", doc: "interface energy Gamma (work of adhesion): f_ce = 1.5 pi Gamma R* (000 Eq. 5)" },
+    Key { name: "restitution_coefficient", unit: "-", kind: KeyKind::Number, default: "1", doc: "elastic restitution e_0 of the viscous damping, in (0, 1] (000 Eq. 26, 004 Eq. 4.25)" },
+    Key { name: "damping_factor_elastic", unit: "-", kind: KeyKind::Number, default: "1", doc: "beta of 000 Eq. 26 before yield" },
+    Key { name: "damping_factor_plastic", unit: "-", kind: KeyKind::Derived, default: "0.1 (nan), 1 (other laws)", doc: "beta of 000 Eq. 26 after yield: 0.1 for nan (000 Sec. 2.3); the other laws' papers damp with beta = 1 throughout (004 Eq. 4.25)" },
+    Key { name: "friction_coefficient", unit: "-", kind: KeyKind::Number, default: "0.5", doc: "sliding friction mu (000 Eq. 23)" },
+    Key { name: "elastic_stiffness", unit: "N/m", kind: KeyKind::Derived, default: "pi R* p_y", doc: "k_el, elastic stiffness before yield (nan); constant k_e (pasha, pasha_simplified); unloading k_e (walton_braun). Default 000 Eq. 52" },
+    Key { name: "unloading_stiffness_reference", unit: "N/m", kind: KeyKind::Derived, default: "none", doc: "k_e0 of a measured unloading line; with unloading_overlap_reference gives k_el by 000 Eqs. 45 and 29 (or 49)" },
+    Key { name: "unloading_overlap_reference", unit: "m", kind: KeyKind::Derived, default: "none", doc: "alpha_max0, the overlap at which the measured unloading line with k_e0 starts (000 Eq. 43)" },
+    Key { name: "plastic_stiffness", unit: "N/m", kind: KeyKind::Derived, default: "elastic_stiffness", doc: "k_p, plastic loading stiffness (000 Eq. 18, 004 Eq. 4.3); must not exceed k_el" },
 ];
 
 /// Defines `ModelKind` from the rows of `law_table!`.
@@ -538,6 +553,18 @@ mod tests {
         assert_eq!(fields.len(), KEYS.len(), "{fields:?}");
         for f in fields {
             assert!(KEYS.iter().any(|k| k.name == f), "Scene field `{f}` has no key in KEYS");
+        }
+    }
+
+    #[test]
+    fn each_key_kind_agrees_with_its_default() {
+        for k in KEYS.iter() {
+            match k.kind {
+                KeyKind::Number => assert!(k.default.parse::<f64>().is_ok(), "{}: default `{}` is not a number", k.name, k.default),
+                KeyKind::Required => assert_eq!(k.default, "required", "{}", k.name),
+                KeyKind::Choice => assert_eq!(k.unit, "-", "{}", k.name),
+                KeyKind::Derived => assert!(k.default.parse::<f64>().is_err(), "{}: a number default is not derived", k.name),
+            }
         }
     }
 

@@ -3,7 +3,7 @@
 use super::params::{k_el_default, Effective};
 use super::{Branch, Evaluation, LawInfo, NormalLaw};
 use crate::error::ParamError;
-use crate::scene::{Key, Scene};
+use crate::scene::{Key, KeyKind, Scene};
 
 #[derive(Debug, Clone, PartialEq)]
 pub struct Linear {
@@ -50,7 +50,7 @@ impl NormalLaw for Linear {
 impl LawInfo for Linear {
     /// This law's own scene keys (composed into `scene::KEYS`).
     const KEYS: &'static [Key] = &[
-        Key { name: "linear_stiffness", unit: "N/m", default: "elastic_stiffness", doc: "k_n of the linear spring (004 Eq. 3.9)" },
+        Key { name: "linear_stiffness", unit: "N/m", kind: KeyKind::Derived, default: "elastic_stiffness", doc: "k_n of the linear spring (004 Eq. 3.9)" },
     ];
     /// k_n from `linear_stiffness`, else `elastic_stiffness`, else pi R* p_y (000 Eq. 52).
     fn from_scene(s: &Scene, eff: &Effective) -> Result<Linear, ParamError> {

@@ -15,7 +15,7 @@
 use super::params::{k_el_default, Effective};
 use super::{Branch, Evaluation, LawInfo, NormalLaw};
 use crate::error::ParamError;
-use crate::scene::{Key, Scene};
+use crate::scene::{Key, KeyKind, Scene};
 
 #[derive(Debug, Clone, PartialEq)]
 pub struct Luding {
@@ -129,11 +129,11 @@ impl NormalLaw for Luding {
 impl LawInfo for Luding {
     /// This law's own scene keys (composed into `scene::KEYS`).
     const KEYS: &'static [Key] = &[
-        Key { name: "luding_loading_stiffness", unit: "N/m", default: "plastic_stiffness, else pi R* p_y", doc: "k_1, plastic loading stiffness (003 Eq. 4)" },
-        Key { name: "luding_max_unloading_stiffness", unit: "N/m", default: "5 k_1", doc: "k_2 hat, the unloading stiffness reached at alpha* (004 Eqs. 3.71, 3.74)" },
-        Key { name: "luding_adhesion_stiffness", unit: "N/m", default: "0", doc: "k_c, slope of the adhesion limit -k_c alpha - f_0 (003 Eq. 4)" },
-        Key { name: "luding_plasticity_depth", unit: "-", default: "0.05", doc: "phi_f, dimensionless plasticity depth: alpha* = k2/(k2 - k1) phi_f 2 R* (004 Eq. 3.71)" },
-        Key { name: "luding_contact_adhesion_force", unit: "N", default: "8/9 f_ce", doc: "f_0, attraction at first contact (003 Eq. 4; 004 Table 4.2 sets it to 8/9 f_ce)" },
+        Key { name: "luding_loading_stiffness", unit: "N/m", kind: KeyKind::Derived, default: "plastic_stiffness, else pi R* p_y", doc: "k_1, plastic loading stiffness (003 Eq. 4)" },
+        Key { name: "luding_max_unloading_stiffness", unit: "N/m", kind: KeyKind::Derived, default: "5 k_1", doc: "k_2 hat, the unloading stiffness reached at alpha* (004 Eqs. 3.71, 3.74)" },
+        Key { name: "luding_adhesion_stiffness", unit: "N/m", kind: KeyKind::Number, default: "0", doc: "k_c, slope of the adhesion limit -k_c alpha - f_0 (003 Eq. 4)" },
+        Key { name: "luding_plasticity_depth", unit: "-", kind: KeyKind::Number, default: "0.05", doc: "phi_f, dimensionless plasticity depth: alpha* = k2/(k2 - k1) phi_f 2 R* (004 Eq. 3.71)" },
+        Key { name: "luding_contact_adhesion_force", unit: "N", kind: KeyKind::Derived, default: "8/9 f_ce", doc: "f_0, attraction at first contact (003 Eq. 4; 004 Table 4.2 sets it to 8/9 f_ce)" },
     ];
     fn from_scene(s: &Scene, eff: &Effective) -> Result<Luding, ParamError> {
         let k1 = match (s.luding_loading_stiffness, s.plastic_stiffness) {

@@ -19,7 +19,7 @@ use super::params::NanParams;
 use super::LawInfo;
 use super::{Branch, Evaluation, NormalLaw};
 use crate::error::ParamError;
-use crate::scene::{Key, Scene};
+use crate::scene::{Key, KeyKind, Scene};
 
 #[derive(Debug, Clone, PartialEq)]
 pub struct Nan {
@@ -159,9 +159,9 @@ impl NormalLaw for Nan {
 impl LawInfo for Nan {
     /// This law's own scene keys (composed into `scene::KEYS`).
     const KEYS: &'static [Key] = &[
-        Key { name: "unloading_stiffness_law", unit: "-", default: "sqrt", doc: "nan k_e after yield: sqrt, k_e = k_el sqrt(alpha_max/alpha_y) (000 Eq. 46); sqrt_plus_plastic, k_e = k_p + (k_el - k_p) sqrt(alpha_max/alpha_y) (000 Eqs. 47-49)" },
-        Key { name: "pull_off_law", unit: "-", default: "energy", doc: "nan f_cp: energy (000 Eq. 59), pasha (Eq. 61), curvature (Eq. 64), work_ratio (Eq. 67)" },
-        Key { name: "adhesive_stiffness_law", unit: "-", default: "exact", doc: "nan k_cl: exact (000 Eq. 36 with W_JKR of Eq. 37) or approximate (Eq. 38)" },
+        Key { name: "unloading_stiffness_law", unit: "-", kind: KeyKind::Choice, default: "sqrt", doc: "nan k_e after yield: sqrt, k_e = k_el sqrt(alpha_max/alpha_y) (000 Eq. 46); sqrt_plus_plastic, k_e = k_p + (k_el - k_p) sqrt(alpha_max/alpha_y) (000 Eqs. 47-49)" },
+        Key { name: "pull_off_law", unit: "-", kind: KeyKind::Choice, default: "energy", doc: "nan f_cp: energy (000 Eq. 59), pasha (Eq. 61), curvature (Eq. 64), work_ratio (Eq. 67)" },
+        Key { name: "adhesive_stiffness_law", unit: "-", kind: KeyKind::Choice, default: "exact", doc: "nan k_cl: exact (000 Eq. 36 with W_JKR of Eq. 37) or approximate (Eq. 38)" },
     ];
     /// 000 Sec. 2.3: beta = 0.1 after yield.
     const PLASTIC_DAMPING_FACTOR: Option<f64> = Some(0.1);

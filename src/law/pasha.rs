@@ -22,7 +22,7 @@
 use super::params::Effective;
 use super::{Branch, Evaluation, LawInfo, NormalLaw};
 use crate::error::ParamError;
-use crate::scene::{Key, PashaStiffnessLaw, Scene};
+use crate::scene::{Key, KeyKind, PashaStiffnessLaw, Scene};
 use std::f64::consts::PI;
 
 #[derive(Debug, Clone, PartialEq)]
@@ -220,8 +220,8 @@ impl NormalLaw for Pasha {
 impl LawInfo for Pasha {
     /// This law's own scene keys (composed into `scene::KEYS`).
     const KEYS: &'static [Key] = &[
-        Key { name: "pasha_stiffness_law", unit: "-", default: "constant", doc: "pasha k_e: constant, or load_dependent k_e = k_p + (r/R*)^2 (k_e_max - k_p), r^2 = 2 R* alpha_max - alpha_max^2 (004 Eqs. 4.21-4.23)" },
-        Key { name: "pasha_max_elastic_stiffness", unit: "N/m", default: "none", doc: "k_e_max of 004 Eq. 4.23 (the stiffness at an overlap of R*); required with load_dependent" },
+        Key { name: "pasha_stiffness_law", unit: "-", kind: KeyKind::Choice, default: "constant", doc: "pasha k_e: constant, or load_dependent k_e = k_p + (r/R*)^2 (k_e_max - k_p), r^2 = 2 R* alpha_max - alpha_max^2 (004 Eqs. 4.21-4.23)" },
+        Key { name: "pasha_max_elastic_stiffness", unit: "N/m", kind: KeyKind::Derived, default: "none", doc: "k_e_max of 004 Eq. 4.23 (the stiffness at an overlap of R*); required with load_dependent" },
     ];
     fn from_scene(s: &Scene, eff: &Effective) -> Result<Pasha, ParamError> {
         let stiffness = PashaStiffness::from_scene(s, eff, "pasha")?;

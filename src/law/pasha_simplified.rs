@@ -11,7 +11,7 @@ use super::params::Effective;
 use super::pasha::{pasha_evaluate, PashaHistory, PashaPoints, PashaStiffness};
 use super::{Evaluation, LawInfo, NormalLaw};
 use crate::error::ParamError;
-use crate::scene::{Key, Scene};
+use crate::scene::{Key, KeyKind, Scene};
 
 #[derive(Debug, Clone, PartialEq)]
 pub struct PashaSimplified {
@@ -80,8 +80,8 @@ impl NormalLaw for PashaSimplified {
 impl LawInfo for PashaSimplified {
     /// This law's own scene keys (composed into `scene::KEYS`).
     const KEYS: &'static [Key] = &[
-        Key { name: "pasha_pull_off_stiffness", unit: "N/m", default: "0", doc: "k_cp, slope of the linear pull-off locus f_cp = k_cp alpha_cp + f_0p (004 Eq. 4.17; pasha_simplified)" },
-        Key { name: "pasha_pull_off_intercept", unit: "N", default: "f_ce", doc: "f_0p of the linear pull-off locus (004 Eq. 4.17; pasha_simplified); at least 8/9 f_ce" },
+        Key { name: "pasha_pull_off_stiffness", unit: "N/m", kind: KeyKind::Number, default: "0", doc: "k_cp, slope of the linear pull-off locus f_cp = k_cp alpha_cp + f_0p (004 Eq. 4.17; pasha_simplified)" },
+        Key { name: "pasha_pull_off_intercept", unit: "N", kind: KeyKind::Derived, default: "f_ce", doc: "f_0p of the linear pull-off locus (004 Eq. 4.17; pasha_simplified); at least 8/9 f_ce" },
     ];
     fn from_scene(s: &Scene, eff: &Effective) -> Result<PashaSimplified, ParamError> {
         let stiffness = PashaStiffness::from_scene(s, eff, "pasha_simplified")?;

@@ -24,7 +24,7 @@ use super::tangential::TangentialModel;
 use super::{Branch, Evaluation, LawInfo, NormalLaw};
 use crate::error::ParamError;
 use crate::numeric::brent;
-use crate::scene::{Key, Scene};
+use crate::scene::{Key, KeyKind, Scene};
 use std::f64::consts::PI;
 
 #[derive(Debug, Clone, PartialEq)]
@@ -244,11 +244,11 @@ impl NormalLaw for Tomas {
 impl LawInfo for Tomas {
     /// This law's own scene keys (composed into `scene::KEYS`).
     const KEYS: &'static [Key] = &[
-        Key { name: "tomas_yield_strength", unit: "Pa", default: "p_y", doc: "p_f, plastic micro-yield strength of the contact (003 Table 1)" },
-        Key { name: "tomas_area_coefficient", unit: "-", default: "0.834", doc: "kappa_A, elastic-plastic contact area coefficient in [2/3, 1] (004 Sec. 3.4.4.3); default from 003 Sec. 3.3 limestone" },
-        Key { name: "tomas_repulsion_coefficient", unit: "-", default: "0.152", doc: "kappa_p, plastic repulsion coefficient p_vdW/p_f in [0, kappa_A) (003 Sec. 3.3 limestone)" },
-        Key { name: "tomas_contact_adhesion_force", unit: "N", default: "2 pi Gamma R*", doc: "F_H0, van der Waals attraction at contact (004 Eqs. 3.50, 3.61)" },
-        Key { name: "tomas_separation", unit: "m", default: "4e-10", doc: "a_F=0, minimum centre separation of the van der Waals force (004 Eq. 3.61: 0.3-0.4 nm)" },
+        Key { name: "tomas_yield_strength", unit: "Pa", kind: KeyKind::Derived, default: "p_y", doc: "p_f, plastic micro-yield strength of the contact (003 Table 1)" },
+        Key { name: "tomas_area_coefficient", unit: "-", kind: KeyKind::Number, default: "0.834", doc: "kappa_A, elastic-plastic contact area coefficient in [2/3, 1] (004 Sec. 3.4.4.3); default from 003 Sec. 3.3 limestone" },
+        Key { name: "tomas_repulsion_coefficient", unit: "-", kind: KeyKind::Number, default: "0.152", doc: "kappa_p, plastic repulsion coefficient p_vdW/p_f in [0, kappa_A) (003 Sec. 3.3 limestone)" },
+        Key { name: "tomas_contact_adhesion_force", unit: "N", kind: KeyKind::Derived, default: "2 pi Gamma R*", doc: "F_H0, van der Waals attraction at contact (004 Eqs. 3.50, 3.61)" },
+        Key { name: "tomas_separation", unit: "m", kind: KeyKind::Number, default: "4e-10", doc: "a_F=0, minimum centre separation of the van der Waals force (004 Eq. 3.61: 0.3-0.4 nm)" },
     ];
     const TANGENTIAL: TangentialModel = TangentialModel::Tomas;
     fn from_scene(s: &Scene, eff: &Effective) -> Result<Tomas, ParamError> {

@@ -7,7 +7,7 @@
 use super::params::{k_el_default, Effective};
 use super::{Branch, Evaluation, LawInfo, NormalLaw};
 use crate::error::ParamError;
-use crate::scene::{Key, Scene};
+use crate::scene::{Key, KeyKind, Scene};
 
 #[derive(Debug, Clone, PartialEq)]
 pub struct WaltonBraun {
@@ -94,7 +94,7 @@ impl NormalLaw for WaltonBraun {
 impl LawInfo for WaltonBraun {
     /// This law's own scene keys (composed into `scene::KEYS`).
     const KEYS: &'static [Key] = &[
-        Key { name: "walton_braun_stiffening_slope", unit: "1/m", default: "0", doc: "S of k_e = k_p + S F_max (004 Eq. 3.38); 0 keeps k_e constant" },
+        Key { name: "walton_braun_stiffening_slope", unit: "1/m", kind: KeyKind::Number, default: "0", doc: "S of k_e = k_p + S F_max (004 Eq. 3.38); 0 keeps k_e constant" },
     ];
     /// k_e from `elastic_stiffness` (else pi R* p_y, 000 Eq. 52), k_p from `plastic_stiffness` (else k_e).
     fn from_scene(s: &Scene, eff: &Effective) -> Result<WaltonBraun, ParamError> {

@@ -6,43 +6,15 @@
 
 use super::variables::{fmi_unit, Value, Variable};
 use crate::error::ParamError;
-use crate::scene::{Scene, KEYS};
+use crate::scene::{KeyKind, Scene, KEYS};
 use serde_json::{Map, Value as Json};
 
 /// The default scene of the units.
 pub const DEFAULT_SCENE: &str = include_str!("../../scenes/ammonium_fluorescein_on_silicon.json");
 
-/// The keys whose values are names, not numbers.
-const CHOICE_KEYS: &[&str] = &[
-    "contact_model",
-    "contact_partner",
-    "yield_pressure_correlation",
-    "unloading_stiffness_law",
-    "pull_off_law",
-    "adhesive_stiffness_law",
-    "pasha_stiffness_law",
-];
-
-/// How a key reaches the FMU.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum KeyKind {
-    /// A String parameter holding one of the key's names.
-    Choice,
-    /// A Real with a fixed default.
-    Number,
-    /// A Real whose default is derived from other keys: 0 stands for "derive".
-    Derived,
-}
-
+/// How a key reaches the FMU: its kind in the key table.
 pub fn key_kind(name: &str) -> KeyKind {
-    let key = KEYS.iter().find(|k| k.name == name).expect("a scene key");
-    if CHOICE_KEYS.contains(&name) {
-        KeyKind::Choice
-    } else if key.default == "required" || key.default.parse::<f64>().is_ok() {
-        KeyKind::Number
-    } else {
-        KeyKind::Derived
-    }
+    KEYS.iter().find(|k| k.name == name).expect("a scene key").kind
 }
 
 /// One FMU parameter per scene key.
@@ -56,7 +28,7 @@ pub fn variables() -> Vec<Variable> {
                     let start = given.and_then(|v| v.as_str()).unwrap_or(key.default);
                     Variable::parameter(key.name, Value::String(start.into()), "", key.doc)
                 }
-                KeyKind::Number => {
+                KeyKind::Number | KeyKind::Required => {
                     let start = given.and_then(|v| v.as_f64()).or_else(|| key.default.parse().ok()).expect("a required key is in the default scene");
                     Variable::parameter(key.name, Value::Real(start), fmi_unit(key.unit), key.doc)
                 }
