@@ -40,7 +40,7 @@ pub const OUTPUTS: &[Output] = &[
     Output { name: "jkr_sticking_velocity", unit: "m/s", doc: "V_s = (2 W_JKR / m*)^(1/2) (000 Eq. 73); needs no yield pressure" },
     Output { name: "yield_velocity", unit: "m/s", doc: "V_y0, yield velocity without cohesion (000 Eq. 74)" },
     Output { name: "adhesive_yield_velocity", unit: "m/s", doc: "V_y (000 Eq. 75); null when f_y < f_0 (adhesion-induced plasticity)" },
-    Output { name: "sticking_velocity", unit: "m/s", doc: "the active law's sticking velocity, undamped: the smallest impact speed at which the sphere rebounds (nan: 000 Eqs. 77-79; other laws: bisection on the energy balance to 1e-9); 0 if it never sticks" },
+    Output { name: "sticking_velocity", unit: "m/s", doc: "the active law's sticking velocity, undamped: the smallest impact speed at which the sphere rebounds (nan: 000 Eqs. 77-79; other laws: bisection on the energy balance to 1e-12); 0 if it never sticks" },
     Output { name: "nan_sticking_velocity", unit: "m/s", doc: "V_ys of the Nan law for these materials, whatever the active law (000 Eqs. 77-79)" },
     Output { name: "critical_yield_pressure", unit: "Pa", doc: "p_y below which f_y < f_0 with k_el by Eq. 52 (000 Eq. 80)" },
     Output { name: "cohesion_yield_number", unit: "-", doc: "CY = p_y^3 R* / (E*^2 Gamma) (000 Eq. 81)" },
@@ -58,7 +58,7 @@ pub const OUTPUTS: &[Output] = &[
 const MAX_STICKING_SEARCH: f64 = 1e4;
 
 /// The smallest undamped impact speed at which the sphere rebounds, by the energy balance: the first
-/// doubling from 1 mm/s that rebounds, then bisection to 1e-9 below it (`energy_balance::sticking_velocity`).
+/// doubling from 1 mm/s that rebounds, then bisection to 1e-12 below it (`energy_balance::sticking_velocity`).
 /// 0 when it rebounds even at 1 mm/s from a law without adhesion.
 fn active_sticking_velocity(law: &AnyLaw, mass: f64, radius: f64) -> Option<f64> {
     let sticks = |v: f64| energy_balance::impact(law, mass, v, radius).map(|o| o.sticks).unwrap_or(true);

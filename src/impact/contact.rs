@@ -26,7 +26,7 @@ pub const HYSTERESIS: f64 = 1e-10;
 const BOUND_ULPS: f64 = 8.0;
 /// How close below the largest overlap an accepted point still counts as being at it (the turning-point
 /// indicator watches the rate there), in units of the nominal overlap.
-pub const AT_MAX_OVERLAP: f64 = 2e-9;
+const AT_MAX_OVERLAP: f64 = 2e-9;
 
 #[derive(Debug, Clone)]
 pub struct Contact {
@@ -96,8 +96,6 @@ pub struct ContactForce {
     /// Viscous damping force [N].
     pub damping: f64,
     pub branch: Branch,
-    /// The history the law gives on that branch at this overlap (growing with plastic loading).
-    pub history: AnyHistory,
 }
 
 impl ContactForce {
@@ -170,26 +168,32 @@ impl Contact {
     /// accepted one, the accepted branch goes on as its tangent at the bound it crossed (the exact line for
     /// the piecewise-linear laws); branch, history and discrete outputs change only in `accept`.
     pub fn force(&self, alpha: f64, rate: f64) -> ContactForce {
+        self.state_at(alpha, rate).0
+    }
+
+    /// `force`, and the history the accepted branch has at `alpha` (growing with plastic loading): what
+    /// the units report as pull-off force and plastic overlap between events.
+    pub fn state_at(&self, alpha: f64, rate: f64) -> (ContactForce, AnyHistory) {
         let (e, law_force, at) = self.on_accepted_branch(alpha);
-        self.with_damping(e, law_force, at, rate)
+        (self.with_damping(&e, law_force, at, rate), e.history)
     }
 
     /// Force at overlap `alpha` with the law's own branch there and the accepted history, as a DEM force
     /// loop evaluates it (the `verlet` baseline): the branch may differ from the accepted one.
     pub fn law_force(&self, alpha: f64, rate: f64) -> ContactForce {
         let e = self.law.evaluate(alpha, &self.accepted.history);
-        self.with_damping(e, e.force, alpha, rate)
+        self.with_damping(&e, e.force, alpha, rate)
     }
 
     /// The damping force of 000 Eqs. 24-26 on the branch of `e` (evaluated at overlap `at`).
-    fn with_damping(&self, e: Evaluation<AnyHistory>, law_force: f64, at: f64, rate: f64) -> ContactForce {
+    fn with_damping(&self, e: &Evaluation<AnyHistory>, law_force: f64, at: f64, rate: f64) -> ContactForce {
         let damping = if e.branch.in_contact() {
             let k = self.law.damping_stiffness(at, &e.history, e.stiffness);
             self.damping.force(k, self.law.has_yielded(&e.history), rate)
         } else {
             0.0
         };
-        ContactForce { law: law_force, damping, branch: e.branch, history: e.history }
+        ContactForce { law: law_force, damping, branch: e.branch }
     }
 
     /// The accepted branch at `alpha`: the law's evaluation where the law agrees, else the tangent
@@ -234,7 +238,7 @@ impl Contact {
     /// The branch is the law's own at `alpha`, with its inequalities exactly as the paper writes them
     /// (000 Eq. 20: adhesive on alpha_fp <= alpha <= alpha_cp, detached below alpha_fp). Only where
     /// `alpha` is a point at which the branch ends in the direction of motion (the largest overlap, where
-    /// plastic loading goes on; a bound reached by `follow`) is the branch the one just beyond, one ulp
+    /// plastic loading goes on; a bound reached by `follow`) is the branch the one just beyond, a few ulps
     /// further.
     pub fn accept(&mut self, alpha: f64, rate: f64) -> (Branch, Branch) {
         let before = self.accepted.branch;
@@ -244,22 +248,20 @@ impl Contact {
         let dir = direction(rate);
         let mut point = alpha;
         let mut into = self.law.evaluate(alpha, &here.history);
-        // On the bound within the rounding of the law's own formulas for it (a few ulps).
-        let on = |bound: f64| bound.is_finite() && (bound - alpha).abs() <= BOUND_ULPS * f64::EPSILON * alpha.abs().max(bound.abs());
-        // Step out by ulps until the law's own inequality (rounded as it computes it) agrees.
-        if dir > 0.0 && (into.upper <= alpha || on(into.upper)) {
+        // The bound of the branch in the direction of motion, how far it lies ahead of `x` (<= 0: on or
+        // behind it), and the next double in that direction.
+        let bound = |e: &Evaluation<AnyHistory>| if dir > 0.0 { e.upper } else { e.lower };
+        let ahead = |b: f64, x: f64| (b - x) * dir;
+        let beyond = |x: f64| if dir > 0.0 { next_up(x) } else { next_down(x) };
+        // On the bound within the rounding of the law's own formula for it (a few ulps), moving out of it:
+        // step out by ulps until the law's own inequality (rounded as it computes it) agrees.
+        let b = bound(&into);
+        if dir != 0.0 && b.is_finite() && ahead(b, alpha) <= BOUND_ULPS * f64::EPSILON * alpha.abs().max(b.abs()) {
             for _ in 0..BOUND_ULPS as usize {
-                point = next_up(into.upper.max(point));
+                let b = bound(&into);
+                point = beyond(if ahead(b, point) > 0.0 { b } else { point });
                 into = self.law.evaluate(point, &here.history);
-                if into.upper > point {
-                    break;
-                }
-            }
-        } else if dir < 0.0 && (into.lower >= alpha || on(into.lower)) {
-            for _ in 0..BOUND_ULPS as usize {
-                point = next_down(into.lower.min(point));
-                into = self.law.evaluate(point, &here.history);
-                if into.lower < point {
+                if ahead(bound(&into), point) > 0.0 {
                     break;
                 }
             }
@@ -364,7 +366,7 @@ impl Contact {
     }
 }
 
-/// The next larger double (for finite x).
+/// The next larger double (for finite x). `f64::next_up` is std from Rust 1.86; the crate builds on 1.80.
 pub fn next_up(x: f64) -> f64 {
     if x.is_nan() || x == f64::INFINITY {
         return x;

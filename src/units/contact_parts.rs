@@ -65,13 +65,13 @@ impl Outputs {
     /// Writes force, overlap, state and history at `alpha`, `rate` on the accepted branch of `c`; returns
     /// the total force.
     pub fn write(&self, values: &mut [Value], c: &Contact, alpha: f64, rate: f64) -> f64 {
-        let f = c.force(alpha, rate);
+        let (f, history) = c.state_at(alpha, rate);
         values[self.force] = Value::Real(f.total());
         values[self.overlap] = Value::Real(alpha);
         values[self.contact_state] = Value::Integer(c.accepted.branch.contact_state());
         values[self.max_overlap] = Value::Real(c.max_overlap.max(alpha).max(0.0));
-        values[self.plastic_overlap] = Value::Real(c.law.plastic_overlap(&f.history));
-        values[self.pull_off_force] = Value::Real(c.law.pull_off_force(&f.history));
+        values[self.plastic_overlap] = Value::Real(c.law.plastic_overlap(&history));
+        values[self.pull_off_force] = Value::Real(c.law.pull_off_force(&history));
         f.total()
     }
 }
