@@ -39,7 +39,7 @@ struct Outcome {
 fn scene(model: ModelKind) -> Scene {
     let mut s = common::table5(model, 2.45e-6, 30e6);
     match model {
-        ModelKind::Luding => s.luding_adhesion_stiffness = 20.0,
+        ModelKind::Luding => s.laws.luding.luding_adhesion_stiffness = 20.0,
         ModelKind::Tomas => s.surface_energy = 0.05,
         _ => {}
     }
@@ -170,7 +170,7 @@ fn main() {
         let rayleigh = time_step::rayleigh_time_step(
             r,
             case.scene.particle_density,
-            Effective::from_scene(&case.scene).expect("scene").particle_shear_modulus,
+            case.scene.particle_shear_modulus(),
             case.scene.particle_poisson_ratio,
         );
         let undamped_linear = case.law.is_piecewise_linear() && case.scene.restitution_coefficient >= 1.0;
@@ -260,7 +260,7 @@ fn fidelity(figures: &std::path::Path) {
     for model in laws {
         let mut s = common::table4_1(model);
         if model == ModelKind::Luding {
-            s.luding_adhesion_stiffness = 20.0;
+            s.laws.luding.luding_adhesion_stiffness = 20.0;
         }
         let law = match AnyLaw::from_scene(&s) {
             Ok(l) => l,

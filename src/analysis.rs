@@ -93,7 +93,7 @@ pub fn analyze(scene: &Scene, velocity: Option<f64>) -> Result<Value, ParamError
     out.insert("f_0".into(), json!(8.0 / 9.0 * eff.f_ce()));
     out.insert(
         "rayleigh_time_step".into(),
-        json!(rayleigh_time_step(eff.particle_radius, eff.density, eff.particle_shear_modulus, eff.poisson_ratio)),
+        json!(rayleigh_time_step(scene.particle_radius, scene.particle_density, scene.particle_shear_modulus(), scene.particle_poisson_ratio)),
     );
     out.insert("pull_off_force_fresh".into(), json!(law.pull_off_force(&law.initial_history())));
     // The JKR quantities need no yield pressure (000 Eqs. 37, 73; W_0 = W_JKR).
@@ -102,7 +102,7 @@ pub fn analyze(scene: &Scene, velocity: Option<f64>) -> Result<Value, ParamError
         out.insert("w_jkr".into(), json!(w));
         out.insert("jkr_sticking_velocity".into(), json!((2.0 * w / eff.mass).sqrt()));
     }
-    let nan_sticking = match NanParams::from_scene(scene, &eff) {
+    let nan_sticking = match NanParams::from_pair(&eff, &scene.laws.stiffness, &scene.laws.nan) {
         Ok(p) => {
             let nan = Nan::new(p);
             let v = sticking_velocities(&nan, eff.mass);

@@ -77,7 +77,8 @@ pub fn check_non_negative(name: &'static str, value: f64, unit: &str) -> Result<
     check_closed_low(name, value, 0.0, f64::INFINITY, unit)
 }
 
-fn range_text(lo: f64, hi: f64, closed_low: bool, unit: &str) -> String {
+/// `[lo, hi) unit` or `(lo, hi) unit`, as the errors and the help print a range.
+pub fn range_text(lo: f64, hi: f64, closed_low: bool, unit: &str) -> String {
     let left = if closed_low { "[" } else { "(" };
     let unit = if unit.is_empty() { String::new() } else { format!(" {unit}") };
     format!("{left}{}, {}){unit}", bound(lo), bound(hi))

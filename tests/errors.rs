@@ -1,7 +1,8 @@
 //! Bad input gives a typed error that names the parameter, for every law's own keys too.
 
 use powderfmu::law::AnyLaw;
-use powderfmu::scene::{ModelKind, PashaStiffnessLaw, Scene};
+use powderfmu::law::pasha::PashaStiffnessLaw;
+use powderfmu::scene::{ModelKind, Scene};
 use powderfmu::ParamError;
 
 fn base(model: ModelKind) -> Scene {
@@ -24,34 +25,34 @@ fn names(s: &Scene, parameter: &str) {
 #[test]
 fn each_law_rejects_its_own_bad_values() {
     let mut s = base(ModelKind::Luding);
-    s.luding_loading_stiffness = Some(100.0);
-    s.luding_max_unloading_stiffness = Some(50.0);
+    s.laws.luding.luding_loading_stiffness = Some(100.0);
+    s.laws.luding.luding_max_unloading_stiffness = Some(50.0);
     names(&s, "luding_max_unloading_stiffness");
-    s.luding_max_unloading_stiffness = Some(500.0);
-    s.luding_plasticity_depth = 0.0;
+    s.laws.luding.luding_max_unloading_stiffness = Some(500.0);
+    s.laws.luding.luding_plasticity_depth = 0.0;
     names(&s, "luding_plasticity_depth");
 
     let mut s = base(ModelKind::PashaSimplified);
-    s.pasha_pull_off_intercept = Some(1e-9);
+    s.laws.pasha_simplified.pasha_pull_off_intercept = Some(1e-9);
     names(&s, "pasha_pull_off_intercept");
 
     let mut s = base(ModelKind::Pasha);
-    s.pasha_stiffness_law = PashaStiffnessLaw::LoadDependent;
+    s.laws.pasha.pasha_stiffness_law = PashaStiffnessLaw::LoadDependent;
     names(&s, "pasha_max_elastic_stiffness");
-    s.pasha_max_elastic_stiffness = Some(1.0);
-    s.plastic_stiffness = Some(100.0);
+    s.laws.pasha.pasha_max_elastic_stiffness = Some(1.0);
+    s.laws.stiffness.plastic_stiffness = Some(100.0);
     names(&s, "plastic_stiffness");
 
     let mut s = base(ModelKind::Tomas);
-    s.tomas_area_coefficient = 0.5;
+    s.laws.tomas.tomas_area_coefficient = 0.5;
     names(&s, "tomas_area_coefficient");
-    s.tomas_area_coefficient = 0.8;
-    s.tomas_repulsion_coefficient = 0.9;
+    s.laws.tomas.tomas_area_coefficient = 0.8;
+    s.laws.tomas.tomas_repulsion_coefficient = 0.9;
     names(&s, "tomas_repulsion_coefficient");
 
     let mut s = base(ModelKind::WaltonBraun);
-    s.elastic_stiffness = Some(100.0);
-    s.plastic_stiffness = Some(200.0);
+    s.laws.stiffness.elastic_stiffness = Some(100.0);
+    s.laws.stiffness.plastic_stiffness = Some(200.0);
     names(&s, "plastic_stiffness");
 
     let mut s = base(ModelKind::ThorntonNing);
@@ -68,7 +69,7 @@ fn each_law_rejects_its_own_bad_values() {
     s.wall_youngs_modulus = Some(f64::INFINITY);
     names(&s, "wall_youngs_modulus");
     let mut s = base(ModelKind::Nan);
-    s.unloading_stiffness_reference = Some(1000.0);
+    s.laws.stiffness.unloading_stiffness_reference = Some(1000.0);
     names(&s, "unloading_stiffness_reference");
 }
 
@@ -96,9 +97,9 @@ fn every_model_builds_from_the_defaults_of_a_plain_scene() {
 #[test]
 fn a_measured_unloading_line_must_start_after_yield() {
     let mut s = base(ModelKind::Nan);
-    s.unloading_stiffness_reference = Some(1274.0);
-    s.unloading_overlap_reference = Some(1e-9); // below alpha_y of about 10 nm
+    s.laws.stiffness.unloading_stiffness_reference = Some(1274.0);
+    s.laws.stiffness.unloading_overlap_reference = Some(1e-9); // below alpha_y of about 10 nm
     names(&s, "unloading_overlap_reference");
-    s.unloading_overlap_reference = Some(210.5e-9);
+    s.laws.stiffness.unloading_overlap_reference = Some(210.5e-9);
     assert!(AnyLaw::from_scene(&s).is_ok());
 }

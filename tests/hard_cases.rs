@@ -279,7 +279,7 @@ fn wall_driven_into_the_sphere_at_100_m_per_s() {
 #[test]
 fn a_deeper_second_impact_within_one_step_updates_the_largest_overlap() {
     let mut s = Scene::new(ModelKind::Linear, 1e-3, 2500.0, 63e9, 0.25);
-    s.linear_stiffness = Some(1e6);
+    s.laws.linear.linear_stiffness = Some(1e6);
     let m = mass(&s);
     for (solver, tol) in [(Solver::Exact, 1e-12), (Solver::Adaptive, 1e-7)] {
         let (mut y, mut sp) = impact(&s, 1.0, solver, 1e-3, 1e-3);
@@ -302,7 +302,7 @@ fn a_deeper_second_impact_within_one_step_updates_the_largest_overlap() {
 #[test]
 fn bouncing_ball_on_a_vibrating_plate_stays_on_the_period_one_orbit() {
     let mut s = Scene::new(ModelKind::Linear, 1e-3, 2500.0, 63e9, 0.25);
-    s.linear_stiffness = Some(1e6);
+    s.laws.linear.linear_stiffness = Some(1e6);
     s.restitution_coefficient = 0.5;
     let (g, e, f) = (9.81, 0.5, 50.0);
     let omega = 2.0 * std::f64::consts::PI * f;
@@ -374,7 +374,7 @@ fn extreme_ratios_radii_and_no_adhesion_against_the_closed_forms() {
     let mut last = f64::INFINITY;
     for ratio in [1.0, 0.5, 0.1, 0.01] {
         let mut s = base.clone();
-        s.plastic_stiffness = Some(ratio * law.p.k_el);
+        s.laws.stiffness.plastic_stiffness = Some(ratio * law.p.k_el);
         let e = check(&s, 5.0, &format!("k_p/k_el = {ratio}"));
         // More plastic work as k_p falls, until the sphere sticks (e = 0).
         assert!(e < last || e == 0.0, "restitution must fall as k_p/k_el falls: {e} at {ratio} after {last}");

@@ -12,7 +12,8 @@ use powderfmu::law::tomas::Tomas;
 use powderfmu::law::walton_braun::WaltonBraun;
 use powderfmu::law::{hertz::Hertz, luding::Luding, AnyLaw, Branch, NormalLaw};
 use powderfmu::numeric::tanh_sinh;
-use powderfmu::scene::{ModelKind, PullOffLaw, Scene};
+use powderfmu::law::nan::PullOffLaw;
+use powderfmu::scene::{ModelKind, Scene};
 use powderfmu::theory::adhesion::{luding_adhesion_force, tomas_adhesion_force, tomas_adhesion_force_linear};
 use powderfmu::theory::sticking::{
     cohesion_yield_number, critical_yield_pressure, jkr_sticking_velocity_closed, sticking_velocities, yield_velocity_closed,
@@ -22,7 +23,7 @@ use std::f64::consts::PI;
 
 fn nan(s: &Scene) -> (Nan, f64) {
     let eff = Effective::from_scene(s).unwrap();
-    (Nan::new(NanParams::from_scene(s, &eff).unwrap()), eff.mass)
+    (Nan::new(NanParams::from_pair(&eff, &s.laws.stiffness, &s.laws.nan).unwrap()), eff.mass)
 }
 
 /// Integral of the law's force along a monotone path from `a` to `b`, committing history at each step.
@@ -73,7 +74,7 @@ fn appendix_a_work_terms_are_the_areas_under_the_law() {
 #[test]
 fn nan_before_yield_is_linear_jkr_and_f_cp_is_f_ce() {
     let mut s = table5(ModelKind::Nan, 2.45e-6, 1e9); // p_y so high the contact stays elastic
-    s.pull_off_law = PullOffLaw::Energy;
+    s.laws.nan.pull_off_law = PullOffLaw::Energy;
     let (law, _) = nan(&s);
     let p = law.p;
     let mut h = law.initial_history();
@@ -103,7 +104,7 @@ fn nan_before_yield_is_linear_jkr_and_f_cp_is_f_ce() {
 fn nan_pull_off_force_grows_with_plastic_deformation_for_59_64_67() {
     for method in [PullOffLaw::Energy, PullOffLaw::Curvature, PullOffLaw::WorkRatio] {
         let mut s = table5(ModelKind::Nan, 2.45e-6, 30e6);
-        s.pull_off_law = method;
+        s.laws.nan.pull_off_law = method;
         let (law, _) = nan(&s);
         let mut last = law.p.f_ce;
         for k in 1..6 {

@@ -53,7 +53,7 @@ fn run_with(s: &Scene, v: f64, solver: Solver, tolerance: f64) -> (State, f64, S
 fn scene(model: ModelKind) -> Scene {
     let mut s = table5(model, 2.45e-6, 30e6);
     match model {
-        ModelKind::Luding => s.luding_adhesion_stiffness = 20.0,
+        ModelKind::Luding => s.laws.luding.luding_adhesion_stiffness = 20.0,
         ModelKind::Tomas => s.surface_energy = 0.05,
         _ => {}
     }
@@ -152,7 +152,7 @@ fn accepting_the_same_point_twice_changes_nothing() {
 /// A contact of the default Nan scene with k_p < k_el, so that the plastic line differs from the elastic one.
 fn nan_contact() -> (Contact, powderfmu::law::nan::Nan) {
     let mut s = scene(ModelKind::Nan);
-    s.plastic_stiffness = Some(50.0);
+    s.laws.stiffness.plastic_stiffness = Some(50.0);
     let (sp, _) = sphere(&s, 1e-10);
     let AnyLaw::Nan(law) = sp.contact.law.clone() else { unreachable!() };
     (sp.contact, law)

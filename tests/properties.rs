@@ -3,7 +3,8 @@
 //! (which all sit at a boundary with the separated state), and history monotone.
 
 use powderfmu::law::{AnyHistory, AnyLaw, Branch, Evaluation, NormalLaw};
-use powderfmu::scene::{ModelKind, PullOffLaw, Scene, UnloadingStiffnessLaw};
+use powderfmu::law::nan::{PullOffLaw, UnloadingStiffnessLaw};
+use powderfmu::scene::{ModelKind, Scene};
 use proptest::prelude::*;
 
 #[derive(Debug, Clone)]
@@ -47,15 +48,15 @@ fn scene(c: &Case) -> Scene {
     s.particle_yield_pressure = Some(p_y);
     s.surface_energy = c.gamma;
     let k_el = std::f64::consts::PI * c.radius * p_y;
-    s.plastic_stiffness = Some(c.kp_ratio * k_el);
-    s.unloading_stiffness_law = if c.variant % 2 == 0 { UnloadingStiffnessLaw::Sqrt } else { UnloadingStiffnessLaw::SqrtPlusPlastic };
-    s.pull_off_law = [PullOffLaw::Energy, PullOffLaw::Pasha, PullOffLaw::Curvature, PullOffLaw::WorkRatio][c.variant];
-    s.luding_adhesion_stiffness = c.kp_ratio * k_el * 0.5;
-    s.pasha_pull_off_stiffness = c.kp_ratio * k_el * 0.1;
-    s.walton_braun_stiffening_slope = if c.variant == 3 { 1.0 / (c.radius * 1e-3 * k_el) } else { 0.0 };
+    s.laws.stiffness.plastic_stiffness = Some(c.kp_ratio * k_el);
+    s.laws.nan.unloading_stiffness_law = if c.variant % 2 == 0 { UnloadingStiffnessLaw::Sqrt } else { UnloadingStiffnessLaw::SqrtPlusPlastic };
+    s.laws.nan.pull_off_law = [PullOffLaw::Energy, PullOffLaw::Pasha, PullOffLaw::Curvature, PullOffLaw::WorkRatio][c.variant];
+    s.laws.luding.luding_adhesion_stiffness = c.kp_ratio * k_el * 0.5;
+    s.laws.pasha_simplified.pasha_pull_off_stiffness = c.kp_ratio * k_el * 0.1;
+    s.laws.walton_braun.walton_braun_stiffening_slope = if c.variant == 3 { 1.0 / (c.radius * 1e-3 * k_el) } else { 0.0 };
     if c.variant >= 2 {
-        s.pasha_stiffness_law = powderfmu::scene::PashaStiffnessLaw::LoadDependent;
-        s.pasha_max_elastic_stiffness = Some(20.0 * k_el);
+        s.laws.pasha.pasha_stiffness_law = powderfmu::law::pasha::PashaStiffnessLaw::LoadDependent;
+        s.laws.pasha.pasha_max_elastic_stiffness = Some(20.0 * k_el);
     }
     s
 }

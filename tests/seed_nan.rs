@@ -5,7 +5,8 @@ mod common;
 use common::*;
 use powderfmu::law::nan::Nan;
 use powderfmu::law::params::{k_hertz, Effective, NanParams};
-use powderfmu::scene::{AdhesiveStiffnessLaw, ModelKind, UnloadingStiffnessLaw};
+use powderfmu::law::nan::{AdhesiveStiffnessLaw, UnloadingStiffnessLaw};
+use powderfmu::scene::ModelKind;
 use powderfmu::theory::sticking::sticking_velocities;
 use powderfmu::theory::work::work_terms;
 
@@ -21,15 +22,15 @@ fn table3_case(ning: bool, law: UnloadingStiffnessLaw, kcl: AdhesiveStiffnessLaw
     // Table 2: the largest alpha_max of each column and its k_e define (k_e0, alpha_max0); k_p likewise.
     let mut s = if ning { table1_ning(ModelKind::Nan) } else { table1_du(ModelKind::Nan) };
     let (k_e0, alpha_max0, k_p) = if ning { (1274.0, 210.5e-9, 217.0) } else { (4.2e5, 53.7e-9, 1.8e5) };
-    s.unloading_stiffness_reference = Some(k_e0);
-    s.unloading_overlap_reference = Some(alpha_max0);
-    s.unloading_stiffness_law = law;
-    s.adhesive_stiffness_law = kcl;
+    s.laws.stiffness.unloading_stiffness_reference = Some(k_e0);
+    s.laws.stiffness.unloading_overlap_reference = Some(alpha_max0);
+    s.laws.nan.unloading_stiffness_law = law;
+    s.laws.nan.adhesive_stiffness_law = kcl;
     if law == UnloadingStiffnessLaw::SqrtPlusPlastic {
-        s.plastic_stiffness = Some(k_p);
+        s.laws.stiffness.plastic_stiffness = Some(k_p);
     }
     let eff = Effective::from_scene(&s).unwrap();
-    NanParams::from_scene(&s, &eff).unwrap()
+    NanParams::from_pair(&eff, &s.laws.stiffness, &s.laws.nan).unwrap()
 }
 
 fn check_row(p: &NanParams, want: &Table3Row, label: &str) {
@@ -76,7 +77,7 @@ fn table3_k_el_by_eq45_is_close_to_pi_r_py_as_the_paper_says() {
 fn nan_at(radius: f64, p_y: f64) -> (Nan, f64) {
     let s = table5(ModelKind::Nan, radius, p_y);
     let eff = Effective::from_scene(&s).unwrap();
-    (Nan::new(NanParams::from_scene(&s, &eff).unwrap()), eff.mass)
+    (Nan::new(NanParams::from_pair(&eff, &s.laws.stiffness, &s.laws.nan).unwrap()), eff.mass)
 }
 
 #[test]
@@ -159,9 +160,9 @@ fn fig9_sticking_velocity_falls_with_yield_pressure_and_meets_v_s_at_eq77() {
 #[test]
 fn eq_61_pull_off_has_no_sticking_velocity_and_says_so() {
     let mut s = table5(ModelKind::Nan, 2.45e-6, 30e6);
-    s.pull_off_law = powderfmu::scene::PullOffLaw::Pasha;
+    s.laws.nan.pull_off_law = powderfmu::law::nan::PullOffLaw::Pasha;
     let eff = Effective::from_scene(&s).unwrap();
-    let law = Nan::new(NanParams::from_scene(&s, &eff).unwrap());
+    let law = Nan::new(NanParams::from_pair(&eff, &s.laws.stiffness, &s.laws.nan).unwrap());
     assert!(sticking_velocities(&law, eff.mass).sticking_velocity.is_none());
     let report = powderfmu::analysis::analyze(&s, None).unwrap();
     assert!(report["sticking_velocity"].is_null());

@@ -8,20 +8,21 @@ use powderfmu::law::pasha::Pasha;
 use powderfmu::law::pasha_simplified::PashaSimplified;
 use powderfmu::law::LawInfo;
 use powderfmu::law::{luding::Luding, AnyLaw};
-use powderfmu::scene::{ModelKind, PashaStiffnessLaw};
+use powderfmu::law::pasha::PashaStiffnessLaw;
+use powderfmu::scene::ModelKind;
 use powderfmu::theory::{energy_balance, restitution};
 
 fn simplified() -> (PashaSimplified, f64) {
     let s = table4_2(ModelKind::PashaSimplified);
     let eff = Effective::from_scene(&s).unwrap();
-    (PashaSimplified::from_scene(&s, &eff).unwrap(), eff.mass)
+    (PashaSimplified::from_pair(&eff, &s.laws).unwrap(), eff.mass)
 }
 
 fn full(gamma: f64) -> (Pasha, f64) {
     let mut s = table4_2(ModelKind::Pasha);
     s.surface_energy = gamma;
     let eff = Effective::from_scene(&s).unwrap();
-    (Pasha::from_scene(&s, &eff).unwrap(), eff.mass)
+    (Pasha::from_pair(&eff, &s.laws).unwrap(), eff.mass)
 }
 
 #[test]
@@ -97,8 +98,8 @@ fn full_law_rebound_matches_eq_4_16() {
 /// Table 4.2 with k_e by 004 Eq. 4.23 and k_e_max = 13000 N/m (004 Sec. 4.1.5).
 fn load_dependent(model: ModelKind) -> powderfmu::Scene {
     let mut s = table4_2(model);
-    s.pasha_stiffness_law = PashaStiffnessLaw::LoadDependent;
-    s.pasha_max_elastic_stiffness = Some(13000.0);
+    s.laws.pasha.pasha_stiffness_law = PashaStiffnessLaw::LoadDependent;
+    s.laws.pasha.pasha_max_elastic_stiffness = Some(13000.0);
     s
 }
 
@@ -107,7 +108,7 @@ fn load_dependent_ke_makes_restitution_fall_at_high_velocity() {
     // 004 Sec. 4.1.5 and Fig. 4.26: with k_e by Eq. 4.23 (k_e_max = 13000 N/m) restitution rises, then falls.
     let s = load_dependent(ModelKind::PashaSimplified);
     let eff = Effective::from_scene(&s).unwrap();
-    let law = PashaSimplified::from_scene(&s, &eff).unwrap();
+    let law = PashaSimplified::from_pair(&eff, &s.laws).unwrap();
     let e = |v: f64| restitution::pasha_simplified(&law, eff.mass, v).restitution;
     let curve: Vec<f64> = [2.0, 5.0, 10.0, 20.0, 40.0, 80.0].iter().map(|v| e(*v)).collect();
     let peak = curve.iter().cloned().fold(0.0, f64::max);
@@ -120,13 +121,13 @@ fn luding_sticks_up_to_about_13_8_m_per_s_at_12_percent_of_the_radius() {
     // 004 Sec. 4.1.5: Table 4.2 with k_2_hat = 1500 N/m, phi_f = 0.02 (alpha* ~ 0.114 um): sticking ~13.8 m/s,
     // where alpha_max ~ 12 % of R.
     let mut s = table4_2(ModelKind::Luding);
-    s.luding_loading_stiffness = Some(210.0);
-    s.luding_max_unloading_stiffness = Some(1500.0);
-    s.luding_adhesion_stiffness = 20.0;
-    s.luding_plasticity_depth = 0.02;
-    s.luding_contact_adhesion_force = Some(2.1e-6);
+    s.laws.luding.luding_loading_stiffness = Some(210.0);
+    s.laws.luding.luding_max_unloading_stiffness = Some(1500.0);
+    s.laws.luding.luding_adhesion_stiffness = 20.0;
+    s.laws.luding.luding_plasticity_depth = 0.02;
+    s.laws.luding.luding_contact_adhesion_force = Some(2.1e-6);
     let eff = Effective::from_scene(&s).unwrap();
-    let law = Luding::from_scene(&s, &eff).unwrap();
+    let law = Luding::from_pair(&eff, &s.laws).unwrap();
     assert!(rel(law.alpha_star, 0.114e-6) < 0.01, "alpha* {}", law.alpha_star);
     let v_s = energy_balance::sticking_velocity(&law, eff.mass, 2.45e-6, 5.0, 30.0).unwrap();
     assert!(rel(v_s, 13.8) < 0.01, "Luding sticking velocity {v_s}");
@@ -158,7 +159,7 @@ fn thornton_ning_on_table_4_1_detaches_near_1_6_m_per_s_like_the_linear_laws() {
 fn load_dependent_ke_is_continuous_at_yield() {
     let s = load_dependent(ModelKind::Pasha);
     let eff = Effective::from_scene(&s).unwrap();
-    let law = Pasha::from_scene(&s, &eff).unwrap();
+    let law = Pasha::from_pair(&eff, &s.laws).unwrap();
     let before = law.points(law.alpha_0);
     let after = law.points(law.alpha_0 * (1.0 + 1e-9));
     assert!(rel(after.k_e, before.k_e) < 1e-6, "{} vs {}", after.k_e, before.k_e);

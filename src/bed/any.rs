@@ -11,7 +11,7 @@ use crate::scene::ModelKind;
 
 /// Defines `AnyEngine`, `with_engine!` and the engine of a law from the rows of `law_table!`.
 macro_rules! define_any_engine {
-    ($d:tt; $($variant:ident, $name:literal, $ty:ty, $pl:literal;)*) => {
+    ($d:tt; $($variant:ident, $module:ident, $ty:ty, $pl:literal;)*) => {
         /// The bed's engine, compiled for the law of its scene.
         pub enum AnyEngine {
             $($variant(Engine<$ty>),)*

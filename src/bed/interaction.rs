@@ -26,7 +26,7 @@ pub trait BedLaw: NormalLaw<History: Send + Sync + Serialize + DeserializeOwned>
 
 /// Makes every law of `law_table!` a `BedLaw`.
 macro_rules! bed_law {
-    ($d:tt; $($variant:ident, $name:literal, $ty:ty, $pl:literal;)*) => {
+    ($d:tt; $($variant:ident, $module:ident, $ty:ty, $pl:literal;)*) => {
         $(impl BedLaw for $ty {
             fn from_any(law: AnyLaw) -> Option<Self> {
                 match law {
@@ -100,7 +100,7 @@ pub struct Interaction<L: BedLaw> {
 impl<L: BedLaw> Interaction<L> {
     /// Builds the interaction of a scene's law for a pair of these effective properties.
     fn from_pair(scene: &Scene, pair: &Effective, rolling_friction: f64) -> Result<Interaction<L>, ParamError> {
-        let any = AnyLaw::from_pair(scene, pair)?;
+        let any = AnyLaw::from_pair(scene.contact_model, pair, &scene.laws)?;
         let model = any.model();
         let law = L::from_any(any).ok_or_else(|| ParamError::Inconsistent {
             name: "contact_model",

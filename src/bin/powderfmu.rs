@@ -131,7 +131,7 @@ fn print_analyze_help() {
     println!("parameters and the closed-form results. With --velocity V [m/s] it adds one undamped impact of");
     println!("the active law on the wall by energy balance.\n\nSCENE KEYS\n");
     for k in KEYS.iter() {
-        println!("  {:<32} [{}] default {}\n      {}", k.name, k.unit, k.default, k.doc);
+        println!("  {:<32} [{}] default {}, allowed {}\n      {}", k.name, k.unit, k.default_text(), k.allowed_text(), k.doc);
     }
     println!("\nOUTPUT KEYS (the `units` object of the output repeats the unit of each)\n");
     for o in OUTPUTS {

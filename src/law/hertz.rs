@@ -2,10 +2,10 @@
 
 use super::params::Effective;
 use super::tangential::TangentialModel;
-use super::LawInfo;
+use super::{LawInfo, LawOptions};
 use super::{Branch, Evaluation, NormalLaw};
 use crate::error::ParamError;
-use crate::scene::Scene;
+use crate::scene::NoOptions;
 
 #[derive(Debug, Clone, PartialEq)]
 pub struct Hertz {
@@ -70,7 +70,8 @@ impl NormalLaw for Hertz {
 
 impl LawInfo for Hertz {
     const TANGENTIAL: TangentialModel = TangentialModel::Mindlin;
-    fn from_scene(_s: &Scene, eff: &Effective) -> Result<Hertz, ParamError> {
+    type Options = NoOptions;
+    fn from_pair(eff: &Effective, _options: &LawOptions) -> Result<Hertz, ParamError> {
         Ok(Hertz::new(eff.radius, eff.youngs_modulus))
     }
 }

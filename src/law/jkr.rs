@@ -8,10 +8,10 @@
 
 use super::params::Effective;
 use super::tangential::TangentialModel;
-use super::LawInfo;
+use super::{LawInfo, LawOptions};
 use super::{Branch, Evaluation, NormalLaw};
 use crate::error::ParamError;
-use crate::scene::Scene;
+use crate::scene::NoOptions;
 use std::f64::consts::PI;
 
 /// The JKR curve of one radius of curvature: all the geometry Thornton-Ning and the JKR laws share.
@@ -267,7 +267,8 @@ impl NormalLaw for Jkr {
 
 impl LawInfo for Jkr {
     const TANGENTIAL: TangentialModel = TangentialModel::Mindlin;
-    fn from_scene(_s: &Scene, eff: &Effective) -> Result<Jkr, ParamError> {
+    type Options = NoOptions;
+    fn from_pair(eff: &Effective, _options: &LawOptions) -> Result<Jkr, ParamError> {
         Ok(Jkr::new(eff.radius, eff.youngs_modulus, eff.surface_energy))
     }
 }

@@ -5,10 +5,10 @@
 use super::jkr::{on_curve_at, JkrCurve};
 use super::params::Effective;
 use super::tangential::TangentialModel;
-use super::LawInfo;
+use super::{LawInfo, LawOptions};
 use super::{Branch, Evaluation, NormalLaw};
 use crate::error::ParamError;
-use crate::scene::Scene;
+use crate::scene::NoOptions;
 
 #[derive(Debug, Clone, PartialEq)]
 pub struct JkrModified {
@@ -92,7 +92,8 @@ impl NormalLaw for JkrModified {
 
 impl LawInfo for JkrModified {
     const TANGENTIAL: TangentialModel = TangentialModel::Mindlin;
-    fn from_scene(_s: &Scene, eff: &Effective) -> Result<JkrModified, ParamError> {
+    type Options = NoOptions;
+    fn from_pair(eff: &Effective, _options: &LawOptions) -> Result<JkrModified, ParamError> {
         Ok(JkrModified::new(eff.radius, eff.youngs_modulus, eff.surface_energy))
     }
 }

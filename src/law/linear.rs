@@ -1,9 +1,9 @@
 //! The linear spring (`004` Sec. 3.4.1.1, Eq. 3.9): f = k_n alpha for alpha > 0. No history.
 
 use super::params::{k_el_default, Effective};
-use super::{Branch, Evaluation, LawInfo, NormalLaw};
+use super::{Branch, Evaluation, LawInfo, LawOptions, NormalLaw};
 use crate::error::ParamError;
-use crate::scene::{Key, KeyKind, Scene};
+use crate::scene::Range;
 
 #[derive(Debug, Clone, PartialEq)]
 pub struct Linear {
@@ -47,16 +47,20 @@ impl NormalLaw for Linear {
     }
 }
 
+crate::scene_options! {
+    /// The linear spring's own scene key.
+    pub struct LinearOptions {
+        linear_stiffness: derived("elastic_stiffness"), "N/m", Range::Open(0.0, 1e12), "k_n of the linear spring (004 Eq. 3.9)";
+    }
+}
+
 impl LawInfo for Linear {
-    /// This law's own scene keys (composed into `scene::KEYS`).
-    const KEYS: &'static [Key] = &[
-        Key { name: "linear_stiffness", unit: "N/m", kind: KeyKind::Derived, default: "elastic_stiffness", doc: "k_n of the linear spring (004 Eq. 3.9)" },
-    ];
+    type Options = LinearOptions;
     /// k_n from `linear_stiffness`, else `elastic_stiffness`, else pi R* p_y (000 Eq. 52).
-    fn from_scene(s: &Scene, eff: &Effective) -> Result<Linear, ParamError> {
-        let k = match (s.linear_stiffness, s.elastic_stiffness) {
+    fn from_pair(pair: &Effective, options: &LawOptions) -> Result<Linear, ParamError> {
+        let k = match (options.linear.linear_stiffness, options.stiffness.elastic_stiffness) {
             (Some(k), _) | (None, Some(k)) => k,
-            _ => k_el_default(eff.radius, eff.require_yield_pressure("linear (no linear_stiffness given)")?),
+            _ => k_el_default(pair.radius, pair.require_yield_pressure("linear (no linear_stiffness given)")?),
         };
         Ok(Linear { stiffness: k })
     }

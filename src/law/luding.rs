@@ -13,9 +13,9 @@
 //! new: it keeps no history (the model's defining flaw, 004 Sec. 3.4.4.5).
 
 use super::params::{k_el_default, Effective};
-use super::{Branch, Evaluation, LawInfo, NormalLaw};
+use super::{Branch, Evaluation, LawInfo, LawOptions, NormalLaw};
 use crate::error::ParamError;
-use crate::scene::{Key, KeyKind, Scene};
+use crate::scene::Range;
 
 #[derive(Debug, Clone, PartialEq)]
 pub struct Luding {
@@ -126,28 +126,33 @@ impl NormalLaw for Luding {
     }
 }
 
+crate::scene_options! {
+    /// The Luding law's own scene keys.
+    pub struct LudingOptions {
+        luding_loading_stiffness: derived("plastic_stiffness, else pi R* p_y"), "N/m", Range::Open(0.0, 1e12), "k_1, plastic loading stiffness (003 Eq. 4)";
+        luding_max_unloading_stiffness: derived("5 k_1"), "N/m", Range::Open(0.0, 1e12), "k_2 hat, the unloading stiffness reached at alpha* (004 Eqs. 3.71, 3.74)";
+        luding_adhesion_stiffness: number(0.0), "N/m", Range::ClosedLow(0.0, 1e12), "k_c, slope of the adhesion limit -k_c alpha - f_0 (003 Eq. 4)";
+        luding_plasticity_depth: number(0.05), "-", Range::Open(0.0, 0.5), "phi_f, dimensionless plasticity depth: alpha* = k2/(k2 - k1) phi_f 2 R* (004 Eq. 3.71)";
+        luding_contact_adhesion_force: derived("8/9 f_ce"), "N", Range::ClosedLow(0.0, 1e6), "f_0, attraction at first contact (003 Eq. 4; 004 Table 4.2 sets it to 8/9 f_ce)";
+    }
+}
+
 impl LawInfo for Luding {
-    /// This law's own scene keys (composed into `scene::KEYS`).
-    const KEYS: &'static [Key] = &[
-        Key { name: "luding_loading_stiffness", unit: "N/m", kind: KeyKind::Derived, default: "plastic_stiffness, else pi R* p_y", doc: "k_1, plastic loading stiffness (003 Eq. 4)" },
-        Key { name: "luding_max_unloading_stiffness", unit: "N/m", kind: KeyKind::Derived, default: "5 k_1", doc: "k_2 hat, the unloading stiffness reached at alpha* (004 Eqs. 3.71, 3.74)" },
-        Key { name: "luding_adhesion_stiffness", unit: "N/m", kind: KeyKind::Number, default: "0", doc: "k_c, slope of the adhesion limit -k_c alpha - f_0 (003 Eq. 4)" },
-        Key { name: "luding_plasticity_depth", unit: "-", kind: KeyKind::Number, default: "0.05", doc: "phi_f, dimensionless plasticity depth: alpha* = k2/(k2 - k1) phi_f 2 R* (004 Eq. 3.71)" },
-        Key { name: "luding_contact_adhesion_force", unit: "N", kind: KeyKind::Derived, default: "8/9 f_ce", doc: "f_0, attraction at first contact (003 Eq. 4; 004 Table 4.2 sets it to 8/9 f_ce)" },
-    ];
-    fn from_scene(s: &Scene, eff: &Effective) -> Result<Luding, ParamError> {
-        let k1 = match (s.luding_loading_stiffness, s.plastic_stiffness) {
+    type Options = LudingOptions;
+    fn from_pair(pair: &Effective, options: &LawOptions) -> Result<Luding, ParamError> {
+        let own = &options.luding;
+        let k1 = match (own.luding_loading_stiffness, options.stiffness.plastic_stiffness) {
             (Some(k), _) | (None, Some(k)) => k,
-            _ => k_el_default(eff.radius, eff.require_yield_pressure("luding (no luding_loading_stiffness given)")?),
+            _ => k_el_default(pair.radius, pair.require_yield_pressure("luding (no luding_loading_stiffness given)")?),
         };
-        let k2_hat = s.luding_max_unloading_stiffness.unwrap_or(5.0 * k1);
+        let k2_hat = own.luding_max_unloading_stiffness.unwrap_or(5.0 * k1);
         if k2_hat <= k1 {
             return Err(ParamError::Inconsistent {
                 name: "luding_max_unloading_stiffness",
                 why: format!("k_2_hat = {k2_hat:e} N/m must exceed k_1 = {k1:e} N/m (004 Eq. 3.71)"),
             });
         }
-        let f0 = s.luding_contact_adhesion_force.unwrap_or(8.0 / 9.0 * eff.f_ce());
-        Ok(Luding::new(k1, k2_hat, s.luding_adhesion_stiffness, f0, s.luding_plasticity_depth, eff.radius))
+        let f0 = own.luding_contact_adhesion_force.unwrap_or(8.0 / 9.0 * pair.f_ce());
+        Ok(Luding::new(k1, k2_hat, own.luding_adhesion_stiffness, f0, own.luding_plasticity_depth, pair.radius))
     }
 }

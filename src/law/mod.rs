@@ -21,7 +21,8 @@ pub mod tomas;
 pub mod walton_braun;
 
 use crate::error::ParamError;
-use crate::scene::{Key, ModelKind, Scene};
+use crate::scene::{Key, ModelKind, Options, Scene};
+use serde_json::{Map, Value};
 use params::Effective;
 use tangential::TangentialModel;
 
@@ -141,22 +142,58 @@ pub trait NormalLaw {
     }
 }
 
-/// What a law says about itself beyond its force, for the table (`law_table!`): how a scene builds it,
-/// which tangential stiffness goes with it, and its damping factor after yield.
+/// What a law says about itself beyond its force, for the table (`law_table!`): its options, how a pair
+/// builds it, which tangential stiffness goes with it, and its damping factor after yield.
 pub trait LawInfo: NormalLaw + Sized {
+    /// The law's own scene keys as a typed group (`scene_options!`), declared beside the law;
+    /// `scene::NoOptions` for a law without any.
+    type Options: Options + std::fmt::Debug + Clone + PartialEq;
     /// The tangential stiffness model of the law (`tangential::TangentialStiffness`).
     const TANGENTIAL: TangentialModel = TangentialModel::Ratio;
     /// beta of 000 Eq. 26 after yield when the scene gives none; `None`: the one before yield (004 Eq. 4.25).
     const PLASTIC_DAMPING_FACTOR: Option<f64> = None;
-    /// The law's own scene keys (composed into `scene::KEYS` after the common ones).
-    const KEYS: &'static [Key] = &[];
-    /// The law of a scene, its parameters derived and checked; an error names the parameter.
-    fn from_scene(s: &Scene, eff: &Effective) -> Result<Self, ParamError>;
+    /// The law of a contact pair (R*, m*, E*, G*, p_y, Gamma) under the laws' options (its own, the
+    /// shared stiffnesses, and, for a law built on another's, that one's), its parameters derived and
+    /// checked; an error names the parameter.
+    fn from_pair(pair: &Effective, options: &LawOptions) -> Result<Self, ParamError>;
 }
 
 /// Defines `AnyLaw`, `AnyHistory` and their dispatch from the rows of `law_table!`.
 macro_rules! define_any_law {
-    ($d:tt; $($variant:ident, $name:literal, $ty:ty, $pl:literal;)*) => {
+    ($d:tt; $($variant:ident, $module:ident, $ty:ty, $pl:literal;)*) => {
+        /// The laws' options: the stiffnesses several laws share (`params::StiffnessOptions`), then each
+        /// law's own (`LawInfo::Options`), one field per line of the table, named by its module.
+        #[derive(Debug, Clone, PartialEq)]
+        pub struct LawOptions {
+            pub stiffness: params::StiffnessOptions,
+            $(pub $module: <$ty as LawInfo>::Options,)*
+        }
+
+        impl Options for LawOptions {
+            const OWN_KEYS: &'static [Key] = &[];
+
+            fn keys(out: &mut Vec<Key>) {
+                params::StiffnessOptions::keys(out);
+                $(<$ty as LawInfo>::Options::keys(out);)*
+            }
+
+            fn defaults() -> LawOptions {
+                LawOptions { stiffness: params::StiffnessOptions::defaults(), $($module: <$ty as LawInfo>::Options::defaults(),)* }
+            }
+
+            fn read(&mut self, map: &Map<String, Value>) -> Result<(), ParamError> {
+                self.stiffness.read(map)?;
+                $(self.$module.read(map)?;)*
+                Ok(())
+            }
+
+            fn check(&self) -> Result<(), ParamError> {
+                self.stiffness.check()?;
+                $(self.$module.check()?;)*
+                Ok(())
+            }
+        }
+
         /// Any of the laws, chosen at run time from a scene. Dispatch is one `match`.
         #[derive(Debug, Clone, PartialEq)]
         pub enum AnyLaw {
@@ -172,15 +209,14 @@ macro_rules! define_any_law {
         impl AnyLaw {
             /// Builds the scene's law with its parameters derived and checked.
             pub fn from_scene(s: &Scene) -> Result<AnyLaw, ParamError> {
-                AnyLaw::from_pair(s, &Effective::from_scene(s)?)
+                AnyLaw::from_pair(s.contact_model, &Effective::from_scene(s)?, &s.laws)
             }
 
-            /// Builds the scene's law for a pair of given effective properties (R*, m*, E*, G*, p_y,
-            /// Gamma): the scene gives the law and its options, `pair` the geometry and materials. The
-            /// bed mixes each pair of species into one (`bed::interaction`).
-            pub fn from_pair(s: &Scene, pair: &Effective) -> Result<AnyLaw, ParamError> {
-                Ok(match s.contact_model {
-                    $(ModelKind::$variant => AnyLaw::$variant(<$ty as LawInfo>::from_scene(s, pair)?),)*
+            /// Builds the law `model` for a pair of effective properties (R*, m*, E*, G*, p_y, Gamma)
+            /// under the laws' options. The bed mixes each pair of species into one (`bed::interaction`).
+            pub fn from_pair(model: ModelKind, pair: &Effective, options: &LawOptions) -> Result<AnyLaw, ParamError> {
+                Ok(match model {
+                    $(ModelKind::$variant => AnyLaw::$variant(<$ty as LawInfo>::from_pair(pair, options)?),)*
                 })
             }
 
@@ -196,13 +232,6 @@ macro_rules! define_any_law {
             pub fn tangential_model(self) -> TangentialModel {
                 match self {
                     $(ModelKind::$variant => <$ty as LawInfo>::TANGENTIAL,)*
-                }
-            }
-
-            /// The law's own scene keys (`LawInfo::KEYS`).
-            pub fn own_keys(self) -> &'static [Key] {
-                match self {
-                    $(ModelKind::$variant => <$ty as LawInfo>::KEYS,)*
                 }
             }
 

@@ -16,10 +16,52 @@
 
 use super::params::Effective;
 use super::params::NanParams;
-use super::LawInfo;
-use super::{Branch, Evaluation, NormalLaw};
+use super::{Branch, Evaluation, LawInfo, LawOptions, NormalLaw};
 use crate::error::ParamError;
-use crate::scene::{Key, KeyKind, Scene};
+use crate::scene::Range;
+
+crate::choice_enum! {
+    /// How k_e grows after yield in the Nan law.
+    pub enum UnloadingStiffnessLaw {
+        /// 000 Eqs. 42-46.
+        Sqrt = "sqrt",
+        /// 000 Eqs. 47-49.
+        SqrtPlusPlastic = "sqrt_plus_plastic",
+    }
+}
+
+crate::choice_enum! {
+    /// How the maximum pull-off force grows after yield in the Nan law (000 Table 4).
+    pub enum PullOffLaw {
+        /// 000 Eq. 59.
+        Energy = "energy",
+        /// 000 Eq. 61.
+        Pasha = "pasha",
+        /// 000 Eq. 64.
+        Curvature = "curvature",
+        /// 000 Eq. 67.
+        WorkRatio = "work_ratio",
+    }
+}
+
+crate::choice_enum! {
+    /// Which form of the k_cl correlation.
+    pub enum AdhesiveStiffnessLaw {
+        /// 000 Eq. 36 with Eq. 37.
+        Exact = "exact",
+        /// 000 Eq. 38.
+        Approximate = "approximate",
+    }
+}
+
+crate::scene_options! {
+    /// The Nan law's own scene keys.
+    pub struct NanOptions {
+        unloading_stiffness_law: choice(UnloadingStiffnessLaw::Sqrt), "-", Range::Names, "nan k_e after yield: sqrt, k_e = k_el sqrt(alpha_max/alpha_y) (000 Eq. 46); sqrt_plus_plastic, k_e = k_p + (k_el - k_p) sqrt(alpha_max/alpha_y) (000 Eqs. 47-49)";
+        pull_off_law: choice(PullOffLaw::Energy), "-", Range::Names, "nan f_cp: energy (000 Eq. 59), pasha (Eq. 61), curvature (Eq. 64), work_ratio (Eq. 67)";
+        adhesive_stiffness_law: choice(AdhesiveStiffnessLaw::Exact), "-", Range::Names, "nan k_cl: exact (000 Eq. 36 with W_JKR of Eq. 37) or approximate (Eq. 38)";
+    }
+}
 
 #[derive(Debug, Clone, PartialEq)]
 pub struct Nan {
@@ -157,15 +199,10 @@ impl NormalLaw for Nan {
 }
 
 impl LawInfo for Nan {
-    /// This law's own scene keys (composed into `scene::KEYS`).
-    const KEYS: &'static [Key] = &[
-        Key { name: "unloading_stiffness_law", unit: "-", kind: KeyKind::Choice, default: "sqrt", doc: "nan k_e after yield: sqrt, k_e = k_el sqrt(alpha_max/alpha_y) (000 Eq. 46); sqrt_plus_plastic, k_e = k_p + (k_el - k_p) sqrt(alpha_max/alpha_y) (000 Eqs. 47-49)" },
-        Key { name: "pull_off_law", unit: "-", kind: KeyKind::Choice, default: "energy", doc: "nan f_cp: energy (000 Eq. 59), pasha (Eq. 61), curvature (Eq. 64), work_ratio (Eq. 67)" },
-        Key { name: "adhesive_stiffness_law", unit: "-", kind: KeyKind::Choice, default: "exact", doc: "nan k_cl: exact (000 Eq. 36 with W_JKR of Eq. 37) or approximate (Eq. 38)" },
-    ];
+    type Options = NanOptions;
     /// 000 Sec. 2.3: beta = 0.1 after yield.
     const PLASTIC_DAMPING_FACTOR: Option<f64> = Some(0.1);
-    fn from_scene(s: &Scene, eff: &Effective) -> Result<Nan, ParamError> {
-        Ok(Nan::new(NanParams::from_scene(s, eff)?))
+    fn from_pair(pair: &Effective, options: &LawOptions) -> Result<Nan, ParamError> {
+        Ok(Nan::new(NanParams::from_pair(pair, &options.stiffness, &options.nan)?))
     }
 }

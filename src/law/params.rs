@@ -2,10 +2,23 @@
 //! `000` Sec. 3 (yield point, stiffnesses, pull-off force). Each function is one equation.
 
 use crate::error::ParamError;
-use crate::scene::{AdhesiveStiffnessLaw, Partner, PullOffLaw, Scene, UnloadingStiffnessLaw, YieldCorrelation};
+use super::nan::{AdhesiveStiffnessLaw, NanOptions, PullOffLaw, UnloadingStiffnessLaw};
+use crate::scene::{Partner, Range, Scene, YieldCorrelation};
 use std::f64::consts::PI;
 
-/// Effective properties of the contact pair (DESIGN 4 conventions).
+crate::scene_options! {
+    /// The stiffnesses several laws share (nan, the Pasha laws, linear, walton_braun, luding): given, or
+    /// derived from the pair by 000 Eq. 52 or a measured unloading line.
+    pub struct StiffnessOptions {
+        elastic_stiffness: derived("pi R* p_y"), "N/m", Range::Open(0.0, 1e12), "k_el, elastic stiffness before yield (nan); constant k_e (pasha, pasha_simplified); unloading k_e (walton_braun). Default 000 Eq. 52";
+        unloading_stiffness_reference: derived("none"), "N/m", Range::Open(0.0, 1e12), "k_e0 of a measured unloading line; with unloading_overlap_reference gives k_el by 000 Eqs. 45 and 29 (or 49)";
+        unloading_overlap_reference: derived("none"), "m", Range::Open(0.0, 1.0), "alpha_max0, the overlap at which the measured unloading line with k_e0 starts (000 Eq. 43)";
+        plastic_stiffness: derived("elastic_stiffness"), "N/m", Range::Open(0.0, 1e12), "k_p, plastic loading stiffness (000 Eq. 18, 004 Eq. 4.3); must not exceed k_el";
+    }
+}
+
+/// The typed description of a contact pair every law is built from (DESIGN 4 conventions): effective
+/// geometry, mass and materials. A scene gives one (`from_scene`); the bed mixes one per pair of species.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Effective {
     /// R* = R1 R2 / (R1 + R2); a wall: R [m].
@@ -20,25 +33,13 @@ pub struct Effective {
     pub surface_energy: f64,
     /// p_y = min(p_y1, p_y2) (000 Sec. 3.1), after the strain-rate law if one is given [Pa].
     pub yield_pressure: Option<f64>,
-    /// Particle density [kg/m^3], for the time steps.
-    pub density: f64,
-    /// Particle shear modulus G = E / (2 (1 + nu)) [Pa], for the Rayleigh time step.
-    pub particle_shear_modulus: f64,
-    /// Particle Poisson ratio.
-    pub poisson_ratio: f64,
-    /// Particle radius R (not reduced) [m].
-    pub particle_radius: f64,
-    /// Particle mass m [kg].
-    pub particle_mass: f64,
 }
 
 impl Effective {
     pub fn from_scene(s: &Scene) -> Result<Effective, ParamError> {
         s.validate()?;
-        let r = s.particle_radius;
-        let m = 4.0 / 3.0 * PI * r.powi(3) * s.particle_density;
-        let (e1, nu1) = (s.particle_youngs_modulus, s.particle_poisson_ratio);
-        let g1 = e1 / (2.0 * (1.0 + nu1));
+        let (r, m) = (s.particle_radius, s.particle_mass());
+        let (e1, nu1, g1) = (s.particle_youngs_modulus, s.particle_poisson_ratio, s.particle_shear_modulus());
         let (radius, mass, inv_e2, inv_g2) = match s.contact_partner {
             Partner::Wall => match s.wall_youngs_modulus {
                 Some(e2) => {
@@ -85,11 +86,6 @@ impl Effective {
             shear_modulus,
             surface_energy: s.surface_energy,
             yield_pressure,
-            density: s.particle_density,
-            particle_shear_modulus: g1,
-            poisson_ratio: nu1,
-            particle_radius: r,
-            particle_mass: m,
         })
     }
 
@@ -256,13 +252,14 @@ pub struct NanParams {
 impl NanParams {
     /// Builds and checks the Nan parameters: k_el by Eq. 52, given, or from a measured unloading line;
     /// k_p given or k_el; k_cl by Eq. 36 or 38; the yield point by Eqs. 28-29.
-    pub fn from_scene(s: &Scene, eff: &Effective) -> Result<NanParams, ParamError> {
+    pub fn from_pair(eff: &Effective, stiffness: &StiffnessOptions, own: &NanOptions) -> Result<NanParams, ParamError> {
+        let s = stiffness;
         let p_y = eff.require_yield_pressure("nan")?;
         let (r, e, gamma) = (eff.radius, eff.youngs_modulus, eff.surface_energy);
         let f_ce = eff.f_ce();
         let k_el = match (s.elastic_stiffness, s.unloading_stiffness_reference, s.unloading_overlap_reference) {
             (Some(k), _, _) => k,
-            (None, Some(k_e0), Some(a0)) => k_el_from_unloading_line(eff, p_y, k_e0, a0, s.plastic_stiffness, s.unloading_stiffness_law)?,
+            (None, Some(k_e0), Some(a0)) => k_el_from_unloading_line(eff, p_y, k_e0, a0, s.plastic_stiffness, own.unloading_stiffness_law)?,
             _ => k_el_default(r, p_y),
         };
         let k_p = s.plastic_stiffness.unwrap_or(k_el);
@@ -276,7 +273,7 @@ impl NanParams {
         let kel_over_kcl = if gamma == 0.0 {
             1.0
         } else {
-            match s.adhesive_stiffness_law {
+            match own.adhesive_stiffness_law {
                 AdhesiveStiffnessLaw::Exact => kel_over_kcl_exact(f_ce, k_el, w).ok_or_else(|| {
                     // Gamma^(1/3) < 7.09 k_el 162 / (17 * 2.25 pi^2 (E* R*)^(2/3)) keeps Eq. 36 positive.
                     let g_max = (7.09 * 162.0 * k_el / (17.0 * 2.25 * PI * PI * (e * r).powf(2.0 / 3.0))).powi(3);
@@ -319,8 +316,8 @@ impl NanParams {
             alpha_y: alpha_0 + f_y / k_el,
             alpha_0,
             w_jkr: w,
-            unloading_stiffness_law: s.unloading_stiffness_law,
-            pull_off_law: s.pull_off_law,
+            unloading_stiffness_law: own.unloading_stiffness_law,
+            pull_off_law: own.pull_off_law,
         })
     }
 

@@ -20,9 +20,27 @@
 //! alpha_0 = 8/9 f_ce / k_e, so k_e is continuous at yield).
 
 use super::params::Effective;
-use super::{Branch, Evaluation, LawInfo, NormalLaw};
+use super::params::StiffnessOptions;
+use super::{Branch, Evaluation, LawInfo, LawOptions, NormalLaw};
 use crate::error::ParamError;
-use crate::scene::{Key, KeyKind, PashaStiffnessLaw, Scene};
+use crate::scene::Range;
+
+crate::choice_enum! {
+    /// Constant or load-dependent unloading stiffness in the Pasha laws.
+    pub enum PashaStiffnessLaw {
+        Constant = "constant",
+        /// 004 Eq. 4.23.
+        LoadDependent = "load_dependent",
+    }
+}
+
+crate::scene_options! {
+    /// The Pasha law's own scene keys (its unloading stiffness, which pasha_simplified shares).
+    pub struct PashaOptions {
+        pasha_stiffness_law: choice(PashaStiffnessLaw::Constant), "-", Range::Names, "pasha k_e: constant, or load_dependent k_e = k_p + (r/R*)^2 (k_e_max - k_p), r^2 = 2 R* alpha_max - alpha_max^2 (004 Eqs. 4.21-4.23)";
+        pasha_max_elastic_stiffness: derived("none"), "N/m", Range::Open(0.0, 1e12), "k_e_max of 004 Eq. 4.23 (the stiffness at an overlap of R*); required with load_dependent";
+    }
+}
 use std::f64::consts::PI;
 
 #[derive(Debug, Clone, PartialEq)]
@@ -66,16 +84,16 @@ impl PashaStiffness {
     }
 
     /// Reads `elastic_stiffness` (or `pasha_max_elastic_stiffness`) and `plastic_stiffness` and checks k_e >= k_p.
-    pub fn from_scene(s: &Scene, eff: &Effective, model: &str) -> Result<PashaStiffness, ParamError> {
+    pub fn from_options(eff: &Effective, s: &StiffnessOptions, own: &PashaOptions, model: &str) -> Result<PashaStiffness, ParamError> {
         let k_e = match s.elastic_stiffness {
             Some(k) => k,
             None => super::params::k_el_default(eff.radius, eff.require_yield_pressure(model)?),
         };
         let k_p = s.plastic_stiffness.unwrap_or(k_e);
-        let (law, k_top, top_name) = match s.pasha_stiffness_law {
+        let (law, k_top, top_name) = match own.pasha_stiffness_law {
             PashaStiffnessLaw::Constant => (PashaStiffnessLaw::Constant, k_e, "elastic_stiffness"),
             PashaStiffnessLaw::LoadDependent => {
-                let k_max = s.pasha_max_elastic_stiffness.ok_or_else(|| ParamError::Missing {
+                let k_max = own.pasha_max_elastic_stiffness.ok_or_else(|| ParamError::Missing {
                     name: "pasha_max_elastic_stiffness",
                     why: "pasha_stiffness_law load_dependent needs k_e_max (004 Eq. 4.23)".into(),
                 })?;
@@ -218,13 +236,9 @@ impl NormalLaw for Pasha {
 }
 
 impl LawInfo for Pasha {
-    /// This law's own scene keys (composed into `scene::KEYS`).
-    const KEYS: &'static [Key] = &[
-        Key { name: "pasha_stiffness_law", unit: "-", kind: KeyKind::Choice, default: "constant", doc: "pasha k_e: constant, or load_dependent k_e = k_p + (r/R*)^2 (k_e_max - k_p), r^2 = 2 R* alpha_max - alpha_max^2 (004 Eqs. 4.21-4.23)" },
-        Key { name: "pasha_max_elastic_stiffness", unit: "N/m", kind: KeyKind::Derived, default: "none", doc: "k_e_max of 004 Eq. 4.23 (the stiffness at an overlap of R*); required with load_dependent" },
-    ];
-    fn from_scene(s: &Scene, eff: &Effective) -> Result<Pasha, ParamError> {
-        let stiffness = PashaStiffness::from_scene(s, eff, "pasha")?;
-        Ok(Pasha::new(eff.radius, eff.surface_energy, stiffness))
+    type Options = PashaOptions;
+    fn from_pair(pair: &Effective, options: &LawOptions) -> Result<Pasha, ParamError> {
+        let stiffness = PashaStiffness::from_options(pair, &options.stiffness, &options.pasha, "pasha")?;
+        Ok(Pasha::new(pair.radius, pair.surface_energy, stiffness))
     }
 }

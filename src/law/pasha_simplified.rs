@@ -9,9 +9,9 @@
 
 use super::params::Effective;
 use super::pasha::{pasha_evaluate, PashaHistory, PashaPoints, PashaStiffness};
-use super::{Evaluation, LawInfo, NormalLaw};
+use super::{Evaluation, LawInfo, LawOptions, NormalLaw};
 use crate::error::ParamError;
-use crate::scene::{Key, KeyKind, Scene};
+use crate::scene::Range;
 
 #[derive(Debug, Clone, PartialEq)]
 pub struct PashaSimplified {
@@ -77,16 +77,21 @@ impl NormalLaw for PashaSimplified {
     }
 }
 
+crate::scene_options! {
+    /// The simplified Pasha law's own scene keys (its unloading stiffness is the Pasha law's options).
+    pub struct PashaSimplifiedOptions {
+        pasha_pull_off_stiffness: number(0.0), "N/m", Range::ClosedLow(0.0, 1e12), "k_cp, slope of the linear pull-off locus f_cp = k_cp alpha_cp + f_0p (004 Eq. 4.17; pasha_simplified)";
+        pasha_pull_off_intercept: derived("f_ce"), "N", Range::ClosedLow(0.0, 1e6), "f_0p of the linear pull-off locus (004 Eq. 4.17; pasha_simplified); at least 8/9 f_ce";
+    }
+}
+
 impl LawInfo for PashaSimplified {
-    /// This law's own scene keys (composed into `scene::KEYS`).
-    const KEYS: &'static [Key] = &[
-        Key { name: "pasha_pull_off_stiffness", unit: "N/m", kind: KeyKind::Number, default: "0", doc: "k_cp, slope of the linear pull-off locus f_cp = k_cp alpha_cp + f_0p (004 Eq. 4.17; pasha_simplified)" },
-        Key { name: "pasha_pull_off_intercept", unit: "N", kind: KeyKind::Derived, default: "f_ce", doc: "f_0p of the linear pull-off locus (004 Eq. 4.17; pasha_simplified); at least 8/9 f_ce" },
-    ];
-    fn from_scene(s: &Scene, eff: &Effective) -> Result<PashaSimplified, ParamError> {
-        let stiffness = PashaStiffness::from_scene(s, eff, "pasha_simplified")?;
-        let f_ce = eff.f_ce();
-        let f_0p = s.pasha_pull_off_intercept.unwrap_or(f_ce);
-        PashaSimplified::new(f_ce, stiffness, s.pasha_pull_off_stiffness, f_0p)
+    type Options = PashaSimplifiedOptions;
+    fn from_pair(pair: &Effective, options: &LawOptions) -> Result<PashaSimplified, ParamError> {
+        let stiffness = PashaStiffness::from_options(pair, &options.stiffness, &options.pasha, "pasha_simplified")?;
+        let own = &options.pasha_simplified;
+        let f_ce = pair.f_ce();
+        let f_0p = own.pasha_pull_off_intercept.unwrap_or(f_ce);
+        PashaSimplified::new(f_ce, stiffness, own.pasha_pull_off_stiffness, f_0p)
     }
 }

@@ -17,10 +17,10 @@
 use super::jkr::{on_curve, JkrCurve};
 use super::params::Effective;
 use super::tangential::TangentialModel;
-use super::{Branch, Evaluation, LawInfo, NormalLaw};
+use super::{Branch, Evaluation, LawInfo, LawOptions, NormalLaw};
 use crate::error::ParamError;
 use crate::numeric::brent;
-use crate::scene::Scene;
+use crate::scene::NoOptions;
 use std::f64::consts::PI;
 
 #[derive(Debug, Clone, PartialEq)]
@@ -188,7 +188,8 @@ impl NormalLaw for ThorntonNing {
 
 impl LawInfo for ThorntonNing {
     const TANGENTIAL: TangentialModel = TangentialModel::Mindlin;
-    fn from_scene(_s: &Scene, eff: &Effective) -> Result<ThorntonNing, ParamError> {
+    type Options = NoOptions;
+    fn from_pair(eff: &Effective, _options: &LawOptions) -> Result<ThorntonNing, ParamError> {
         let p_y = eff.require_yield_pressure("thornton_ning")?;
         Ok(ThorntonNing::new(eff.radius, eff.youngs_modulus, eff.surface_energy, p_y))
     }

@@ -21,10 +21,10 @@
 
 use super::params::Effective;
 use super::tangential::TangentialModel;
-use super::{Branch, Evaluation, LawInfo, NormalLaw};
-use crate::error::ParamError;
+use super::{Branch, Evaluation, LawInfo, LawOptions, NormalLaw};
+use crate::error::{check_closed_low, ParamError};
 use crate::numeric::brent;
-use crate::scene::{Key, KeyKind, Scene};
+use crate::scene::Range;
 use std::f64::consts::PI;
 
 #[derive(Debug, Clone, PartialEq)]
@@ -241,22 +241,29 @@ impl NormalLaw for Tomas {
     }
 }
 
+crate::scene_options! {
+    /// The Tomas law's own scene keys.
+    pub struct TomasOptions {
+        tomas_yield_strength: derived("p_y"), "Pa", Range::Open(0.0, 1e13), "p_f, plastic micro-yield strength of the contact (003 Table 1)";
+        tomas_area_coefficient: number(0.834), "-", Range::ClosedLow(2.0 / 3.0, 1.0 + f64::EPSILON), "kappa_A, elastic-plastic contact area coefficient in [2/3, 1] (004 Sec. 3.4.4.3); default from 003 Sec. 3.3 limestone";
+        tomas_repulsion_coefficient: number(0.152), "-", Range::ClosedLow(0.0, 1.0), "kappa_p, plastic repulsion coefficient p_vdW/p_f in [0, kappa_A) (003 Sec. 3.3 limestone)";
+        tomas_contact_adhesion_force: derived("2 pi Gamma R*"), "N", Range::ClosedLow(0.0, 1e6), "F_H0, van der Waals attraction at contact (004 Eqs. 3.50, 3.61)";
+        tomas_separation: number(4e-10), "m", Range::Open(0.0, 1.0), "a_F=0, minimum centre separation of the van der Waals force (004 Eq. 3.61: 0.3-0.4 nm)";
+    }
+}
+
 impl LawInfo for Tomas {
-    /// This law's own scene keys (composed into `scene::KEYS`).
-    const KEYS: &'static [Key] = &[
-        Key { name: "tomas_yield_strength", unit: "Pa", kind: KeyKind::Derived, default: "p_y", doc: "p_f, plastic micro-yield strength of the contact (003 Table 1)" },
-        Key { name: "tomas_area_coefficient", unit: "-", kind: KeyKind::Number, default: "0.834", doc: "kappa_A, elastic-plastic contact area coefficient in [2/3, 1] (004 Sec. 3.4.4.3); default from 003 Sec. 3.3 limestone" },
-        Key { name: "tomas_repulsion_coefficient", unit: "-", kind: KeyKind::Number, default: "0.152", doc: "kappa_p, plastic repulsion coefficient p_vdW/p_f in [0, kappa_A) (003 Sec. 3.3 limestone)" },
-        Key { name: "tomas_contact_adhesion_force", unit: "N", kind: KeyKind::Derived, default: "2 pi Gamma R*", doc: "F_H0, van der Waals attraction at contact (004 Eqs. 3.50, 3.61)" },
-        Key { name: "tomas_separation", unit: "m", kind: KeyKind::Number, default: "4e-10", doc: "a_F=0, minimum centre separation of the van der Waals force (004 Eq. 3.61: 0.3-0.4 nm)" },
-    ];
+    type Options = TomasOptions;
     const TANGENTIAL: TangentialModel = TangentialModel::Tomas;
-    fn from_scene(s: &Scene, eff: &Effective) -> Result<Tomas, ParamError> {
-        let p_f = match s.tomas_yield_strength {
+    fn from_pair(pair: &Effective, options: &LawOptions) -> Result<Tomas, ParamError> {
+        let own = &options.tomas;
+        // kappa_p < kappa_A (003 Sec. 3.3): a range across two keys.
+        check_closed_low("tomas_repulsion_coefficient", own.tomas_repulsion_coefficient, 0.0, own.tomas_area_coefficient, "(below tomas_area_coefficient)")?;
+        let p_f = match own.tomas_yield_strength {
             Some(p) => p,
-            None => eff.require_yield_pressure("tomas (no tomas_yield_strength given)")?,
+            None => pair.require_yield_pressure("tomas (no tomas_yield_strength given)")?,
         };
-        let f0 = s.tomas_contact_adhesion_force.unwrap_or(2.0 * PI * eff.surface_energy * eff.radius);
-        Ok(Tomas::new(eff.radius, eff.youngs_modulus, p_f, s.tomas_area_coefficient, s.tomas_repulsion_coefficient, f0, s.tomas_separation))
+        let f0 = own.tomas_contact_adhesion_force.unwrap_or(2.0 * PI * pair.surface_energy * pair.radius);
+        Ok(Tomas::new(pair.radius, pair.youngs_modulus, p_f, own.tomas_area_coefficient, own.tomas_repulsion_coefficient, f0, own.tomas_separation))
     }
 }

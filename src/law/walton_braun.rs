@@ -5,9 +5,9 @@
 //! k_e = k_p + S F_max (Eq. 3.38) when a stiffening slope S > 0 is given. No adhesion.
 
 use super::params::{k_el_default, Effective};
-use super::{Branch, Evaluation, LawInfo, NormalLaw};
+use super::{Branch, Evaluation, LawInfo, LawOptions, NormalLaw};
 use crate::error::ParamError;
-use crate::scene::{Key, KeyKind, Scene};
+use crate::scene::Range;
 
 #[derive(Debug, Clone, PartialEq)]
 pub struct WaltonBraun {
@@ -91,16 +91,21 @@ impl NormalLaw for WaltonBraun {
     }
 }
 
+crate::scene_options! {
+    /// The Walton-Braun law's own scene key.
+    pub struct WaltonBraunOptions {
+        walton_braun_stiffening_slope: number(0.0), "1/m", Range::ClosedLow(0.0, 1e12), "S of k_e = k_p + S F_max (004 Eq. 3.38); 0 keeps k_e constant";
+    }
+}
+
 impl LawInfo for WaltonBraun {
-    /// This law's own scene keys (composed into `scene::KEYS`).
-    const KEYS: &'static [Key] = &[
-        Key { name: "walton_braun_stiffening_slope", unit: "1/m", kind: KeyKind::Number, default: "0", doc: "S of k_e = k_p + S F_max (004 Eq. 3.38); 0 keeps k_e constant" },
-    ];
+    type Options = WaltonBraunOptions;
     /// k_e from `elastic_stiffness` (else pi R* p_y, 000 Eq. 52), k_p from `plastic_stiffness` (else k_e).
-    fn from_scene(s: &Scene, eff: &Effective) -> Result<WaltonBraun, ParamError> {
+    fn from_pair(pair: &Effective, options: &LawOptions) -> Result<WaltonBraun, ParamError> {
+        let s = &options.stiffness;
         let k_e = match s.elastic_stiffness {
             Some(k) => k,
-            None => k_el_default(eff.radius, eff.require_yield_pressure("walton_braun (no elastic_stiffness given)")?),
+            None => k_el_default(pair.radius, pair.require_yield_pressure("walton_braun (no elastic_stiffness given)")?),
         };
         let k_p = s.plastic_stiffness.unwrap_or(k_e);
         if k_p > k_e {
@@ -109,6 +114,6 @@ impl LawInfo for WaltonBraun {
                 why: format!("k_p = {k_p:e} N/m exceeds elastic_stiffness k_e = {k_e:e} N/m (004 Eq. 3.37 needs k_p <= k_e)"),
             });
         }
-        Ok(WaltonBraun { k_p, k_e, slope: s.walton_braun_stiffening_slope })
+        Ok(WaltonBraun { k_p, k_e, slope: options.walton_braun.walton_braun_stiffening_slope })
     }
 }

@@ -216,7 +216,7 @@ impl ParticleWallImpact {
             });
         }
         let rayleigh =
-            time_step::rayleigh_time_step(scene.particle_radius, scene.particle_density, eff.particle_shear_modulus, scene.particle_poisson_ratio);
+            time_step::rayleigh_time_step(scene.particle_radius, scene.particle_density, scene.particle_shear_modulus(), scene.particle_poisson_ratio);
         let solver = solver(values[refs.solver].as_str(), &contact.law, fraction * rayleigh)?;
         Ok((Sphere::new(eff.mass, g, contact, solver, tol), scene.particle_radius))
     }

@@ -6,7 +6,7 @@
 
 use super::variables::{fmi_unit, Value, Variable};
 use crate::error::ParamError;
-use crate::scene::{KeyKind, Scene, KEYS};
+use crate::scene::{KeyDefault, KeyKind, Scene, KEYS};
 use serde_json::{Map, Value as Json};
 
 /// The default scene of the units.
@@ -14,7 +14,7 @@ pub const DEFAULT_SCENE: &str = include_str!("../../scenes/ammonium_fluorescein_
 
 /// How a key reaches the FMU: its kind in the key table.
 pub fn key_kind(name: &str) -> KeyKind {
-    KEYS.iter().find(|k| k.name == name).expect("a scene key").kind
+    KEYS.iter().find(|k| k.name == name).expect("a scene key").kind()
 }
 
 /// One FMU parameter per scene key.
@@ -23,18 +23,22 @@ pub fn variables() -> Vec<Variable> {
     KEYS.iter()
         .map(|key| {
             let given = scene.get(key.name);
-            match key_kind(key.name) {
-                KeyKind::Choice => {
-                    let start = given.and_then(|v| v.as_str()).unwrap_or(key.default);
+            match key.default {
+                KeyDefault::Choice { default, .. } => {
+                    let start = given.and_then(|v| v.as_str()).unwrap_or(default);
                     Variable::parameter(key.name, Value::String(start.into()), "", key.doc)
                 }
-                KeyKind::Number | KeyKind::Required => {
-                    let start = given.and_then(|v| v.as_f64()).or_else(|| key.default.parse().ok()).expect("a required key is in the default scene");
+                KeyDefault::Number(default) => {
+                    let start = given.and_then(|v| v.as_f64()).unwrap_or(default);
                     Variable::parameter(key.name, Value::Real(start), fmi_unit(key.unit), key.doc)
                 }
-                KeyKind::Derived => {
+                KeyDefault::Required => {
+                    let start = given.and_then(|v| v.as_f64()).expect("a required key is in the default scene");
+                    Variable::parameter(key.name, Value::Real(start), fmi_unit(key.unit), key.doc)
+                }
+                KeyDefault::Derived(how) => {
                     let start = given.and_then(|v| v.as_f64()).unwrap_or(0.0);
-                    let doc = format!("{}. 0 = default: {}", key.doc, key.default);
+                    let doc = format!("{}. 0 = default: {how}", key.doc);
                     Variable::parameter(key.name, Value::Real(start), fmi_unit(key.unit), &doc).with_range(Some(0.0), None)
                 }
             }

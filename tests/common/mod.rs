@@ -49,10 +49,10 @@ pub fn table4_2_surface_energy() -> f64 {
 pub fn table4_2(model: ModelKind) -> Scene {
     let mut s = table4_1(model);
     s.surface_energy = table4_2_surface_energy();
-    s.elastic_stiffness = Some(1500.0);
-    s.plastic_stiffness = Some(210.0);
-    s.pasha_pull_off_stiffness = 20.0;
-    s.pasha_pull_off_intercept = Some(4.0e-6);
+    s.laws.stiffness.elastic_stiffness = Some(1500.0);
+    s.laws.stiffness.plastic_stiffness = Some(210.0);
+    s.laws.pasha_simplified.pasha_pull_off_stiffness = 20.0;
+    s.laws.pasha_simplified.pasha_pull_off_intercept = Some(4.0e-6);
     s
 }
 
