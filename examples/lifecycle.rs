@@ -57,7 +57,7 @@ fn main() {
     let unit = units::by_identifier("ParticleWallImpact").unwrap();
     let guid = CString::new(unit.guid()).unwrap();
     let uri = CString::new(format!("file://{}/", std::env::temp_dir().display())).unwrap();
-    let vr = unit.vr_of("initial_velocity") as fmi2ValueReference;
+    let vr = unit.vr("initial_velocity").expect("a variable of the unit") as fmi2ValueReference;
     let report = (cycles / 10).max(1);
     let mut first = 0;
     for i in 0..cycles {

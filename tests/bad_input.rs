@@ -64,7 +64,7 @@ fn every_bad_argument_is_refused_by_name_and_changes_nothing() {
     let lib = library();
     let api = Api { lib: &lib };
     let unit = units::by_identifier(PWI).unwrap();
-    let vr = |n: &str| unit.vr_of(n) as fmi2ValueReference;
+    let vr = |n: &str| unit.vr(n).expect("a variable of the unit") as fmi2ValueReference;
     let beyond = unit.variables.len() as fmi2ValueReference;
     let not_utf8 = [0xffu8 as std::os::raw::c_char, 0xfe_u8 as std::os::raw::c_char, 0];
     let mut failures = Vec::new();

@@ -256,7 +256,7 @@ fn saved_state(api: &Api, kind: fmi2Type, log: &Log) -> (Comp, fmi2FMUstate) {
 /// Calls `name` with valid arguments on `c`.
 fn invoke(api: &Api, name: &str, c: Comp, kind: fmi2Type, log: &Log) -> fmi2Status {
     let unit = units::by_identifier(PWI).unwrap();
-    let vr = |n: &str| unit.vr_of(n) as fmi2ValueReference;
+    let vr = |n: &str| unit.vr(n).expect("a variable of the unit") as fmi2ValueReference;
     let mut real = [0.0f64; 3];
     let mut int: fmi2Integer = 0;
     let mut boolean: fmi2Boolean = 0;

@@ -33,7 +33,7 @@ fn every_scene_key_is_a_parameter_of_both_units_and_names_are_unique() {
         names.dedup();
         assert_eq!(names.len(), n, "{}: duplicate variable names", unit.model_identifier);
         for key in powderfmu::scene::KEYS.iter() {
-            let v = &unit.variables[unit.vr_of(key.name)];
+            let v = &unit.variables[unit.vr(key.name).expect("a variable of the unit")];
             assert_eq!(v.causality, Causality::Parameter, "{}", key.name);
         }
     }

@@ -18,29 +18,36 @@ use serde::{Deserialize, Serialize};
 
 pub const MODEL_IDENTIFIER: &str = "ContactElement";
 
-fn own_variables() -> Vec<Variable> {
-    let [max_overlap, plastic_overlap, pull_off_force] = contact_parts::history_outputs();
-    vec![
-        Variable::input("wall_displacement", "m", "approach of the wall toward the sphere (overlap = wall_displacement - initial_gap)"),
-        Variable::input("wall_velocity", "m/s", "rate of the approach (for the viscous damping and the contact work)"),
-        Variable::output("force", VarType::Real, "N", "normal contact force (law plus damping), positive repulsive"),
-        Variable::output("overlap", VarType::Real, "m", "overlap alpha = wall_displacement - initial_gap, positive in compression")
-            .with_nominal(1e-9),
-        contact_parts::contact_state_output(),
-        max_overlap,
-        plastic_overlap,
-        pull_off_force,
-        Variable::output(
-            "dissipated_energy",
-            VarType::Real,
-            "J",
-            "work done on the contact, the integral of force d(overlap); after separation, the energy the contact dissipated",
-        )
-        .with_role(Role::State(0)),
-        Variable::local("der(dissipated_energy)", "W", "power of the contact force, force times wall_velocity", Role::Derivative(0)),
-        Variable::parameter("initial_gap", Value::Real(0.0), "m", "wall_displacement at which the surfaces touch"),
-    ]
+variable_table! {
+    wall_displacement: Variable::input("wall_displacement", "m", "approach of the wall toward the sphere (overlap = wall_displacement - initial_gap)"),
+    wall_velocity: Variable::input("wall_velocity", "m/s", "rate of the approach (for the viscous damping and the contact work)"),
+    force: Variable::output("force", VarType::Real, "N", "normal contact force (law plus damping), positive repulsive"),
+    overlap: Variable::output("overlap", VarType::Real, "m", "overlap alpha = wall_displacement - initial_gap, positive in compression")
+        .with_nominal(1e-9),
+    contact_state: contact_parts::contact_state_output(),
+    max_overlap: contact_parts::max_overlap_output(),
+    plastic_overlap: contact_parts::plastic_overlap_output(),
+    pull_off_force: contact_parts::pull_off_force_output(),
+    dissipated_energy: Variable::output(
+        "dissipated_energy",
+        VarType::Real,
+        "J",
+        "work done on the contact, the integral of force d(overlap); after separation, the energy the contact dissipated",
+    )
+    .with_role(Role::State(0)),
+    der_energy: Variable::local("der(dissipated_energy)", "W", "power of the contact force, force times wall_velocity", Role::Derivative(0)),
+    initial_gap: Variable::parameter("initial_gap", Value::Real(0.0), "m", "wall_displacement at which the surfaces touch"),
 }
+
+/// The outputs both contact units write, at this unit's references.
+const OUTPUTS: Outputs = Outputs {
+    force: REFS.force,
+    overlap: REFS.overlap,
+    contact_state: REFS.contact_state,
+    max_overlap: REFS.max_overlap,
+    plastic_overlap: REFS.plastic_overlap,
+    pull_off_force: REFS.pull_off_force,
+};
 
 pub fn info() -> UnitInfo {
     let mut variables = own_variables();
@@ -58,18 +65,7 @@ pub fn info() -> UnitInfo {
     }
 }
 
-#[derive(Debug, Clone, Copy)]
-struct Refs {
-    wall_displacement: usize,
-    wall_velocity: usize,
-    outputs: Outputs,
-    dissipated_energy: usize,
-    der_energy: usize,
-    initial_gap: usize,
-}
-
 pub struct ContactElement {
-    refs: Refs,
     variables: Vec<Variable>,
     contact: Option<Contact>,
     gap: f64,
@@ -84,16 +80,7 @@ struct Snapshot {
 
 impl ContactElement {
     fn new(u: &UnitInfo) -> ContactElement {
-        let r = |n: &str| u.vr_of(n);
         ContactElement {
-            refs: Refs {
-                wall_displacement: r("wall_displacement"),
-                wall_velocity: r("wall_velocity"),
-                outputs: Outputs::new(r),
-                dissipated_energy: r("dissipated_energy"),
-                der_energy: r("der(dissipated_energy)"),
-                initial_gap: r("initial_gap"),
-            },
             variables: u.variables.clone(),
             contact: None,
             gap: 0.0,
@@ -102,18 +89,18 @@ impl ContactElement {
     }
 
     fn build(&self, values: &[Value]) -> Result<(Contact, f64), UnitError> {
-        let gap = values[self.refs.initial_gap].as_real();
+        let gap = values[REFS.initial_gap].as_real();
         if !gap.is_finite() {
             return Err(UnitError::Variable { name: "initial_gap", why: format!("parameter `initial_gap` = {gap} m is not a finite number") });
         }
-        let rate_nominal = values[self.refs.wall_velocity].as_real().abs().max(1e-3);
+        let rate_nominal = values[REFS.wall_velocity].as_real().abs().max(1e-3);
         let (contact, _, _) = contact_parts::build(&self.variables, values, rate_nominal)?;
         Ok((contact, gap))
     }
 
     /// Overlap and rate of the current inputs.
     fn inputs(&self, values: &[Value]) -> (f64, f64) {
-        (values[self.refs.wall_displacement].as_real() - self.gap, values[self.refs.wall_velocity].as_real())
+        (values[REFS.wall_displacement].as_real() - self.gap, values[REFS.wall_velocity].as_real())
     }
 }
 
@@ -137,7 +124,6 @@ impl Model for ContactElement {
     fn compute(&mut self, values: &mut [Value], between_events: bool) {
         let (alpha, rate) = self.inputs(values);
         let Some(contact) = &self.contact else { return };
-        let r = self.refs;
         // Feed-through: in Continuous-Time Mode the accepted branch; elsewhere the history walked to the
         // inputs, so that the output at an input is the value fmi2DoStep (or the next event) gives there.
         let walked;
@@ -147,9 +133,9 @@ impl Model for ContactElement {
             walked = contact.walked_to(alpha, rate);
             &walked
         };
-        let f = r.outputs.write(values, c, alpha, rate);
-        values[r.dissipated_energy] = Value::Real(self.work);
-        values[r.der_energy] = Value::Real(f * rate);
+        let f = OUTPUTS.write(values, c, alpha, rate);
+        values[REFS.dissipated_energy] = Value::Real(self.work);
+        values[REFS.der_energy] = Value::Real(f * rate);
     }
 
     fn set_time(&mut self, _t: f64) {}

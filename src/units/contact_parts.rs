@@ -29,38 +29,30 @@ pub fn contact_state_output() -> Variable {
     )
 }
 
-/// max_overlap, plastic_overlap, pull_off_force, in this order.
-pub fn history_outputs() -> [Variable; 3] {
-    [
-        Variable::output("max_overlap", VarType::Real, "m", "largest overlap reached so far (0 before contact)").with_nominal(1e-9),
-        Variable::output("plastic_overlap", VarType::Real, "m", "overlap at which the current unloading branch meets zero force (alpha_p)")
-            .with_nominal(1e-9),
-        Variable::output("pull_off_force", VarType::Real, "N", "largest tensile force the contact can take with its current history (f_cp)"),
-    ]
+pub fn max_overlap_output() -> Variable {
+    Variable::output("max_overlap", VarType::Real, "m", "largest overlap reached so far (0 before contact)").with_nominal(1e-9)
 }
 
-/// Value references of the outputs every contact unit writes.
+pub fn plastic_overlap_output() -> Variable {
+    Variable::output("plastic_overlap", VarType::Real, "m", "overlap at which the current unloading branch meets zero force (alpha_p)").with_nominal(1e-9)
+}
+
+pub fn pull_off_force_output() -> Variable {
+    Variable::output("pull_off_force", VarType::Real, "N", "largest tensile force the contact can take with its current history (f_cp)")
+}
+
+/// Value references of the outputs every contact unit writes (each unit fills them from its table).
 #[derive(Debug, Clone, Copy)]
 pub struct Outputs {
-    force: usize,
-    overlap: usize,
-    contact_state: usize,
-    max_overlap: usize,
-    plastic_overlap: usize,
-    pull_off_force: usize,
+    pub force: usize,
+    pub overlap: usize,
+    pub contact_state: usize,
+    pub max_overlap: usize,
+    pub plastic_overlap: usize,
+    pub pull_off_force: usize,
 }
 
 impl Outputs {
-    pub fn new(vr: impl Fn(&str) -> usize) -> Outputs {
-        Outputs {
-            force: vr("force"),
-            overlap: vr("overlap"),
-            contact_state: vr("contact_state"),
-            max_overlap: vr("max_overlap"),
-            plastic_overlap: vr("plastic_overlap"),
-            pull_off_force: vr("pull_off_force"),
-        }
-    }
 
     /// Writes force, overlap, state and history at `alpha`, `rate` on the accepted branch of `c`; returns
     /// the total force.

@@ -53,7 +53,7 @@ mod tests {
     fn pwi_with(name: &str, value: Value) -> Result<(), UnitError> {
         let u = crate::units::by_identifier("ParticleWallImpact").unwrap();
         let mut values = u.start_values();
-        values[u.vr_of(name)] = value;
+        values[u.vr(name).expect("a variable of the unit")] = value;
         (u.new_model)(u).initialize(&values, 0.0, false)
     }
 

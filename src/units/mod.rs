@@ -1,13 +1,14 @@
 //! The FMUs: each unit is a variable table plus a `Model` that drives the dynamics (DESIGN 2). The FMI
 //! glue in `crate::fmi2` knows only this module's `UnitInfo` and `Model` trait, never the physics.
 
+#[macro_use]
+pub mod variables;
 pub mod contact_element;
 pub mod contact_parts;
 pub mod error;
 pub mod model_description;
 pub mod particle_wall_impact;
 pub mod scene_params;
-pub mod variables;
 
 use std::sync::OnceLock;
 pub use error::UnitError;
@@ -68,14 +69,10 @@ pub struct UnitInfo {
 }
 
 impl UnitInfo {
-    /// The value reference (table position) of a variable.
+    /// The value reference (table position) of a variable, by name: for hosts and tests. The units
+    /// themselves use the references their tables give (`variable_table!`).
     pub fn vr(&self, name: &str) -> Option<usize> {
         self.variables.iter().position(|v| v.name == name)
-    }
-
-    /// Value reference of a variable the unit itself defines (a missing one is a bug in the table).
-    pub fn vr_of(&self, name: &str) -> usize {
-        self.vr(name).unwrap_or_else(|| panic!("unit {} has no variable {name}", self.model_identifier))
     }
 
     /// The GUID: a hash of the model description without it, so it changes exactly when the interface does.

@@ -24,60 +24,66 @@ const MAX_SPEED: f64 = 1e5;
 /// The largest gravity (an ultracentrifuge's 1e6 m/s^2) [m/s^2].
 const MAX_GRAVITY: f64 = 1e6;
 
-/// The unit's own variables (the scene keys follow them).
-fn own_variables() -> Vec<Variable> {
-    let [max_overlap, plastic_overlap, pull_off_force] = contact_parts::history_outputs();
-    vec![
-        Variable::input("wall_displacement", "m", "position of the wall plane along the normal (z of the wall)"),
-        Variable::input("wall_velocity", "m/s", "velocity of the wall along the normal (positive toward the sphere's side)")
-            .with_range(Some(-MAX_SPEED), Some(MAX_SPEED)),
-        Variable::output("force", VarType::Real, "N", "normal contact force on the sphere (law plus damping), positive pushes it away from the wall"),
-        Variable::output(
-            "overlap",
-            VarType::Real,
-            "m",
-            "overlap alpha = particle_radius - (sphere_position - wall_displacement), positive in compression",
-        )
+variable_table! {
+    wall_displacement: Variable::input("wall_displacement", "m", "position of the wall plane along the normal (z of the wall)"),
+    wall_velocity: Variable::input("wall_velocity", "m/s", "velocity of the wall along the normal (positive toward the sphere's side)")
+        .with_range(Some(-MAX_SPEED), Some(MAX_SPEED)),
+    force: Variable::output("force", VarType::Real, "N", "normal contact force on the sphere (law plus damping), positive pushes it away from the wall"),
+    overlap: Variable::output(
+        "overlap",
+        VarType::Real,
+        "m",
+        "overlap alpha = particle_radius - (sphere_position - wall_displacement), positive in compression",
+    )
+    .with_nominal(1e-9),
+    contact_state: contact_parts::contact_state_output(),
+    sphere_position: Variable::output("sphere_position", VarType::Real, "m", "height of the sphere centre"),
+    sphere_velocity: Variable::output("sphere_velocity", VarType::Real, "m/s", "velocity of the sphere, positive away from the wall").with_role(Role::State(1)),
+    max_overlap: contact_parts::max_overlap_output(),
+    plastic_overlap: contact_parts::plastic_overlap_output(),
+    pull_off_force: contact_parts::pull_off_force_output(),
+    dissipated_energy: Variable::output(
+        "dissipated_energy",
+        VarType::Real,
+        "J",
+        "work done on the contact, the integral of force d(overlap); after the sphere has left the wall, the energy the contact dissipated",
+    )
+    .with_role(Role::State(2)),
+    sphere_bottom: Variable::local("sphere_bottom", "m", "height of the sphere's lowest point, sphere_position - particle_radius (ME state)", Role::State(0))
         .with_nominal(1e-9),
-        contact_parts::contact_state_output(),
-        Variable::output("sphere_position", VarType::Real, "m", "height of the sphere centre"),
-        Variable::output("sphere_velocity", VarType::Real, "m/s", "velocity of the sphere, positive away from the wall").with_role(Role::State(1)),
-        max_overlap,
-        plastic_overlap,
-        pull_off_force,
-        Variable::output(
-            "dissipated_energy",
-            VarType::Real,
-            "J",
-            "work done on the contact, the integral of force d(overlap); after the sphere has left the wall, the energy the contact dissipated",
-        )
-        .with_role(Role::State(2)),
-        Variable::local("sphere_bottom", "m", "height of the sphere's lowest point, sphere_position - particle_radius (ME state)", Role::State(0))
-            .with_nominal(1e-9),
-        Variable::local("der(sphere_bottom)", "m/s", "velocity of the sphere's lowest point", Role::Derivative(0)),
-        Variable::local("der(sphere_velocity)", "m/s2", "acceleration of the sphere", Role::Derivative(1)),
-        Variable::local("der(dissipated_energy)", "W", "power of the contact force on the overlap rate", Role::Derivative(2)),
-        Variable::parameter("initial_gap", Value::Real(1e-8), "m", "gap between the sphere surface and the wall at the start")
-            .with_range(Some(0.0), None),
-        Variable::parameter("initial_velocity", Value::Real(1.0), "m/s", "approach speed of the sphere at the start, positive toward the wall")
-            .with_range(Some(-MAX_SPEED), Some(MAX_SPEED)),
-        Variable::parameter("gravity", Value::Real(0.0), "m/s2", "gravitational acceleration toward the wall")
-            .with_range(Some(-MAX_GRAVITY), Some(MAX_GRAVITY)),
-        Variable::parameter(
-            "solver",
-            Value::String("auto".into()),
-            "",
-            &format!(
-                "Co-Simulation integrator: exact (closed form per branch; {}), adaptive (Dormand-Prince 5(4) with event location; every law), verlet (fixed-step velocity Verlet at rayleigh_fraction of the Rayleigh time step, as DEM codes), auto (exact where it applies, else adaptive)",
-                ModelKind::piecewise_linear_names()
-            ),
+    der_bottom: Variable::local("der(sphere_bottom)", "m/s", "velocity of the sphere's lowest point", Role::Derivative(0)),
+    der_velocity: Variable::local("der(sphere_velocity)", "m/s2", "acceleration of the sphere", Role::Derivative(1)),
+    der_energy: Variable::local("der(dissipated_energy)", "W", "power of the contact force on the overlap rate", Role::Derivative(2)),
+    initial_gap: Variable::parameter("initial_gap", Value::Real(1e-8), "m", "gap between the sphere surface and the wall at the start")
+        .with_range(Some(0.0), None),
+    initial_velocity: Variable::parameter("initial_velocity", Value::Real(1.0), "m/s", "approach speed of the sphere at the start, positive toward the wall")
+        .with_range(Some(-MAX_SPEED), Some(MAX_SPEED)),
+    gravity: Variable::parameter("gravity", Value::Real(0.0), "m/s2", "gravitational acceleration toward the wall")
+        .with_range(Some(-MAX_GRAVITY), Some(MAX_GRAVITY)),
+    solver: Variable::parameter(
+        "solver",
+        Value::String("auto".into()),
+        "",
+        &format!(
+            "Co-Simulation integrator: exact (closed form per branch; {}), adaptive (Dormand-Prince 5(4) with event location; every law), verlet (fixed-step velocity Verlet at rayleigh_fraction of the Rayleigh time step, as DEM codes), auto (exact where it applies, else adaptive)",
+            ModelKind::piecewise_linear_names()
         ),
-        Variable::parameter("tolerance", Value::Real(1e-10), "", "relative tolerance of the adaptive integrator, in [1e-14, 1e-2]")
-            .with_range(Some(1e-14), Some(1e-2)),
-        Variable::parameter("rayleigh_fraction", Value::Real(0.2), "", "step of the verlet integrator as a fraction of the Rayleigh time step (000 Eq. 71), in (0, 1]")
-            .with_range(Some(0.0), Some(1.0)),
-    ]
+    ),
+    tolerance: Variable::parameter("tolerance", Value::Real(1e-10), "", "relative tolerance of the adaptive integrator, in [1e-14, 1e-2]")
+        .with_range(Some(1e-14), Some(1e-2)),
+    rayleigh_fraction: Variable::parameter("rayleigh_fraction", Value::Real(0.2), "", "step of the verlet integrator as a fraction of the Rayleigh time step (000 Eq. 71), in (0, 1]")
+        .with_range(Some(0.0), Some(1.0)),
 }
+
+/// The outputs both contact units write, at this unit's references.
+const OUTPUTS: Outputs = Outputs {
+    force: REFS.force,
+    overlap: REFS.overlap,
+    contact_state: REFS.contact_state,
+    max_overlap: REFS.max_overlap,
+    plastic_overlap: REFS.plastic_overlap,
+    pull_off_force: REFS.pull_off_force,
+};
 
 pub fn info() -> UnitInfo {
     let mut variables = own_variables();
@@ -96,29 +102,7 @@ pub fn info() -> UnitInfo {
     }
 }
 
-/// Value references of the variables the model reads and writes.
-#[derive(Debug, Clone, Copy)]
-struct Refs {
-    wall_displacement: usize,
-    wall_velocity: usize,
-    outputs: Outputs,
-    sphere_position: usize,
-    sphere_velocity: usize,
-    dissipated_energy: usize,
-    sphere_bottom: usize,
-    der_bottom: usize,
-    der_velocity: usize,
-    der_energy: usize,
-    initial_gap: usize,
-    initial_velocity: usize,
-    gravity: usize,
-    solver: usize,
-    tolerance: usize,
-    rayleigh_fraction: usize,
-}
-
 pub struct ParticleWallImpact {
-    refs: Refs,
     variables: Vec<Variable>,
     radius: f64,
     sphere: Option<Sphere>,
@@ -160,26 +144,7 @@ fn real(values: &[Value], vr: usize) -> f64 {
 
 impl ParticleWallImpact {
     fn new(u: &UnitInfo) -> ParticleWallImpact {
-        let r = |n: &str| u.vr_of(n);
         ParticleWallImpact {
-            refs: Refs {
-                wall_displacement: r("wall_displacement"),
-                wall_velocity: r("wall_velocity"),
-                outputs: Outputs::new(r),
-                sphere_position: r("sphere_position"),
-                sphere_velocity: r("sphere_velocity"),
-                dissipated_energy: r("dissipated_energy"),
-                sphere_bottom: r("sphere_bottom"),
-                der_bottom: r("der(sphere_bottom)"),
-                der_velocity: r("der(sphere_velocity)"),
-                der_energy: r("der(dissipated_energy)"),
-                initial_gap: r("initial_gap"),
-                initial_velocity: r("initial_velocity"),
-                gravity: r("gravity"),
-                solver: r("solver"),
-                tolerance: r("tolerance"),
-                rayleigh_fraction: r("rayleigh_fraction"),
-            },
             variables: u.variables.clone(),
             radius: 0.0,
             sphere: None,
@@ -192,8 +157,7 @@ impl ParticleWallImpact {
 
     /// The sphere of the current parameters (law, damping, mass, tolerances); the state is not touched.
     fn build(&self, values: &[Value]) -> Result<(Sphere, f64), UnitError> {
-        let refs = self.refs;
-        let rate_nominal = real(values, refs.initial_velocity).abs().max(real(values, refs.wall_velocity).abs()).max(1e-3);
+        let rate_nominal = real(values, REFS.initial_velocity).abs().max(real(values, REFS.wall_velocity).abs()).max(1e-3);
         let (contact, scene, eff) = contact_parts::build(&self.variables, values, rate_nominal)?;
         if scene.contact_partner != Partner::Wall {
             return Err(UnitError::Variable {
@@ -201,14 +165,14 @@ impl ParticleWallImpact {
                 why: "parameter `contact_partner` = \"particle\" is not allowed in ParticleWallImpact: the sphere hits a wall; use \"wall\" (two identical particles: use ContactElement)".into(),
             });
         }
-        within(values, refs.initial_velocity, "initial_velocity", MAX_SPEED, "m/s")?;
-        let g = within(values, refs.gravity, "gravity", MAX_GRAVITY, "m/s2")?;
-        let tol = finite(values, refs.tolerance, "tolerance", "")?;
+        within(values, REFS.initial_velocity, "initial_velocity", MAX_SPEED, "m/s")?;
+        let g = within(values, REFS.gravity, "gravity", MAX_GRAVITY, "m/s2")?;
+        let tol = finite(values, REFS.tolerance, "tolerance", "")?;
         if !(1e-14..=1e-2).contains(&tol) {
             return Err(UnitError::Variable { name: "tolerance", why: format!("parameter `tolerance` = {tol:e} is out of range: allowed [1e-14, 1e-2]") });
         }
-        within(values, refs.wall_velocity, "wall_velocity", MAX_SPEED, "m/s")?;
-        let fraction = finite(values, refs.rayleigh_fraction, "rayleigh_fraction", "")?;
+        within(values, REFS.wall_velocity, "wall_velocity", MAX_SPEED, "m/s")?;
+        let fraction = finite(values, REFS.rayleigh_fraction, "rayleigh_fraction", "")?;
         if !(fraction > 0.0 && fraction <= 1.0) {
             return Err(UnitError::Variable {
                 name: "rayleigh_fraction",
@@ -217,14 +181,14 @@ impl ParticleWallImpact {
         }
         let rayleigh =
             time_step::rayleigh_time_step(scene.particle_radius, scene.particle_density, scene.particle_shear_modulus(), scene.particle_poisson_ratio);
-        let solver = solver(values[refs.solver].as_str(), &contact.law, fraction * rayleigh)?;
+        let solver = solver(values[REFS.solver].as_str(), &contact.law, fraction * rayleigh)?;
         Ok((Sphere::new(eff.mass, g, contact, solver, tol), scene.particle_radius))
     }
 
     /// The wall at the current time: as given (CS, and ME at an input update), or moved on with its
     /// velocity since the inputs were last given (ME, `SeenWall`).
     fn wall(&self, values: &[Value]) -> WallMotion {
-        let (position, velocity) = (real(values, self.refs.wall_displacement), real(values, self.refs.wall_velocity));
+        let (position, velocity) = (real(values, REFS.wall_displacement), real(values, REFS.wall_velocity));
         match self.me_wall {
             Some(s) if s.position == position && s.velocity == velocity => WallMotion { t0: s.t, position, velocity },
             _ => WallMotion { t0: self.t, position, velocity },
@@ -234,7 +198,7 @@ impl ParticleWallImpact {
     /// ME: notes inputs that changed since they were last seen, with the current time.
     fn see_inputs(&mut self, values: &[Value]) {
         if let Some(seen) = &mut self.me_wall {
-            let (position, velocity) = (real(values, self.refs.wall_displacement), real(values, self.refs.wall_velocity));
+            let (position, velocity) = (real(values, REFS.wall_displacement), real(values, REFS.wall_velocity));
             if seen.position != position || seen.velocity != velocity {
                 *seen = SeenWall { position, velocity, t: self.t };
             }
@@ -283,20 +247,20 @@ fn finite(values: &[Value], vr: usize, name: &'static str, unit: &str) -> Result
 impl Model for ParticleWallImpact {
     fn initialize(&mut self, values: &[Value], t0: f64, model_exchange: bool) -> Result<(), UnitError> {
         let (mut sphere, radius) = self.build(values)?;
-        let gap = finite(values, self.refs.initial_gap, "initial_gap", "m")?;
+        let gap = finite(values, REFS.initial_gap, "initial_gap", "m")?;
         if gap < 0.0 {
             return Err(UnitError::Variable {
                 name: "initial_gap",
                 why: format!("parameter `initial_gap` = {gap:e} m is out of range: allowed >= 0 (the sphere starts out of contact)"),
             });
         }
-        let w = finite(values, self.refs.wall_displacement, "wall_displacement", "m")?;
-        let v0 = real(values, self.refs.initial_velocity);
+        let w = finite(values, REFS.wall_displacement, "wall_displacement", "m")?;
+        let v0 = real(values, REFS.initial_velocity);
         self.t = t0;
         self.y = State::new(w + gap, -v0, 0.0);
         self.radius = radius;
         self.cs_wall = None;
-        let wall = WallMotion { t0, position: w, velocity: real(values, self.refs.wall_velocity) };
+        let wall = WallMotion { t0, position: w, velocity: real(values, REFS.wall_velocity) };
         self.me_wall = model_exchange.then_some(SeenWall { position: wall.position, velocity: wall.velocity, t: t0 });
         sphere.accept(&wall, t0, &self.y);
         sphere.contact.max_overlap = f64::NEG_INFINITY;
@@ -307,7 +271,6 @@ impl Model for ParticleWallImpact {
     fn compute(&mut self, values: &mut [Value], between_events: bool) {
         self.see_inputs(values);
         let Some(sphere) = &self.sphere else { return };
-        let r = self.refs;
         let mut wall = self.wall(values);
         if let Some((input_used, wall_end)) = self.cs_wall {
             if wall.position == input_used {
@@ -323,15 +286,15 @@ impl Model for ParticleWallImpact {
         } else {
             &sphere.contact
         };
-        let f = r.outputs.write(values, c, alpha, rate);
-        values[r.sphere_position] = Value::Real(self.y.bottom + self.radius);
-        values[r.sphere_velocity] = Value::Real(self.y.velocity);
-        values[r.dissipated_energy] = Value::Real(self.y.work);
-        values[r.sphere_bottom] = Value::Real(self.y.bottom);
+        let f = OUTPUTS.write(values, c, alpha, rate);
+        values[REFS.sphere_position] = Value::Real(self.y.bottom + self.radius);
+        values[REFS.sphere_velocity] = Value::Real(self.y.velocity);
+        values[REFS.dissipated_energy] = Value::Real(self.y.work);
+        values[REFS.sphere_bottom] = Value::Real(self.y.bottom);
         // The derivatives of `Sphere::derivatives`, from the force just evaluated.
-        values[r.der_bottom] = Value::Real(self.y.velocity);
-        values[r.der_velocity] = Value::Real(f / sphere.mass - sphere.gravity);
-        values[r.der_energy] = Value::Real(f * rate);
+        values[REFS.der_bottom] = Value::Real(self.y.velocity);
+        values[REFS.der_velocity] = Value::Real(f / sphere.mass - sphere.gravity);
+        values[REFS.der_energy] = Value::Real(f * rate);
     }
 
     fn set_time(&mut self, t: f64) {
@@ -408,7 +371,7 @@ impl Model for ParticleWallImpact {
         }
         self.y = y;
         self.t = t + h;
-        self.cs_wall = Some((real(values, self.refs.wall_displacement), wall.at(t + h)));
+        self.cs_wall = Some((real(values, REFS.wall_displacement), wall.at(t + h)));
         Ok(())
     }
 

@@ -272,3 +272,34 @@ pub fn fmi_unit(scene_unit: &str) -> &'static str {
         _ => "",
     }
 }
+
+/// Declares a unit's own variables, in value-reference order, each with the name the model uses for it:
+/// `field: Variable::...,`. Generates `own_variables()` (the table) and `REFS`, a `Refs` struct whose
+/// fields are the value references, the positions in that same table, fixed at compile time.
+macro_rules! variable_table {
+    ($($field:ident: $variable:expr,)*) => {
+        /// Value references of the unit's own variables (their positions in `own_variables()`).
+        #[derive(Debug, Clone, Copy)]
+        struct Refs {
+            $($field: usize,)*
+        }
+
+        const REFS: Refs = {
+            let mut next = 0usize;
+            let refs = Refs {
+                $($field: {
+                    let vr = next;
+                    next += 1;
+                    vr
+                },)*
+            };
+            let _ = next;
+            refs
+        };
+
+        /// The unit's own variables (the scene keys follow them).
+        fn own_variables() -> Vec<Variable> {
+            vec![$($variable,)*]
+        }
+    };
+}

@@ -92,12 +92,12 @@ impl<'a> Api<'a> {
     }
 
     pub fn set(&self, c: Comp, unit: &str, name: &str, value: f64) -> fmi2Status {
-        let vr = units::by_identifier(unit).unwrap().vr_of(name) as fmi2ValueReference;
+        let vr = units::by_identifier(unit).unwrap().vr(name).expect("a variable of the unit") as fmi2ValueReference;
         unsafe { f!(self, b"fmi2SetReal", SetReal)(c, &vr, 1, &value) }
     }
 
     pub fn get(&self, c: Comp, unit: &str, name: &str) -> f64 {
-        let vr = units::by_identifier(unit).unwrap().vr_of(name) as fmi2ValueReference;
+        let vr = units::by_identifier(unit).unwrap().vr(name).expect("a variable of the unit") as fmi2ValueReference;
         let mut v = f64::NAN;
         let s = unsafe { f!(self, b"fmi2GetReal", GetReal)(c, &vr, 1, &mut v) };
         assert_eq!(s, fmi2OK, "fmi2GetReal({name})");
