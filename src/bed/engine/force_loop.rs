@@ -146,34 +146,9 @@ fn run_part<L: BedLaw>(s: &Shared<L>, part: Part<L::History>) {
             let (li, lj) = (ri - 0.5 * alpha, rj - 0.5 * alpha);
             let v = surface_velocity(vi, wi, li, p.velocity[j], p.angular_velocity[j], lj, n);
             if let Some(c) = contact(it, alpha, n, v, &mut normal[slot], &mut spring[slot], &mut radius[slot], s.dt) {
-                let tq = super::super::cross(n, c.tangential);
-                let fi = sink.force(i);
-                for q in 0..3 {
-                    fi[q] += c.force[q];
-                }
-                let fj = sink.force(j);
-                for q in 0..3 {
-                    fj[q] -= c.force[q];
-                }
-                let t_i = sink.torque(i);
-                for q in 0..3 {
-                    t_i[q] += li * tq[q];
-                }
-                let t_j = sink.torque(j);
-                for q in 0..3 {
-                    t_j[q] += lj * tq[q];
-                }
-                *sink.rolling(i) += c.rolling_load;
-                *sink.rolling(j) += c.rolling_load;
-                if dipoles {
-                    // |x_c - x_p| n_i F_j for both particles (004 Eq. 5.1); the partner sees -n and -F.
-                    for a in 0..3 {
-                        for b in 0..3 {
-                            sink.dipole(i)[3 * a + b] += li * n[a] * c.force[b];
-                            sink.dipole(j)[3 * a + b] += lj * n[a] * c.force[b];
-                        }
-                    }
-                }
+                // Particle j sees the contact from the other side: normal, force and tangential force negated.
+                sink.add_contact(i, n, c.force, c.tangential, li, c.rolling_load, dipoles);
+                sink.add_contact(j, neg(n), neg(c.force), neg(c.tangential), lj, c.rolling_load, dipoles);
             }
         }
     }
@@ -191,27 +166,15 @@ fn run_part<L: BedLaw>(s: &Shared<L>, part: Part<L::History>) {
             let li = ri - 0.5 * t.overlap;
             let v = surface_velocity(p.velocity[i], p.angular_velocity[i], li, wall.velocity, [0.0; 3], 0.0, t.normal);
             if let Some(c) = contact(it, t.overlap, t.normal, v, &mut normal[slot], &mut spring[slot], &mut radius[slot], s.dt) {
-                let fi = sink.force(i);
-                for q in 0..3 {
-                    fi[q] += c.force[q];
-                }
+                sink.add_contact(i, t.normal, c.force, c.tangential, li, c.rolling_load, dipoles);
                 for q in 0..3 {
                     sink.spill.wall_force[w][q] -= c.force[q];
-                }
-                let tq = super::super::cross(t.normal, c.tangential);
-                let t_i = sink.torque(i);
-                for q in 0..3 {
-                    t_i[q] += li * tq[q];
-                }
-                *sink.rolling(i) += c.rolling_load;
-                if dipoles {
-                    for a in 0..3 {
-                        for b in 0..3 {
-                            sink.dipole(i)[3 * a + b] += li * t.normal[a] * c.force[b];
-                        }
-                    }
                 }
             }
         }
     }
+}
+
+fn neg(a: Vec3) -> Vec3 {
+    [-a[0], -a[1], -a[2]]
 }

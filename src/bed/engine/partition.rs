@@ -50,6 +50,33 @@ pub(super) struct Sink<'a> {
 }
 
 impl Sink<'_> {
+    /// Adds one contact's share to particle `i`, seen from `i`: `n` the unit normal toward the partner,
+    /// `force` and `tangential` the total and tangential force on `i`, `lever` the distance from its
+    /// centre to the contact point. Torque lever n x F_t; rolling load; and, when recorded, the dipole
+    /// lever n_a F_b of 004 Eq. 5.1. The one accumulation of particle pairs and wall contacts alike.
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn add_contact(&mut self, i: usize, n: Vec3, force: Vec3, tangential: Vec3, lever: f64, rolling_load: f64, dipoles: bool) {
+        let f = self.force(i);
+        for q in 0..3 {
+            f[q] += force[q];
+        }
+        let tq = super::super::cross(n, tangential);
+        let t = self.torque(i);
+        for q in 0..3 {
+            t[q] += lever * tq[q];
+        }
+        *self.rolling(i) += rolling_load;
+        if dipoles {
+            let d = self.dipole(i);
+            for a in 0..3 {
+                for b in 0..3 {
+                    d[3 * a + b] += lever * n[a] * force[b];
+                }
+            }
+        }
+    }
+
     #[inline(always)]
     pub(super) fn force(&mut self, i: usize) -> &mut Vec3 {
         if i < self.split {
