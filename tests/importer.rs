@@ -20,7 +20,7 @@ use fmi_host::*;
 
 /// The default scene at 3 m/s: its undamped rebound speed by the energy balance.
 fn expected_rebound(v: f64) -> f64 {
-    let s = Scene::from_json(units::scene_params::DEFAULT_SCENE).unwrap();
+    let s = Scene::from_json(units::DEFAULT_SCENE).unwrap();
     let law = AnyLaw::from_scene(&s).unwrap();
     let m = Effective::from_scene(&s).unwrap().mass;
     energy_balance::impact(&law, m, v, s.particle_radius).unwrap().rebound_velocity

@@ -110,7 +110,7 @@ fn entries(unit: &UnitInfo, binary: &[u8], root: &Path) -> Result<Vec<Entry>, St
         Entry { name: "documentation/index.html".into(), data: index_html(unit).into_bytes() },
         Entry { name: format!("documentation/{id}.md"), data: read(root, &page)? },
         Entry { name: "documentation/models.md".into(), data: read(root, "docs/models.md")? },
-        Entry { name: "resources/default_scene.json".into(), data: units::scene_params::DEFAULT_SCENE.as_bytes().to_vec() },
+        Entry { name: "resources/default_scene.json".into(), data: units::DEFAULT_SCENE.as_bytes().to_vec() },
     ])
 }
 

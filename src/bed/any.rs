@@ -2,7 +2,7 @@
 //! its law with no dispatch inside it. `with_engine!` runs one expression on whichever is inside.
 
 use super::engine::Engine;
-use super::interaction::{BedLaw, Interaction, PairScene};
+use super::interaction::{BedLaw, Interaction, ContactTemplate};
 use super::particles::Particles;
 use super::scene::BedScene;
 use super::walls::Wall;
@@ -77,8 +77,8 @@ pub fn interactions<L: BedLaw>(scene: &BedScene, walls: &[Wall]) -> Result<Inter
     let sp = scene.species();
     // Each scene parsed once; every pair mixes its own R* and m* into it.
     let r0 = sp.first().map_or(0.5e-3, |s| s.0);
-    let particle = PairScene::particle(&scene.particle_particle, r0, scene.density)?;
-    let wall = PairScene::wall(&scene.particle_wall, r0, scene.density)?;
+    let particle = ContactTemplate::particle(&scene.particle_particle, r0, scene.density)?;
+    let wall = ContactTemplate::wall(&scene.particle_wall, r0, scene.density)?;
     let mut pairs = Vec::with_capacity(sp.len() * sp.len());
     for &(r1, m1) in &sp {
         for &(r2, m2) in &sp {

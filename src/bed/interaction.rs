@@ -40,34 +40,35 @@ macro_rules! bed_law {
 
 crate::law_table!(bed_law; $);
 
-/// A bed scene's contact scene, parsed once, with its effective properties (E*, G*, p_y, Gamma) that
-/// every pair shares; each pair sets its own R* and m*.
+/// The template every pair of one kind of contact (particle-particle or particle-wall) is built from: the
+/// bed's contact scene, parsed once, with the effective properties (E*, G*, p_y, Gamma) every pair
+/// shares; each pair of species sets its own R* and m* (`Interaction::particle_pair`, `particle_wall`).
 #[derive(Debug, Clone)]
-pub struct PairScene {
+pub struct ContactTemplate {
     pub scene: Scene,
     pub effective: Effective,
 }
 
-impl PairScene {
+impl ContactTemplate {
     /// The particle-particle scene of a bed (`contact_partner` particle). `radius` and `density` are
     /// any species', for the checks of the scene; the pairs set their own R* and m*.
-    pub fn particle(map: &Map<String, Value>, radius: f64, density: f64) -> Result<PairScene, ParamError> {
-        PairScene::with_partner(map, "particle", radius, density)
+    pub fn particle(map: &Map<String, Value>, radius: f64, density: f64) -> Result<ContactTemplate, ParamError> {
+        ContactTemplate::with_partner(map, "particle", radius, density)
     }
 
     /// The particle-wall scene of a bed (`contact_partner` wall).
-    pub fn wall(map: &Map<String, Value>, radius: f64, density: f64) -> Result<PairScene, ParamError> {
-        PairScene::with_partner(map, "wall", radius, density)
+    pub fn wall(map: &Map<String, Value>, radius: f64, density: f64) -> Result<ContactTemplate, ParamError> {
+        ContactTemplate::with_partner(map, "wall", radius, density)
     }
 
-    fn with_partner(map: &Map<String, Value>, partner: &str, radius: f64, density: f64) -> Result<PairScene, ParamError> {
+    fn with_partner(map: &Map<String, Value>, partner: &str, radius: f64, density: f64) -> Result<ContactTemplate, ParamError> {
         let mut map = map.clone();
         map.insert("contact_partner".into(), Value::from(partner));
         map.insert("particle_radius".into(), Value::from(radius));
         map.insert("particle_density".into(), Value::from(density));
         let scene = Scene::from_map(&map)?;
         let effective = Effective::from_scene(&scene)?;
-        Ok(PairScene { scene, effective })
+        Ok(ContactTemplate { scene, effective })
     }
 }
 
@@ -128,16 +129,16 @@ impl<L: BedLaw> Interaction<L> {
     }
 
     /// The interaction of two particles of radii and masses (r1, m1), (r2, m2) under a particle-particle
-    /// scene (`PairScene::particle`).
-    pub fn particle_pair(base: &PairScene, r1: f64, m1: f64, r2: f64, m2: f64, rolling: f64) -> Result<Interaction<L>, ParamError> {
+    /// scene (`ContactTemplate::particle`).
+    pub fn particle_pair(base: &ContactTemplate, r1: f64, m1: f64, r2: f64, m2: f64, rolling: f64) -> Result<Interaction<L>, ParamError> {
         let pair = Effective { radius: r1 * r2 / (r1 + r2), mass: m1 * m2 / (m1 + m2), ..base.effective };
         Interaction::from_pair(&base.scene, &pair, rolling)
     }
 
     /// The interaction of a particle (r, m) with a wall whose surface has radius of curvature
     /// `wall_radius` (convex, the indenter) or none (plane, and the die's inside, whose curvature
-    /// 1/19.5 mm is neglected beside the particle's), under a particle-wall scene (`PairScene::wall`).
-    pub fn particle_wall(base: &PairScene, r: f64, m: f64, wall_radius: Option<f64>, rolling: f64) -> Result<Interaction<L>, ParamError> {
+    /// 1/19.5 mm is neglected beside the particle's), under a particle-wall scene (`ContactTemplate::wall`).
+    pub fn particle_wall(base: &ContactTemplate, r: f64, m: f64, wall_radius: Option<f64>, rolling: f64) -> Result<Interaction<L>, ParamError> {
         let radius = match wall_radius {
             Some(rw) => r * rw / (r + rw),
             None => r,

@@ -19,21 +19,21 @@
 //! - `lammps`: the LAMMPS data file export for the side-by-side benchmark.
 
 #[macro_use]
-pub mod any;
-pub mod engine;
+mod any;
+mod engine;
 pub mod export;
 pub mod file;
-pub mod interaction;
-pub mod kernel;
+mod interaction;
+mod kernel;
 pub mod lammps;
-pub mod neighbors;
+mod neighbors;
 pub mod particles;
-pub mod pool;
+mod pool;
 pub mod prepare;
-pub mod psd;
-pub mod random;
+mod psd;
+mod random;
 pub mod render;
-pub mod scene;
+mod scene;
 pub mod stress;
 pub mod walls;
 

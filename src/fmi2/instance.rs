@@ -8,7 +8,8 @@ use crate::units::variables::{Causality, Value, VarType, Variability};
 use crate::units::{Model, UnitInfo, LOG_CATEGORIES};
 use std::ffi::CString;
 
-/// The states of the FMI 2.0 calling sequence.
+/// The states of the FMI 2.0 calling sequence, by the standard's names (hence "...Mode").
+#[allow(clippy::enum_variant_names)]
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Mode {
     Instantiated,

@@ -3,7 +3,7 @@
 //! sequence and value handling; `saved_state` the byte format of saved states; `types` the C types.
 
 pub mod exports;
-pub mod instance;
-pub mod saved_state;
+mod instance;
+pub(crate) mod saved_state;
 pub mod types;
-pub mod uri;
+mod uri;

@@ -2,11 +2,11 @@
 //! units (`contact`), a sphere moving along a wall normal (`sphere`) and its three integrators (`exact`,
 //! `adaptive`, `verlet`). Knows laws through `AnyLaw`, time and geometry; knows nothing of FMI.
 
-pub mod adaptive;
+mod adaptive;
 pub mod contact;
-pub mod exact;
+mod exact;
 pub mod sphere;
-pub mod verlet;
+mod verlet;
 
 pub use contact::{Contact, ContactForce};
 pub use sphere::{Solver, Sphere, State, StepError, WallMotion};

@@ -4,14 +4,15 @@
 #[macro_use]
 pub mod variables;
 pub mod contact_element;
-pub mod contact_parts;
-pub mod error;
+mod contact_parts;
+mod error;
 pub mod model_description;
 pub mod particle_wall_impact;
-pub mod scene_params;
+mod scene_params;
 
 use std::sync::OnceLock;
 pub use error::UnitError;
+pub use scene_params::DEFAULT_SCENE;
 use variables::Value;
 
 /// The log categories of every unit (FMI 2.0 Sec. 2.2.4), name and meaning.
