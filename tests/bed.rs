@@ -368,6 +368,40 @@ fn contact_memory_survives_list_rebuilds_and_bed_files() {
 }
 
 #[test]
+fn an_indenter_added_to_a_prepared_bed_keeps_every_contact_and_feels_the_bed() {
+    let scene = soft(json!({"particle_count": 150, "die_diameter": 0.008}));
+    let (e, _) = prepared(&scene);
+    let dir = std::env::temp_dir().join(format!("powderfmu-indenter-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("bed.bed");
+    file::save(&path, &e, &scene).unwrap();
+    let (mut plain, _) = file::load(&path, None).unwrap();
+    let (mut with, _) = file::load(&path, None).unwrap();
+    std::fs::remove_dir_all(&dir).unwrap();
+    let d = scene.size_distribution.mean_diameter();
+    let top = bed_height(with.particles());
+    let radius = 1.5 * d;
+    let springs = |e: &AnyEngine| with_engine!(e, x => x.spring.iter().filter(|s| **s != [0.0; 3]).count());
+    let loaded = springs(&with);
+    assert!(loaded > 50, "the prepared bed must have loaded tangential springs ({loaded})");
+    // Clear of the bed, the indenter changes nothing: every contact keeps its memory.
+    with.add_wall(&scene, Wall::sphere("indenter", [0.0, 0.0, top + radius + 0.5 * d], radius)).unwrap();
+    assert_eq!(springs(&with), loaded, "adding a wall must keep every tangential spring");
+    plain.run(300);
+    with.run(300);
+    let worst = plain.particles().position.iter().zip(&with.particles().position).map(|(a, b)| (0..3).map(|c| (a[c] - b[c]).abs()).fold(0.0, f64::max)).fold(0.0, f64::max);
+    assert!(worst < 1e-12 * d, "an indenter clear of the bed moved a sphere by {worst:e} m");
+    assert_eq!(with.walls().last().unwrap().force, [0.0; 3]);
+    // Lowered into the bed by 0.3 d, it is pushed back up.
+    let v = 0.02;
+    with.walls_mut().last_mut().unwrap().velocity = [0.0, 0.0, -v];
+    let steps = ((0.8 * d) / (v * with.dt())).ceil() as u64;
+    with.run(steps);
+    let force = with.walls().last().unwrap().force;
+    assert!(force[2] > 0.0, "the bed must push the indenter up: {force:?} N");
+}
+
+#[test]
 fn bad_bed_files_are_refused_by_what_is_wrong() {
     let scene = soft(json!({"particle_count": 20, "die_diameter": 0.008}));
     let e = AnyEngine::build(&scene, prepare::fill(&scene).unwrap(), prepare::die(&scene)).unwrap();

@@ -85,15 +85,13 @@ pub fn interactions<L: BedLaw>(scene: &BedScene, walls: &[Wall]) -> Result<Inter
             pairs.push(Interaction::particle_pair(&particle, r1, m1, r2, m2, scene.rolling_friction)?);
         }
     }
-    let mut wall_pairs = Vec::with_capacity(walls.len());
-    for w in walls {
-        let mut row = Vec::with_capacity(sp.len());
-        for &(r, m) in &sp {
-            row.push(Interaction::particle_wall(&wall, r, m, w.curvature_radius(), scene.wall_rolling_friction)?);
-        }
-        wall_pairs.push(row);
-    }
+    let wall_pairs = walls.iter().map(|w| wall_row(scene, &wall, w)).collect::<Result<_, _>>()?;
     Ok((pairs, wall_pairs))
+}
+
+/// One wall's interaction with each species, from the bed's particle-wall template.
+fn wall_row<L: BedLaw>(scene: &BedScene, template: &ContactTemplate, w: &Wall) -> Result<Vec<Interaction<L>>, ParamError> {
+    scene.species().iter().map(|&(r, m)| Interaction::particle_wall(template, r, m, w.curvature_radius(), scene.wall_rolling_friction)).collect()
 }
 
 /// The largest stable step of velocity Verlet for these interactions: the Rayleigh time of the
@@ -147,6 +145,27 @@ impl AnyEngine {
 
     pub fn particles(&self) -> &Particles {
         with_engine!(self, e => &e.particles)
+    }
+
+    /// Adds a wall to a running bed (the indenter onto a prepared bed), its interactions from the
+    /// scene's particle-wall template; every contact keeps its memory. Refused when the wall would need
+    /// a shorter time step than the bed's.
+    pub fn add_wall(&mut self, scene: &BedScene, wall: Wall) -> Result<(), BedError> {
+        with_engine!(self, e => {
+            let r0 = scene.species().first().map_or(0.5e-3, |s| s.0);
+            let template = ContactTemplate::wall(&scene.particle_wall, r0, scene.density)?;
+            let row = wall_row(scene, &template, &wall)?;
+            let limit = stability_limit(scene, &[], std::slice::from_ref(&row));
+            if e.dt > limit {
+                return Err(BedError::Param(ParamError::OutOfRange {
+                    name: "time_step",
+                    value: e.dt,
+                    allowed: format!("(0, {limit:.4e}] s with wall `{}`: its contacts are stiffer than the bed's (000 Eq. 68)", wall.name),
+                }));
+            }
+            e.add_wall(wall, row)?;
+            Ok(())
+        })
     }
 
     pub fn walls(&self) -> &[Wall] {

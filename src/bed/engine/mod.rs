@@ -133,6 +133,26 @@ impl<L: BedLaw> Engine<L> {
         self.threads
     }
 
+    /// Adds a wall (the indenter lowered onto a prepared bed) with its interaction with each species,
+    /// keeping every contact's memory: the bed goes on as it was, now with the wall. Refused when the
+    /// wall's necks reach beyond the skin.
+    pub fn add_wall(&mut self, wall: Wall, row: Vec<Interaction<L>>) -> Result<(), String> {
+        assert_eq!(row.len(), self.species);
+        let reach = row.iter().map(|it| it.reach).fold(self.reach, f64::max);
+        if !(self.list.skin > reach) {
+            return Err(format!("wall `{}`: its adhesive necks reach {reach:e} m, beyond the bed's skin {:e} m", wall.name, self.list.skin));
+        }
+        self.reach = reach;
+        self.wall_reference.push(wall.position);
+        self.walls.push(wall);
+        self.wall_pairs.push(row);
+        self.wall_contacts.push(WallContacts { particle: vec![], normal: vec![], spring: vec![], radius: vec![] });
+        // The forces of the last step stay as they are (the next half kick needs the ones the drift was
+        // made with); the wall's own contacts enter at the next force loop.
+        self.rebuild();
+        Ok(())
+    }
+
     /// The forces of the last step.
     pub fn totals(&self) -> &Accum {
         &self.total
