@@ -14,7 +14,8 @@
 //! - `random`: the seeded random numbers of bed preparation;
 //! - `scene`: the bed scene (`BedScene`), read from JSON and checked;
 //! - `prepare`: fill, settle, consolidate, unload, relax (`004` Sec. 5.1.3);
-//! - `stress`: Bagi's stress tensor (`004` Eqs. 5.1-5.3);
+//! - `stress`: Bagi's stress tensor (`004` Eqs. 5.1-5.3) in a cylinder or a box;
+//! - `indentation`: the ball indentation test on a prepared bed (`004` Sec. 2.3.5, Chs. 5-7);
 //! - `file`: the versioned bed file; `export`: VTK/CSV output; `render`: the PNG cross-section;
 //! - `lammps`: the LAMMPS data file export for the side-by-side benchmark.
 
@@ -23,6 +24,7 @@ mod any;
 mod engine;
 pub mod export;
 pub mod file;
+pub mod indentation;
 mod interaction;
 mod kernel;
 pub mod lammps;

@@ -6,7 +6,13 @@
 
 use super::any::AnyEngine;
 
-/// A measurement volume: a vertical cylinder about the die axis between two heights.
+/// A measurement volume: what it holds and how big it is.
+pub trait Volume {
+    fn volume(&self) -> f64;
+    fn contains(&self, x: [f64; 3]) -> bool;
+}
+
+/// A vertical cylinder about the die axis between two heights.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Region {
     pub radius: f64,
@@ -14,13 +20,34 @@ pub struct Region {
     pub z_high: f64,
 }
 
-impl Region {
-    pub fn volume(&self) -> f64 {
+impl Volume for Region {
+    fn volume(&self) -> f64 {
         std::f64::consts::PI * self.radius * self.radius * (self.z_high - self.z_low)
     }
 
-    pub fn contains(&self, x: [f64; 3]) -> bool {
+    fn contains(&self, x: [f64; 3]) -> bool {
         x[0] * x[0] + x[1] * x[1] <= self.radius * self.radius && x[2] >= self.z_low && x[2] < self.z_high
+    }
+}
+
+/// An axis-aligned box centred on the die axis (the dynamic bin under the indenter, 004 Sec. 5.2,
+/// Fig. 5.18).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Cuboid {
+    /// Widths in x and y [m].
+    pub width_x: f64,
+    pub width_y: f64,
+    pub z_low: f64,
+    pub z_high: f64,
+}
+
+impl Volume for Cuboid {
+    fn volume(&self) -> f64 {
+        self.width_x * self.width_y * (self.z_high - self.z_low)
+    }
+
+    fn contains(&self, x: [f64; 3]) -> bool {
+        2.0 * x[0].abs() <= self.width_x && 2.0 * x[1].abs() <= self.width_y && x[2] >= self.z_low && x[2] < self.z_high
     }
 }
 
@@ -47,7 +74,7 @@ impl Stress {
 
 /// Bagi's stress in `region` for the forces of the bed's current state (one extra force evaluation
 /// that leaves the state unchanged, `Engine::measure_dipoles`).
-pub fn bagi(engine: &mut AnyEngine, region: &Region) -> Stress {
+pub fn bagi(engine: &mut AnyEngine, region: &impl Volume) -> Stress {
     with_engine!(engine, e => {
         let dip = e.measure_dipoles();
         let mut s = [0.0; 9];

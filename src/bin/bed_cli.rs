@@ -1,6 +1,7 @@
 //! `powderfmu bed ...`: prepare a bed, describe it, look at it, export it, time it.
 
 use powderfmu::bed::file::{self, BedFile};
+use powderfmu::bed::indentation::{Indentation, Motion, Setup, TestState};
 use powderfmu::bed::prepare::{self, Progress};
 use powderfmu::bed::stress::{bagi, Region};
 use powderfmu::bed::{export, render, AnyEngine, BedScene};
@@ -15,6 +16,8 @@ pub const USAGE: &str = "  powderfmu bed prepare SCENE.json [-o BED] [--threads 
   powderfmu bed snapshot BED OUT.vtk|OUT.csv            spheres for ParaView (VTK) or a spreadsheet (CSV)
   powderfmu bed render BED OUT.png [--width PX]         vertical cross-section through the die axis
   powderfmu bed export-lammps BED OUT.data              LAMMPS data file (atom_style sphere)
+  powderfmu bed indent BED [--diameter D] [--speed V] [--max-penetration H] [--threads T] [--out CSV]
+                                                        ball indentation (004 Sec. 2.3.5): load to H, unload; force-depth CSV
   powderfmu bed bench BED --model M [--steps N] [--threads T] [--stiffness K] [--yield-pressure P]
                         [--surface-energy G] [--rolling-friction MU]
                                                         particle-steps per second of the force loop";
@@ -27,6 +30,7 @@ pub fn run(args: &[String]) -> Result<(), String> {
         Some("render") => render_cmd(&args[1..]),
         Some("export-lammps") => export_cmd(&args[1..]),
         Some("bench") => bench_cmd(&args[1..]),
+        Some("indent") => indent_cmd(&args[1..]),
         Some(other) => Err(format!("unknown bed subcommand `{other}`\nusage:\n{USAGE}")),
         None => Err(format!("usage:\n{USAGE}")),
     }
@@ -326,4 +330,52 @@ fn bench_cmd(args: &[String]) -> Result<(), String> {
         contacts as f64 / n as f64
     );
     Ok(())
+}
+
+fn indent_cmd(args: &[String]) -> Result<(), String> {
+    let a = parse(args, &["--diameter", "--speed", "--max-penetration", "--threads", "--out", "--every"])?;
+    let (engine, scene) = load(a.need(0, "BED (a prepared bed file)")?, threads_option(&a)?)?;
+    let mean = scene.size_distribution.mean_diameter();
+    let d = a.number("--diameter", 16.0 * mean, |v: &f64| *v > 0.0, "a diameter > 0 [m]")?;
+    let setup = Setup {
+        indenter_diameter: d,
+        indentation_speed: a.number("--speed", 0.02, |v: &f64| *v > 0.0, "a speed > 0 [m/s]")?,
+        max_penetration: a.number("--max-penetration", 0.1 * d, |v: &f64| *v > 0.0, "a depth > 0 [m]")?,
+        constraint_factor: 3.0,
+        motion: Motion::Prescribed,
+    };
+    let every = a.number("--every", 1e-3, |v: &f64| *v > 0.0, "a time > 0 [s]")?;
+    let mut test = Indentation::new(engine, scene, setup, 0.0).map_err(|e| e.to_string())?;
+    let mut csv = String::from("time_s,depth_m,depth_over_r,force_N,hardness_Pa,hydrostatic_Pa,deviatoric_Pa,contacts,kinetic_energy_J,state\n");
+    let started = Instant::now();
+    let mut t = 0.0;
+    let limit = 4.0 * setup.max_penetration / setup.indentation_speed + 1.0;
+    loop {
+        test.advance(every, None).map_err(|e| e.to_string())?;
+        t += every;
+        let r = test.reading();
+        csv += &format!(
+            "{t:.6e},{:.6e},{:.5},{:.6e},{:.6e},{:.6e},{:.6e},{},{:.4e},{}\n",
+            r.depth, r.dimensionless_depth, r.force, r.hardness, r.hydrostatic_stress, r.deviatoric_stress, r.contacts, r.kinetic_energy, r.state as u8
+        );
+        if r.state == TestState::Done || t > limit {
+            eprintln!(
+                "indentation: h_max {:.4e} m (h/r {:.3}), F_max {:.4e} N, h_c {:.4e} m, hardness {:.4e} Pa, {:.1} s wall time",
+                test.record.h_max,
+                test.record.h_max / (0.5 * d),
+                test.record.f_max,
+                r.contact_depth,
+                r.hardness,
+                started.elapsed().as_secs_f64()
+            );
+            break;
+        }
+    }
+    match a.get("--out") {
+        Some(path) => std::fs::write(path, csv).map_err(|e| format!("cannot write {path}: {e}")),
+        None => {
+            print!("{csv}");
+            Ok(())
+        }
+    }
 }

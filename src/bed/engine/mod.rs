@@ -170,13 +170,20 @@ impl<L: BedLaw> Engine<L> {
     /// state. The force loop runs once more with a zero spring increment, which reproduces the last
     /// step's forces and leaves every history as it was.
     pub fn measure_dipoles(&mut self) -> Vec<[f64; 9]> {
+        // The forces of the last step are kept as they were: the next half kick needs them (the pass
+        // here sees the velocities after the step, not the ones the step's damping saw).
+        let total = self.total.clone();
+        let wall_force: Vec<Vec3> = self.walls.iter().map(|w| w.force).collect();
         self.record_dipoles = true;
         self.resize_buffers();
         self.compute_forces_without_increment();
-        let dipoles = self.totals().dipole.clone();
+        let dipoles = std::mem::take(&mut self.total.dipole);
         self.record_dipoles = false;
+        self.total = total;
         self.resize_buffers();
-        self.compute_forces_without_increment();
+        for (w, f) in self.walls.iter_mut().zip(wall_force) {
+            w.force = f;
+        }
         dipoles
     }
 

@@ -1,0 +1,421 @@
+//! The ball indentation test (`004` Sec. 2.3.5, Chs. 5-7) on a prepared bed: a sphere pushed into the
+//! bed surface and pulled out again, the force-depth record, and what the seed derives from it.
+//!
+//! - Depth h is measured from the indenter's first touch of the bed surface: the height of its lowest
+//!   point when, lowered along the die axis, it would first touch a sphere (`first_touch_height`).
+//! - Projected area A(h) = pi (d h - h^2) (Eq. 2.9); hardness during loading F / A(h) (Eq. 2.7 at the
+//!   current load); after unloading H = F_max / A(h_c), with h_c where the tangent to the initial
+//!   unloading curve meets zero force (Sec. 2.3.5). "Initial" is read as the upper quarter of the
+//!   unloading curve (F >= 0.75 F_0, with h_0, F_0 where unloading starts), sampled at every step: its
+//!   least-squares slope S gives the tangent through the start, h_c = h_0 - F_0 / S.
+//! - Unconfined yield strength = H / C with the constraint factor C (Eq. 2.10).
+//! - Hydrostatic and deviatoric stress (Eqs. 5.2-5.3) of Bagi's tensor (Eq. 5.1) in the dynamic bin:
+//!   5.2 x 5.2 x 4.2 mean diameters (5.2 x 5.2 x 4.2 mm for the seed's 1 mm spheres), directly below the
+//!   indenter, its top at the indenter's lowest point, moving with it (Sec. 5.2, Fig. 5.18).
+//!
+//! The engine steps with its own time step whatever the communication step: the time not yet stepped is
+//! carried to the next call, and every decision (turning at max_penetration, the end of the test, the
+//! points of the unloading curve) is taken every `CHECK_EVERY` engine steps counted from the start, so that the
+//! communication step changes nothing but when the results are read.
+
+use super::any::{AnyEngine, BedError};
+use super::file::{self, BedFile};
+use super::particles::Particles;
+use super::scene::BedScene;
+use super::stress::{bagi, Cuboid, Volume};
+use super::walls::Wall;
+use crate::error::ParamError;
+use std::f64::consts::PI;
+
+/// Engine steps between two checks of the test's progress (turning, end, unloading points), counted
+/// from the start of the bed's time so that they do not depend on the communication step.
+const CHECK_EVERY: u64 = 100;
+/// The upper part of the unloading curve whose tangent gives h_c: F >= this fraction of the force where
+/// unloading starts.
+const TANGENT_FRACTION: f64 = 0.75;
+/// The dynamic bin in mean diameters (004 Sec. 5.2: 5.2 x 5.2 x 4.2 mm for 1 mm spheres).
+const BIN: [f64; 3] = [5.2, 5.2, 4.2];
+
+/// How the indenter moves.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub enum Motion {
+    /// Load at `indentation_speed` to `max_penetration`, unload at the same speed until the indenter
+    /// leaves the bed (004 Sec. 2.3.5: unloading at the rate of loading).
+    Prescribed,
+    /// Follow the inputs: depth and its rate.
+    Input,
+}
+
+/// The test's set-up.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct Setup {
+    /// d [m].
+    pub indenter_diameter: f64,
+    /// [m/s].
+    pub indentation_speed: f64,
+    /// h_max of the prescribed test [m].
+    pub max_penetration: f64,
+    /// C of Eq. 2.10.
+    pub constraint_factor: f64,
+    pub motion: Motion,
+}
+
+/// Where the test is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub enum TestState {
+    Loading = 0,
+    Unloading = 1,
+    Done = 2,
+}
+
+/// What the test has recorded so far (saved with the bed in a saved state).
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct Record {
+    pub state: TestState,
+    /// Largest force and largest depth of the loading [N], [m].
+    pub f_max: f64,
+    pub h_max: f64,
+    /// (h, F) of the upper part of the unloading curve.
+    pub unloading: Vec<(f64, f64)>,
+    /// h_c once the tangent is known [m].
+    pub contact_depth: Option<f64>,
+    /// Height of the indenter's lowest point at first touch [m].
+    pub touch: f64,
+    /// Communication time not yet stepped [s].
+    pub time_debt: f64,
+    /// Engine steps since the indenter was put in (the checks fall on multiples of `CHECK_EVERY`).
+    pub steps: u64,
+}
+
+/// The outputs of the test at the current state.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Reading {
+    /// Force of the bed on the indenter, upward [N].
+    pub force: f64,
+    /// h [m].
+    pub depth: f64,
+    /// h / r.
+    pub dimensionless_depth: f64,
+    /// A(h) [m^2].
+    pub projected_area: f64,
+    /// [Pa].
+    pub hardness: f64,
+    pub unconfined_yield_strength: f64,
+    pub hydrostatic_stress: f64,
+    pub deviatoric_stress: f64,
+    pub contacts: usize,
+    pub kinetic_energy: f64,
+    pub state: TestState,
+    /// h_c, 0 until known [m].
+    pub contact_depth: f64,
+}
+
+/// A prepared bed with the indenter in it.
+pub struct Indentation {
+    pub engine: AnyEngine,
+    pub scene: BedScene,
+    pub setup: Setup,
+    pub record: Record,
+    /// The indenter's index among the walls.
+    indenter: usize,
+}
+
+/// A(h) = pi (d h - h^2) (004 Eq. 2.9), 0 outside the indenter.
+pub fn projected_area(d: f64, h: f64) -> f64 {
+    let h = h.clamp(0.0, d);
+    PI * (d * h - h * h)
+}
+
+/// Height of the lowest point of a sphere of radius `r_i`, lowered along the die axis, when it first
+/// touches one of the particles: max over the spheres within reach of z - r_i + sqrt((r_i + r)^2 - rho^2).
+pub fn first_touch_height(p: &Particles, r_i: f64) -> Option<f64> {
+    let mut top: Option<f64> = None;
+    for (x, &r) in p.position.iter().zip(&p.radius) {
+        let rho2 = x[0] * x[0] + x[1] * x[1];
+        let reach2 = (r_i + r) * (r_i + r);
+        if rho2 < reach2 {
+            let z = x[2] - r_i + (reach2 - rho2).sqrt();
+            top = Some(top.map_or(z, |t: f64| t.max(z)));
+        }
+    }
+    top
+}
+
+impl Indentation {
+    /// Puts the indenter into a prepared bed, its lowest point at depth `start_depth` (0 = first touch;
+    /// negative = above the surface). Refuses an indenter wider than the die, a depth beyond the bed, a
+    /// start inside the bed, and a bed with nothing under the indenter.
+    pub fn new(mut engine: AnyEngine, scene: BedScene, setup: Setup, start_depth: f64) -> Result<Indentation, BedError> {
+        let d = setup.indenter_diameter;
+        let die = scene.die_diameter;
+        if !(d > 0.0 && d < die) {
+            return Err(ParamError::OutOfRange { name: "indenter_diameter", value: d, allowed: format!("(0, {die:e}) m: narrower than the die") }.into());
+        }
+        let height = super::prepare::bed_height(engine.particles());
+        if !(setup.max_penetration > 0.0 && setup.max_penetration < height.min(0.5 * d)) {
+            return Err(ParamError::OutOfRange {
+                name: "max_penetration",
+                value: setup.max_penetration,
+                allowed: format!("(0, {:e}) m: within the bed ({height:e} m high) and the indenter's radius", height.min(0.5 * d)),
+            }
+            .into());
+        }
+        if !(setup.indentation_speed > 0.0 && setup.indentation_speed.is_finite()) {
+            return Err(ParamError::OutOfRange { name: "indentation_speed", value: setup.indentation_speed, allowed: "(0, inf) m/s".into() }.into());
+        }
+        if !(setup.constraint_factor > 0.0 && setup.constraint_factor.is_finite()) {
+            return Err(ParamError::OutOfRange { name: "constraint_factor", value: setup.constraint_factor, allowed: "(0, inf)".into() }.into());
+        }
+        if !(start_depth <= 0.0) {
+            return Err(ParamError::OutOfRange {
+                name: "indenter_displacement",
+                value: start_depth,
+                allowed: "(-inf, 0] m at the start: the indenter starts at or above the bed surface".into(),
+            }
+            .into());
+        }
+        let r_i = 0.5 * d;
+        let touch = first_touch_height(engine.particles(), r_i)
+            .ok_or_else(|| BedError::Setup("no sphere of the bed lies under the indenter: nothing to indent".into()))?;
+        let bottom = touch - start_depth;
+        engine.add_wall(&scene, Wall::sphere("indenter", [0.0, 0.0, bottom + r_i], r_i))?;
+        let indenter = engine.walls().len() - 1;
+        let record = Record { state: TestState::Loading, f_max: 0.0, h_max: 0.0, unloading: vec![], contact_depth: None, touch, time_debt: 0.0, steps: 0 };
+        let mut test = Indentation { engine, scene, setup, record, indenter };
+        if setup.motion == Motion::Prescribed {
+            test.set_indenter_velocity(-setup.indentation_speed);
+        }
+        Ok(test)
+    }
+
+    fn indenter(&self) -> &Wall {
+        &self.engine.walls()[self.indenter]
+    }
+
+    fn set_indenter_velocity(&mut self, vz: f64) {
+        let w = self.indenter;
+        self.engine.walls_mut()[w].velocity = [0.0, 0.0, vz];
+    }
+
+    /// Depth of the indenter's lowest point below the first touch [m].
+    pub fn depth(&self) -> f64 {
+        let w = self.indenter();
+        self.record.touch - (w.position[2] - 0.5 * self.setup.indenter_diameter)
+    }
+
+    /// Force of the bed on the indenter, upward [N].
+    pub fn force(&self) -> f64 {
+        self.indenter().force[2]
+    }
+
+    /// Spheres touching the indenter.
+    pub fn contacts(&self) -> usize {
+        let wall = self.indenter().clone();
+        let p = self.engine.particles();
+        p.position.iter().zip(&p.radius).filter(|(x, r)| wall.touch(**x, **r).overlap > 0.0).count()
+    }
+
+    /// Advances the test by `h` seconds. With `Motion::Input`, `input` = (depth, rate) at the start of
+    /// the step: the indenter moves at constant speed to depth + rate h over the step.
+    pub fn advance(&mut self, h: f64, input: Option<(f64, f64)>) -> Result<(), BedError> {
+        let dt = self.engine.dt();
+        self.record.time_debt += h;
+        let n = (self.record.time_debt / dt).floor().max(0.0) as u64;
+        self.record.time_debt -= n as f64 * dt;
+        if n == 0 {
+            return Ok(());
+        }
+        if let (Motion::Input, Some((depth, rate))) = (self.setup.motion, input) {
+            let target = depth + rate * h;
+            if !(target.is_finite() && target < 0.5 * self.setup.indenter_diameter) {
+                return Err(ParamError::OutOfRange {
+                    name: "indenter_displacement",
+                    value: target,
+                    allowed: format!("below {:e} m (the indenter's radius) and finite", 0.5 * self.setup.indenter_diameter),
+                }
+                .into());
+            }
+            let vz = -(target - self.depth()) / (n as f64 * dt);
+            self.set_indenter_velocity(vz);
+        }
+        let mut left = n;
+        while left > 0 {
+            // The upper unloading curve is steep: sampled at every step until its tangent is known.
+            let every = if self.record.state == TestState::Unloading && self.record.contact_depth.is_none() { 1 } else { CHECK_EVERY };
+            let to_check = every - self.record.steps % every;
+            let chunk = left.min(to_check);
+            self.engine.run(chunk);
+            self.record.steps += chunk;
+            left -= chunk;
+            if chunk == to_check {
+                self.check();
+            }
+        }
+        if !self.engine.particles().kinetic_energy().is_finite() {
+            return Err(BedError::Setup("the bed blew up (kinetic energy not finite): lower the bed's time_step or the indentation speed".into()));
+        }
+        Ok(())
+    }
+
+    /// The test's progress at a check: the largest force, the unloading points, turning and ending.
+    fn check(&mut self) {
+        let (h, f) = (self.depth(), self.force());
+        let loading = match self.setup.motion {
+            Motion::Prescribed => self.record.state == TestState::Loading,
+            Motion::Input => self.indenter().velocity[2] <= 0.0,
+        };
+        if loading && self.record.state != TestState::Done {
+            self.record.state = TestState::Loading;
+            self.record.f_max = self.record.f_max.max(f);
+            self.record.h_max = self.record.h_max.max(h);
+            self.record.unloading.clear();
+            self.record.contact_depth = None;
+            if self.setup.motion == Motion::Prescribed && h >= self.setup.max_penetration {
+                self.record.state = TestState::Unloading;
+                self.set_indenter_velocity(self.setup.indentation_speed);
+            }
+            return;
+        }
+        if self.record.state == TestState::Loading {
+            self.record.state = TestState::Unloading;
+        }
+        if self.record.state == TestState::Unloading {
+            if self.record.contact_depth.is_none() {
+                let start = self.record.unloading.first().map_or(f, |p| p.1);
+                if f >= TANGENT_FRACTION * start {
+                    self.record.unloading.push((h, f));
+                } else {
+                    self.record.contact_depth = tangent_depth(&self.record.unloading);
+                }
+            }
+            // Done once the indenter has left the bed; a prescribed indenter goes on rising at its speed,
+            // so that the bed's surface, relaxing, does not meet it again.
+            if self.contacts() == 0 && h < self.record.h_max {
+                self.record.state = TestState::Done;
+            }
+        }
+    }
+
+    /// The outputs at the current state (one extra force evaluation for Bagi's stress, which leaves the
+    /// state unchanged).
+    pub fn reading(&mut self) -> Reading {
+        let (d, f, h) = (self.setup.indenter_diameter, self.force(), self.depth());
+        let area = projected_area(d, h);
+        let hardness = match (self.record.state, self.record.contact_depth) {
+            (TestState::Loading, _) => {
+                if area > 0.0 {
+                    f / area
+                } else {
+                    0.0
+                }
+            }
+            (_, Some(hc)) => self.record.f_max / projected_area(d, hc),
+            (_, None) => {
+                let a = projected_area(d, self.record.h_max);
+                if a > 0.0 {
+                    self.record.f_max / a
+                } else {
+                    0.0
+                }
+            }
+        };
+        let mean = self.scene.size_distribution.mean_diameter();
+        let bottom = self.indenter().position[2] - 0.5 * d;
+        let bin = Cuboid { width_x: BIN[0] * mean, width_y: BIN[1] * mean, z_low: bottom - BIN[2] * mean, z_high: bottom };
+        let stress = bagi(&mut self.engine, &bin);
+        debug_assert!(bin.volume() > 0.0);
+        Reading {
+            force: f,
+            depth: h,
+            dimensionless_depth: h / (0.5 * d),
+            projected_area: area,
+            hardness,
+            unconfined_yield_strength: hardness / self.setup.constraint_factor,
+            hydrostatic_stress: stress.hydrostatic(),
+            deviatoric_stress: stress.deviatoric(),
+            contacts: self.contacts(),
+            kinetic_energy: self.engine.particles().kinetic_energy(),
+            state: self.record.state,
+            contact_depth: self.record.contact_depth.unwrap_or(0.0),
+        }
+    }
+
+    /// The whole state as bytes: the bed (with the indenter, every contact's memory and the last
+    /// forces, `bed::file`) and the record.
+    pub fn save(&self) -> Vec<u8> {
+        let saved = Saved { bed: file::encode(&self.engine.to_file(&self.scene)), setup: self.setup, record: self.record.clone(), indenter: self.indenter as u32 };
+        bincode::serialize(&saved).expect("an indentation state serializes")
+    }
+
+    /// Reads back what `save` wrote, with `threads` threads.
+    pub fn restore(bytes: &[u8], threads: Option<usize>) -> Result<Indentation, BedError> {
+        let saved: Saved = bincode::deserialize(bytes).map_err(|e| BedError::Setup(format!("the saved indentation state cannot be read: {e}")))?;
+        let file: BedFile = file::decode(&saved.bed)?;
+        let (engine, scene) = AnyEngine::from_file(&file, threads)?;
+        let indenter = saved.indenter as usize;
+        if indenter >= engine.walls().len() {
+            return Err(BedError::Setup("the saved indentation state has no indenter".into()));
+        }
+        Ok(Indentation { engine, scene, setup: saved.setup, record: saved.record, indenter })
+    }
+}
+
+#[derive(serde::Serialize, serde::Deserialize)]
+struct Saved {
+    bed: Vec<u8>,
+    setup: Setup,
+    record: Record,
+    indenter: u32,
+}
+
+/// h_c = h_0 - F_0 / S: where the tangent to the unloading curve at its start (h_0, F_0) = `points[0]`
+/// meets zero force, S the least-squares slope of F against h over `points` (at least three; S > 0 and
+/// h_c within (0, h_0]); none otherwise.
+pub fn tangent_depth(points: &[(f64, f64)]) -> Option<f64> {
+    if points.len() < 3 {
+        return None;
+    }
+    let n = points.len() as f64;
+    let (mh, mf) = points.iter().fold((0.0, 0.0), |(a, b), (h, f)| (a + h / n, b + f / n));
+    let (sxy, sxx) = points.iter().fold((0.0, 0.0), |(a, b), (h, f)| (a + (h - mh) * (f - mf), b + (h - mh) * (h - mh)));
+    let slope = sxy / sxx;
+    let (h0, f0) = points[0];
+    let hc = h0 - f0 / slope;
+    (slope > 0.0 && hc > 0.0 && hc <= h0).then_some(hc)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn projected_area_is_the_cap_base() {
+        // 004 Eq. 2.9: at h = r the base is the equator.
+        let d = 0.016;
+        assert!((projected_area(d, 0.5 * d) - PI * 0.25 * d * d).abs() < 1e-18);
+        assert_eq!(projected_area(d, -1e-3), 0.0);
+    }
+
+    #[test]
+    fn tangent_of_a_straight_unloading_line_meets_zero_where_the_line_does() {
+        // F = 100 (h - 0.6e-3) from h_max = 1e-3: h_c = 0.6e-3.
+        let pts: Vec<(f64, f64)> = (0..5).map(|k| 1e-3 - k as f64 * 1e-5).map(|h| (h, 100.0 * (h - 0.6e-3))).collect();
+        let hc = tangent_depth(&pts).unwrap();
+        assert!((hc - 0.6e-3).abs() < 1e-12, "{hc}");
+        assert_eq!(tangent_depth(&pts[..2]), None);
+    }
+
+    #[test]
+    fn first_touch_of_a_sphere_on_a_sphere_below_it() {
+        let mut p = Particles::default();
+        p.push([0.0, 0.0, 1e-3], 0.5e-3, 2500.0, 0);
+        p.push([3e-3, 0.0, 5e-3], 0.5e-3, 2500.0, 0); // beyond the indenter's reach
+        let z = first_touch_height(&p, 2e-3).unwrap();
+        assert!((z - 1.5e-3).abs() < 1e-15, "{z}");
+        // Off axis by rho: the lowest point is below the sphere's top.
+        let mut q = Particles::default();
+        q.push([1e-3, 0.0, 1e-3], 0.5e-3, 2500.0, 0);
+        let z = first_touch_height(&q, 2e-3).unwrap();
+        assert!((z - (1e-3 - 2e-3 + (2.5e-3f64.powi(2) - 1e-6).sqrt())).abs() < 1e-15);
+    }
+}

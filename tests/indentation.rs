@@ -1,0 +1,135 @@
+//! The ball indentation test on a small prepared bed: the whole load-unload cycle, the communication
+//! step changing nothing, saved states continuing bit for bit, and bad set-ups refused by name.
+
+use powderfmu::bed::file::{self, BedFile};
+use powderfmu::bed::indentation::{projected_area, Indentation, Motion, Setup, TestState};
+use powderfmu::bed::prepare;
+use powderfmu::bed::{AnyEngine, BedError, BedScene};
+use std::sync::OnceLock;
+
+/// A soft bed of 800 spheres about 18 mean diameters high in a 7 mm die, prepared once for every test.
+fn bed() -> &'static (BedFile, BedScene) {
+    static BED: OnceLock<(BedFile, BedScene)> = OnceLock::new();
+    BED.get_or_init(|| {
+        let scene = BedScene::from_json(r#"{"particle_particle": {"particle_youngs_modulus": 55e6}, "particle_count": 800, "die_diameter": 0.007}"#).unwrap();
+        let (engine, _) = prepare::prepare(&scene, &mut |_| {}).unwrap();
+        (file::decode(&file::encode(&engine.to_file(&scene))).unwrap(), scene)
+    })
+}
+
+fn engine() -> (AnyEngine, BedScene) {
+    AnyEngine::from_file(&bed().0, None).unwrap()
+}
+
+/// A 4 mm indenter (4 mean diameters) to 0.2 r at 0.05 m/s.
+fn setup() -> Setup {
+    Setup { indenter_diameter: 0.004, indentation_speed: 0.05, max_penetration: 0.2 * 0.002, constraint_factor: 3.0, motion: Motion::Prescribed }
+}
+
+/// Runs the prescribed test in communication steps of `h` until done; the readings at each step.
+fn run(test: &mut Indentation, h: f64) -> Vec<powderfmu::bed::indentation::Reading> {
+    let mut out = vec![];
+    for _ in 0..100_000 {
+        test.advance(h, None).unwrap();
+        let r = test.reading();
+        out.push(r);
+        if r.state == TestState::Done {
+            return out;
+        }
+    }
+    panic!("the test never ended");
+}
+
+#[test]
+fn a_prescribed_test_loads_unloads_and_gives_the_tangent_hardness() {
+    let (engine, scene) = engine();
+    let s = setup();
+    let mut test = Indentation::new(engine, scene, s, 0.0).unwrap();
+    let readings = run(&mut test, 2e-4);
+    let states: Vec<TestState> = readings.iter().map(|r| r.state).collect();
+    let first_unloading = states.iter().position(|&x| x == TestState::Unloading).expect("an unloading phase");
+    assert!(states[..first_unloading].iter().all(|&x| x == TestState::Loading));
+    assert!(states[first_unloading..states.len() - 1].iter().all(|&x| x == TestState::Unloading));
+    let rec = &test.record;
+    // Turned at max_penetration (checked every 100 steps: within 100 steps of travel beyond it).
+    let overshoot = 100.0 * s.indentation_speed * test.engine.dt();
+    assert!(rec.h_max >= s.max_penetration - overshoot && rec.h_max <= s.max_penetration + overshoot, "h_max {}", rec.h_max);
+    assert!(rec.f_max > 0.0, "the bed must resist the indenter");
+    let hc = rec.contact_depth.expect("h_c from the tangent to the initial unloading curve");
+    assert!(hc > 0.0 && hc < rec.h_max, "h_c {hc} vs h_max {}", rec.h_max);
+    let last = readings.last().unwrap();
+    assert_eq!(last.hardness, rec.f_max / projected_area(s.indenter_diameter, hc));
+    assert_eq!(last.unconfined_yield_strength, last.hardness / 3.0);
+    assert_eq!(last.contacts, 0, "done means the indenter has left the bed");
+    // During loading hardness is F / A(h) and the bin under the indenter is in compression.
+    let mid = &readings[first_unloading / 2];
+    assert!((mid.hardness - mid.force / mid.projected_area).abs() <= 1e-12 * mid.hardness.abs());
+    let loaded: Vec<_> = readings[first_unloading / 2..first_unloading].iter().collect();
+    let mean_hyd = loaded.iter().map(|r| r.hydrostatic_stress).sum::<f64>() / loaded.len() as f64;
+    assert!(mean_hyd > 0.0, "compression under the indenter: {mean_hyd} Pa");
+}
+
+#[test]
+fn the_communication_step_changes_nothing_but_when_results_are_read() {
+    let (e1, s1) = engine();
+    let (e2, s2) = engine();
+    let mut a = Indentation::new(e1, s1, setup(), 0.0).unwrap();
+    let mut b = Indentation::new(e2, s2, setup(), 0.0).unwrap();
+    run(&mut a, 2e-4);
+    run(&mut b, 3.7e-5);
+    assert_eq!(a.record.f_max, b.record.f_max);
+    assert_eq!(a.record.h_max, b.record.h_max);
+    assert_eq!(a.record.contact_depth, b.record.contact_depth);
+}
+
+#[test]
+fn a_saved_test_continues_bit_for_bit() {
+    let (engine, scene) = engine();
+    let mut test = Indentation::new(engine, scene, setup(), 0.0).unwrap();
+    for _ in 0..20 {
+        test.advance(1e-4, None).unwrap();
+    }
+    let bytes = test.save();
+    let mut back = Indentation::restore(&bytes, None).unwrap();
+    for _ in 0..20 {
+        test.advance(1e-4, None).unwrap();
+        back.advance(1e-4, None).unwrap();
+    }
+    assert_eq!(test.engine.particles().position, back.engine.particles().position);
+    assert_eq!(test.record, back.record);
+    assert_eq!(test.reading(), back.reading());
+}
+
+#[test]
+fn the_input_motion_follows_the_inputs() {
+    let (engine, scene) = engine();
+    let s = Setup { motion: Motion::Input, ..setup() };
+    let mut test = Indentation::new(engine, scene, s, -1e-4).unwrap();
+    assert!((test.depth() + 1e-4).abs() < 1e-15);
+    // Down at 0.05 m/s for 6 ms from 0.1 mm above the surface: 0.2 mm deep.
+    let (h, v) = (1e-4, 0.05);
+    for k in 0..60 {
+        let depth = -1e-4 + v * h * k as f64;
+        test.advance(h, Some((depth, v))).unwrap();
+    }
+    assert!((test.depth() - 2e-4).abs() < 1e-9, "depth {}", test.depth());
+    assert_eq!(test.reading().state, TestState::Loading);
+    assert!(test.force() > 0.0);
+}
+
+fn refused(setup: Setup, start: f64, name: &str) {
+    let (engine, scene) = engine();
+    match Indentation::new(engine, scene, setup, start) {
+        Err(BedError::Param(e)) => assert_eq!(e.parameter(), Some(name), "{e}"),
+        Err(other) => panic!("{name}: expected a parameter error, got {other}"),
+        Ok(_) => panic!("{name}: expected an error"),
+    }
+}
+
+#[test]
+fn bad_set_ups_are_refused_by_name() {
+    refused(Setup { indenter_diameter: 0.008, ..setup() }, 0.0, "indenter_diameter");
+    refused(Setup { max_penetration: 0.05, ..setup() }, 0.0, "max_penetration");
+    refused(Setup { indentation_speed: -1.0, ..setup() }, 0.0, "indentation_speed");
+    refused(setup(), 1e-4, "indenter_displacement");
+}
