@@ -7,7 +7,7 @@
 //! `--update-interface` rewrites the checked-in `modelDescription/*.xml` and docs tables instead.
 
 use fmu_build::archive::{write_zip, Entry};
-use fmu_build::interface;
+use fmu_build::{beds, interface};
 use powderfmu::units::{self, model_description, UnitInfo};
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode};
@@ -88,7 +88,7 @@ fn run() -> Result<(), String> {
             );
         }
         let path = o.out.join(format!("{}.fmu", unit.model_identifier));
-        let entries = entries(unit, &binary, &root)?;
+        let entries = entries(unit, &binary, &root, &target)?;
         let mut bytes = Vec::new();
         write_zip(entries, &mut bytes).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
         interface::write_atomic(&path, &bytes)?;
@@ -101,17 +101,25 @@ fn read(root: &Path, rel: &str) -> Result<Vec<u8>, String> {
     std::fs::read(root.join(rel)).map_err(|e| format!("cannot read {rel}: {e}"))
 }
 
-fn entries(unit: &UnitInfo, binary: &[u8], root: &Path) -> Result<Vec<Entry>, String> {
+fn entries(unit: &UnitInfo, binary: &[u8], root: &Path, target: &Path) -> Result<Vec<Entry>, String> {
     let id = unit.model_identifier;
     let page = format!("docs/units/{id}.md");
-    Ok(vec![
+    let mut entries = vec![
         Entry { name: "modelDescription.xml".into(), data: unit.model_description().into_bytes() },
         Entry { name: format!("binaries/linux64/{id}.so"), data: binary.to_vec() },
         Entry { name: "documentation/index.html".into(), data: index_html(unit).into_bytes() },
         Entry { name: format!("documentation/{id}.md"), data: read(root, &page)? },
         Entry { name: "documentation/models.md".into(), data: read(root, "docs/models.md")? },
-        Entry { name: "resources/default_scene.json".into(), data: units::DEFAULT_SCENE.as_bytes().to_vec() },
-    ])
+    ];
+    if id == units::ball_indentation::MODEL_IDENTIFIER {
+        let scene = read(root, beds::BALL_INDENTATION_SCENE)?;
+        entries.push(Entry { name: format!("resources/{}", units::ball_indentation::RESOURCE_BED), data: beds::prepared(&scene, target)? });
+        entries.push(Entry { name: "resources/bed_scene.json".into(), data: scene });
+        entries.push(Entry { name: "documentation/bed.md".into(), data: read(root, "docs/bed.md")? });
+    } else {
+        entries.push(Entry { name: "resources/default_scene.json".into(), data: units::DEFAULT_SCENE.as_bytes().to_vec() });
+    }
+    Ok(entries)
 }
 
 /// A self-contained documentation page: what the unit is, where the equations are, every variable.

@@ -219,22 +219,29 @@ impl Indentation {
     /// the step: the indenter moves at constant speed to depth + rate h over the step.
     pub fn advance(&mut self, h: f64, input: Option<(f64, f64)>) -> Result<(), BedError> {
         let dt = self.engine.dt();
+        // The inputs are checked before anything moves: a refused step leaves the state as it was.
+        let target = match (self.setup.motion, input) {
+            (Motion::Input, Some((depth, rate))) => {
+                let target = depth + rate * h;
+                if !(target.is_finite() && target < 0.5 * self.setup.indenter_diameter) {
+                    return Err(ParamError::OutOfRange {
+                        name: "indenter_displacement",
+                        value: target,
+                        allowed: format!("below {:e} m (the indenter's radius) and finite", 0.5 * self.setup.indenter_diameter),
+                    }
+                    .into());
+                }
+                Some(target)
+            }
+            _ => None,
+        };
         self.record.time_debt += h;
         let n = (self.record.time_debt / dt).floor().max(0.0) as u64;
         self.record.time_debt -= n as f64 * dt;
         if n == 0 {
             return Ok(());
         }
-        if let (Motion::Input, Some((depth, rate))) = (self.setup.motion, input) {
-            let target = depth + rate * h;
-            if !(target.is_finite() && target < 0.5 * self.setup.indenter_diameter) {
-                return Err(ParamError::OutOfRange {
-                    name: "indenter_displacement",
-                    value: target,
-                    allowed: format!("below {:e} m (the indenter's radius) and finite", 0.5 * self.setup.indenter_diameter),
-                }
-                .into());
-            }
+        if let Some(target) = target {
             let vz = -(target - self.depth()) / (n as f64 * dt);
             self.set_indenter_velocity(vz);
         }
@@ -243,11 +250,20 @@ impl Indentation {
             // The upper unloading curve is steep: sampled at every step until its tangent is known.
             let every = if self.record.state == TestState::Unloading && self.record.contact_depth.is_none() { 1 } else { CHECK_EVERY };
             let to_check = every - self.record.steps % every;
-            let chunk = left.min(to_check);
+            let mut chunk = left.min(to_check);
+            // A prescribed indenter turns at the step that reaches max_penetration.
+            let mut turn = false;
+            if self.setup.motion == Motion::Prescribed && self.record.state == TestState::Loading {
+                let k = ((self.setup.max_penetration - self.depth()) / (self.setup.indentation_speed * dt)).ceil().max(1.0) as u64;
+                if k <= chunk {
+                    chunk = k;
+                    turn = true;
+                }
+            }
             self.engine.run(chunk);
             self.record.steps += chunk;
             left -= chunk;
-            if chunk == to_check {
+            if chunk == to_check || turn {
                 self.check();
             }
         }
@@ -270,7 +286,7 @@ impl Indentation {
             self.record.h_max = self.record.h_max.max(h);
             self.record.unloading.clear();
             self.record.contact_depth = None;
-            if self.setup.motion == Motion::Prescribed && h >= self.setup.max_penetration {
+            if self.setup.motion == Motion::Prescribed && h >= self.setup.max_penetration * (1.0 - 1e-9) {
                 self.record.state = TestState::Unloading;
                 self.set_indenter_velocity(self.setup.indentation_speed);
             }
@@ -349,7 +365,15 @@ impl Indentation {
 
     /// Reads back what `save` wrote, with `threads` threads.
     pub fn restore(bytes: &[u8], threads: Option<usize>) -> Result<Indentation, BedError> {
-        let saved: Saved = bincode::deserialize(bytes).map_err(|e| BedError::Setup(format!("the saved indentation state cannot be read: {e}")))?;
+        use bincode::Options;
+        // Nothing inside can be larger than the bytes themselves: the limit keeps a corrupt length from
+        // asking for more memory than that.
+        let saved: Saved = bincode::DefaultOptions::new()
+            .with_fixint_encoding()
+            .with_limit(bytes.len() as u64 + 64)
+            .reject_trailing_bytes()
+            .deserialize(bytes)
+            .map_err(|e| BedError::Setup(format!("the saved indentation state cannot be read: {e}")))?;
         let file: BedFile = file::decode(&saved.bed)?;
         let (engine, scene) = AnyEngine::from_file(&file, threads)?;
         let indenter = saved.indenter as usize;

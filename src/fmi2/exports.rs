@@ -259,6 +259,10 @@ pub unsafe extern "C" fn fmi2Instantiate(
                 ),
             );
         };
+        if kind == Kind::ModelExchange && !unit.model_exchange {
+            return fail(&name, format!("fmi2Instantiate: {} offers Co-Simulation only (fmuType = fmi2CoSimulation)", unit.model_identifier));
+        }
+        let mut resources = None;
         if !fmuResourceLocation.is_null() {
             // SAFETY: the host passes a NUL-terminated string (FMI 2.0 Sec. 2.1.2); NULL is refused inside.
             let uri = match unsafe { c_str(fmuResourceLocation, "fmi2Instantiate", "fmuResourceLocation") } {
@@ -266,14 +270,14 @@ pub unsafe extern "C" fn fmi2Instantiate(
                 Err(e) => return fail(&name, e.message),
             };
             match file_uri_to_path(&uri) {
-                Ok(path) if path.is_dir() => {}
+                Ok(path) if path.is_dir() => resources = Some(path),
                 Ok(path) => {
                     return fail(&name, format!("fmi2Instantiate: fmuResourceLocation {uri} names {}, which is not a directory", path.display()))
                 }
                 Err(e) => return fail(&name, format!("fmi2Instantiate: {e}")),
             }
         }
-        let inst = Box::new(Instance::new(&name, unit, kind, logger));
+        let inst = Box::new(Instance::new(&name, unit, kind, logger, resources));
         let p = Box::into_raw(inst);
         register(&INSTANCES, p as usize);
         p as fmi2Component

@@ -171,23 +171,26 @@ pub struct Instance {
     /// Whether the model's state reflects the current parameters (false after a parameter changes
     /// before the end of initialization).
     model_ready: bool,
+    /// The unzipped `resources` folder the host named (fmuResourceLocation), if any.
+    resources: Option<std::path::PathBuf>,
 }
 
 impl Instance {
-    pub fn new(name: &str, unit: &'static UnitInfo, kind: Kind, logger: Logger) -> Instance {
+    pub fn new(name: &str, unit: &'static UnitInfo, kind: Kind, logger: Logger, resources: Option<std::path::PathBuf>) -> Instance {
         Instance {
             name: CString::new(name.replace('\0', " ")).unwrap_or_default(),
             unit,
             kind,
             mode: Mode::Instantiated,
             values: unit.start_values(),
-            model: (unit.new_model)(unit),
+            model: (unit.new_model)(unit, resources.as_deref()),
             time: 0.0,
             start_time: 0.0,
             stop_time: None,
             logger,
             strings: Vec::new(),
             model_ready: false,
+            resources,
         }
     }
 
@@ -215,7 +218,7 @@ impl Instance {
     pub fn reset(&mut self) {
         self.mode = Mode::Instantiated;
         self.values = self.unit.start_values();
-        self.model = (self.unit.new_model)(self.unit);
+        self.model = (self.unit.new_model)(self.unit, self.resources.as_deref());
         self.time = 0.0;
         self.start_time = 0.0;
         self.stop_time = None;
@@ -449,7 +452,7 @@ impl Instance {
         let mode = Mode::ALL.get(s.mode as usize).copied().filter(|m| !matches!(m, Mode::Error | Mode::Fatal));
         let Some(mode) = mode else { return error("FMU state rejected: it records an invalid mode") };
         // Model first: if it refuses, nothing of this instance has changed.
-        let mut model = (self.unit.new_model)(self.unit);
+        let mut model = (self.unit.new_model)(self.unit, self.resources.as_deref());
         model.restore(&s.values, &s.model).map_err(|m| Failure {
             status: fmi2Error,
             message: format!("FMU state rejected: {m}"),
@@ -514,10 +517,11 @@ mod tests {
             n_event_indicators: 0,
             stop_time: 1.0,
             step_size: 0.1,
-            new_model: |_| Box::new(Unserializable),
+            model_exchange: true,
+            new_model: |_, _| Box::new(Unserializable),
             guid_cache: std::sync::OnceLock::new(),
         }));
-        let mut inst = Instance::new("i", unit, Kind::CoSimulation, Logger::new(None, std::ptr::null_mut(), false));
+        let mut inst = Instance::new("i", unit, Kind::CoSimulation, Logger::new(None, std::ptr::null_mut(), false), None);
         inst.exit_initialization_mode().unwrap();
         let failure = inst.save().unwrap_err();
         assert_eq!(failure.status, fmi2Error);

@@ -60,7 +60,8 @@ pub fn info() -> UnitInfo {
         n_event_indicators: 3,
         stop_time: 1.0,
         step_size: 1e-3,
-        new_model: |u| Box::new(ContactElement::new(u)),
+        model_exchange: true,
+        new_model: |u, _| Box::new(ContactElement::new(u)),
         guid_cache: std::sync::OnceLock::new(),
     }
 }

@@ -54,7 +54,7 @@ mod tests {
         let u = crate::units::by_identifier("ParticleWallImpact").unwrap();
         let mut values = u.start_values();
         values[u.vr(name).expect("a variable of the unit")] = value;
-        (u.new_model)(u).initialize(&values, 0.0, false)
+        (u.new_model)(u, None).initialize(&values, 0.0, false)
     }
 
     #[test]
@@ -68,6 +68,6 @@ mod tests {
         assert_eq!(pwi_with("tolerance", Value::Real(1e-8)), Ok(()));
         let u = crate::units::by_identifier("ContactElement").unwrap();
         let values = u.start_values();
-        assert_eq!((u.new_model)(u).do_step(&values, 0.0, 1e-3), Err(UnitError::NotInitialized));
+        assert_eq!((u.new_model)(u, None).do_step(&values, 0.0, 1e-3), Err(UnitError::NotInitialized));
     }
 }

@@ -3,6 +3,7 @@
 
 #[macro_use]
 pub mod variables;
+pub mod ball_indentation;
 pub mod contact_element;
 mod contact_parts;
 mod error;
@@ -61,10 +62,13 @@ pub struct UnitInfo {
     pub variables: Vec<variables::Variable>,
     pub n_states: usize,
     pub n_event_indicators: usize,
+    /// Whether the unit offers Model Exchange (every unit offers Co-Simulation).
+    pub model_exchange: bool,
     /// DefaultExperiment of the XML [s].
     pub stop_time: f64,
     pub step_size: f64,
-    pub new_model: fn(&UnitInfo) -> Box<dyn Model>,
+    /// A fresh model; the second argument is the unzipped `resources` folder, when the host gave one.
+    pub new_model: fn(&UnitInfo, Option<&std::path::Path>) -> Box<dyn Model>,
     /// The GUID, computed once (it hashes the whole model description).
     pub guid_cache: OnceLock<String>,
 }
@@ -99,7 +103,7 @@ impl UnitInfo {
 }
 
 /// FNV-1a, 64 bit, from `seed` (the standard offset basis is 0xcbf2_9ce4_8422_2325).
-pub(crate) fn fnv1a64(bytes: &[u8], seed: u64) -> u64 {
+pub fn fnv1a64(bytes: &[u8], seed: u64) -> u64 {
     let mut h = seed;
     for b in bytes {
         h ^= u64::from(*b);
@@ -111,7 +115,7 @@ pub(crate) fn fnv1a64(bytes: &[u8], seed: u64) -> u64 {
 /// Every unit of the crate, built once.
 pub fn all() -> &'static [UnitInfo] {
     static UNITS: OnceLock<Vec<UnitInfo>> = OnceLock::new();
-    UNITS.get_or_init(|| vec![particle_wall_impact::info(), contact_element::info()])
+    UNITS.get_or_init(|| vec![particle_wall_impact::info(), contact_element::info(), ball_indentation::info()])
 }
 
 /// The unit with this model identifier.

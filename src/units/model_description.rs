@@ -34,7 +34,9 @@ pub fn xml(unit: &UnitInfo, guid: &str) -> String {
         env!("CARGO_PKG_VERSION"),
         unit.n_event_indicators
     );
-    let _ = writeln!(x, "  <ModelExchange modelIdentifier=\"{id}\" canGetAndSetFMUstate=\"true\" canSerializeFMUstate=\"true\" completedIntegratorStepNotNeeded=\"true\"/>");
+    if unit.model_exchange {
+        let _ = writeln!(x, "  <ModelExchange modelIdentifier=\"{id}\" canGetAndSetFMUstate=\"true\" canSerializeFMUstate=\"true\" completedIntegratorStepNotNeeded=\"true\"/>");
+    }
     let _ = writeln!(
         x,
         "  <CoSimulation modelIdentifier=\"{id}\" canHandleVariableCommunicationStepSize=\"true\" canGetAndSetFMUstate=\"true\" canSerializeFMUstate=\"true\"/>"

@@ -97,7 +97,8 @@ pub fn info() -> UnitInfo {
         n_event_indicators: 3,
         stop_time: 2e-7,
         step_size: 1e-9,
-        new_model: |u| Box::new(ParticleWallImpact::new(u)),
+        model_exchange: true,
+        new_model: |u, _| Box::new(ParticleWallImpact::new(u)),
         guid_cache: std::sync::OnceLock::new(),
     }
 }

@@ -242,6 +242,7 @@ pub struct UnitDef {
 pub const UNITS: &[UnitDef] = &[
     UnitDef { name: "s", kg: 0, m: 0, s: 1 },
     UnitDef { name: "m", kg: 0, m: 1, s: 0 },
+    UnitDef { name: "m2", kg: 0, m: 2, s: 0 },
     UnitDef { name: "m/s", kg: 0, m: 1, s: -1 },
     UnitDef { name: "m/s2", kg: 0, m: 1, s: -2 },
     UnitDef { name: "1/s", kg: 0, m: 0, s: -1 },

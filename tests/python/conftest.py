@@ -46,6 +46,12 @@ def contact_fmu_path() -> Path:
 
 
 @pytest.fixture(scope="session")
+def indentation_fmu_path() -> Path:
+    """Path of BallIndentation.fmu."""
+    return _fmu_path("BallIndentation")
+
+
+@pytest.fixture(scope="session")
 def _unzip_root():
     root = tempfile.mkdtemp(prefix="powderfmu-fmpy-")
     yield Path(root)
@@ -67,6 +73,12 @@ def impact(impact_fmu_path, _unzip_root) -> Unit:
 def contact(contact_fmu_path, _unzip_root) -> Unit:
     """ContactElement, extracted once."""
     return _unit("ContactElement", contact_fmu_path, _unzip_root)
+
+
+@pytest.fixture(scope="session")
+def indentation(indentation_fmu_path, _unzip_root) -> Unit:
+    """BallIndentation, extracted once."""
+    return _unit("BallIndentation", indentation_fmu_path, _unzip_root)
 
 
 @pytest.fixture(scope="session")

@@ -1,0 +1,225 @@
+//! BallIndentation (Co-Simulation): a small bed of cohesive powder, pre-consolidated in a die, indented by
+//! a sphere (`004` Sec. 2.3.5, Chs. 5-7). The bed is a prepared bed file (`powderfmu bed prepare`); the
+//! test, its readings and their definitions are `bed::indentation`.
+//!
+//! With `indenter_motion` = prescribed (the default) the indenter loads at `indentation_speed` to
+//! `max_penetration` and unloads at the same speed until it leaves the bed, so that a simulation with no
+//! inputs runs the whole test. With `input` it follows `indenter_displacement` (depth below its first touch
+//! of the bed surface, positive into the bed) and `indenter_velocity`: over a communication step it moves at
+//! constant speed from where it is to displacement + velocity x step.
+
+use super::variables::{Value, VarType, Variable};
+use super::{Model, UnitError, UnitInfo};
+use crate::bed::file;
+use crate::bed::indentation::{Indentation, Motion, Setup};
+use crate::bed::BedError;
+use std::path::{Path, PathBuf};
+
+pub const MODEL_IDENTIFIER: &str = "BallIndentation";
+
+/// The bed in the FMU's resources folder.
+pub const RESOURCE_BED: &str = "bed.pfbed";
+
+variable_table! {
+    indenter_displacement: Variable::input("indenter_displacement", "m", "with indenter_motion = input: depth of the indenter's lowest point below its first touch of the bed surface, positive into the bed"),
+    indenter_velocity: Variable::input("indenter_velocity", "m/s", "with indenter_motion = input: rate of indenter_displacement, positive into the bed"),
+    indenter_force: Variable::output("indenter_force", VarType::Real, "N", "force of the bed on the indenter, positive resisting the indentation"),
+    penetration_depth: Variable::output("penetration_depth", VarType::Real, "m", "h, depth of the indenter's lowest point below its first touch of the bed surface"),
+    dimensionless_penetration: Variable::output("dimensionless_penetration", VarType::Real, "", "h / r with r the indenter's radius (004 Eq. 5.5)"),
+    projected_area: Variable::output("projected_area", VarType::Real, "m2", "A(h) = pi (d h - h^2) (004 Eq. 2.9)"),
+    hardness: Variable::output("hardness", VarType::Real, "Pa", "while loading F / A(h); after unloading F_max / A(h_c), h_c from the tangent to the initial unloading curve (004 Sec. 2.3.5)"),
+    unconfined_yield_strength: Variable::output("unconfined_yield_strength", VarType::Real, "Pa", "hardness / constraint_factor (004 Eq. 2.10)"),
+    hydrostatic_stress: Variable::output("hydrostatic_stress", VarType::Real, "Pa", "Bagi's hydrostatic stress in the dynamic bin under the indenter (004 Eqs. 5.1-5.2, Sec. 5.2), compression positive"),
+    deviatoric_stress: Variable::output("deviatoric_stress", VarType::Real, "Pa", "Bagi's deviatoric stress in the dynamic bin under the indenter (004 Eq. 5.3)"),
+    indenter_contacts: Variable::output("indenter_contacts", VarType::Integer, "", "spheres touching the indenter"),
+    kinetic_energy: Variable::output("kinetic_energy", VarType::Real, "J", "kinetic energy of the bed's spheres, translation and rotation"),
+    test_state: Variable::output("test_state", VarType::Integer, "", "0 loading, 1 unloading, 2 done (the indenter has left the bed)"),
+    contact_depth: Variable::output("contact_depth", VarType::Real, "m", "h_c, where the tangent to the initial unloading curve meets zero force; 0 until known"),
+    indenter_motion: Variable::parameter("indenter_motion", Value::String("prescribed".into()), "", "prescribed (load at indentation_speed to max_penetration, unload at the same speed until the indenter leaves the bed) or input (follow indenter_displacement and indenter_velocity)"),
+    indenter_diameter: Variable::parameter("indenter_diameter", Value::Real(0.004), "m", "d, diameter of the spherical indenter, narrower than the die")
+        .with_range(Some(0.0), None),
+    indentation_speed: Variable::parameter("indentation_speed", Value::Real(0.05), "m/s", "speed of the prescribed loading and unloading")
+        .with_range(Some(0.0), None),
+    max_penetration: Variable::parameter("max_penetration", Value::Real(0.0004), "m", "depth at which the prescribed indenter turns (default 0.2 r)")
+        .with_range(Some(0.0), None),
+    constraint_factor: Variable::parameter("constraint_factor", Value::Real(3.0), "", "C = hardness / yield strength (004 Eq. 2.10)")
+        .with_range(Some(0.0), None),
+    bed_file: Variable::parameter("bed_file", Value::String(String::new()), "", "a bed file of `powderfmu bed prepare`; empty: the bed in the FMU's resources"),
+    threads: Variable::parameter("threads", Value::Integer(1), "", "threads of the bed engine's force loop, in [1, 256]"),
+}
+
+pub fn info() -> UnitInfo {
+    UnitInfo {
+        model_identifier: MODEL_IDENTIFIER,
+        description: "Ball indentation of a pre-consolidated bed of cohesive spheres by DEM (powderfmu)",
+        variables: own_variables(),
+        n_states: 0,
+        n_event_indicators: 0,
+        model_exchange: false,
+        stop_time: 0.03,
+        step_size: 2e-4,
+        new_model: |_, resources| Box::new(BallIndentation { resources: resources.map(Path::to_path_buf), test: None, fresh: false }),
+        guid_cache: std::sync::OnceLock::new(),
+    }
+}
+
+pub struct BallIndentation {
+    resources: Option<PathBuf>,
+    test: Option<Indentation>,
+    /// Whether the outputs written last are those of the current state (a reading costs a force pass).
+    fresh: bool,
+}
+
+fn variable(name: &'static str, why: String) -> UnitError {
+    UnitError::Variable { name, why }
+}
+
+impl From<BedError> for UnitError {
+    fn from(e: BedError) -> UnitError {
+        match e {
+            BedError::Param(p) => UnitError::Param(p),
+            BedError::Setup(why) => UnitError::Variable { name: "bed_file", why },
+        }
+    }
+}
+
+impl BallIndentation {
+    /// The bed file the parameters name: `bed_file`, or the FMU's own.
+    fn bed_path(&self, values: &[Value]) -> Result<PathBuf, UnitError> {
+        let given = values[REFS.bed_file].as_str();
+        if !given.is_empty() {
+            return Ok(PathBuf::from(given));
+        }
+        match &self.resources {
+            Some(dir) => Ok(dir.join(RESOURCE_BED)),
+            None => Err(variable("bed_file", "no bed_file given and the host named no resources folder (fmuResourceLocation) holding the FMU's bed".into())),
+        }
+    }
+
+    fn threads(values: &[Value]) -> Result<usize, UnitError> {
+        let t = values[REFS.threads].as_real();
+        if !(1.0..=256.0).contains(&t) {
+            return Err(variable("threads", format!("parameter `threads` = {t} is out of range: allowed [1, 256]")));
+        }
+        Ok(t as usize)
+    }
+
+    fn setup(values: &[Value]) -> Result<Setup, UnitError> {
+        let motion = match values[REFS.indenter_motion].as_str() {
+            "prescribed" => Motion::Prescribed,
+            "input" => Motion::Input,
+            other => return Err(variable("indenter_motion", format!("parameter `indenter_motion` = \"{other}\" is not known: allowed prescribed, input"))),
+        };
+        Ok(Setup {
+            indenter_diameter: values[REFS.indenter_diameter].as_real(),
+            indentation_speed: values[REFS.indentation_speed].as_real(),
+            max_penetration: values[REFS.max_penetration].as_real(),
+            constraint_factor: values[REFS.constraint_factor].as_real(),
+            motion,
+        })
+    }
+
+    fn inputs(values: &[Value]) -> Result<(f64, f64), UnitError> {
+        let (u, v) = (values[REFS.indenter_displacement].as_real(), values[REFS.indenter_velocity].as_real());
+        if !u.is_finite() {
+            return Err(variable("indenter_displacement", format!("input `indenter_displacement` = {u} m is not finite")));
+        }
+        if !v.is_finite() {
+            return Err(variable("indenter_velocity", format!("input `indenter_velocity` = {v} m/s is not finite")));
+        }
+        Ok((u, v))
+    }
+}
+
+impl Model for BallIndentation {
+    fn initialize(&mut self, values: &[Value], _t0: f64, _model_exchange: bool) -> Result<(), UnitError> {
+        let setup = Self::setup(values)?;
+        let threads = Self::threads(values)?;
+        let path = self.bed_path(values)?;
+        let (engine, scene) = file::load(&path, Some(threads)).map_err(|e| match e {
+            BedError::Setup(why) => variable("bed_file", format!("bed_file {}: {why}", path.display())),
+            other => UnitError::from(other),
+        })?;
+        let start = match setup.motion {
+            Motion::Prescribed => 0.0,
+            Motion::Input => {
+                let (u, v) = Self::inputs(values)?;
+                if u <= 0.0 && v < 0.0 {
+                    return Err(variable(
+                        "indenter_velocity",
+                        format!("input `indenter_velocity` = {v:e} m/s would pull the indenter out of a bed it has not entered (indenter_displacement = {u:e} m)"),
+                    ));
+                }
+                u
+            }
+        };
+        self.test = Some(Indentation::new(engine, scene, setup, start)?);
+        self.fresh = false;
+        Ok(())
+    }
+
+    fn compute(&mut self, values: &mut [Value], _between_events: bool) {
+        if self.fresh {
+            return;
+        }
+        let Some(test) = self.test.as_mut() else { return };
+        let r = test.reading();
+        for (vr, x) in [
+            (REFS.indenter_force, r.force),
+            (REFS.penetration_depth, r.depth),
+            (REFS.dimensionless_penetration, r.dimensionless_depth),
+            (REFS.projected_area, r.projected_area),
+            (REFS.hardness, r.hardness),
+            (REFS.unconfined_yield_strength, r.unconfined_yield_strength),
+            (REFS.hydrostatic_stress, r.hydrostatic_stress),
+            (REFS.deviatoric_stress, r.deviatoric_stress),
+            (REFS.kinetic_energy, r.kinetic_energy),
+            (REFS.contact_depth, r.contact_depth),
+        ] {
+            values[vr] = Value::Real(x);
+        }
+        values[REFS.indenter_contacts] = Value::Integer(r.contacts.min(i32::MAX as usize) as i32);
+        values[REFS.test_state] = Value::Integer(r.state as i32);
+        self.fresh = true;
+    }
+
+    // Co-Simulation only: Model Exchange is refused at fmi2Instantiate.
+    fn set_time(&mut self, _t: f64) {}
+    fn get_states(&self, _x: &mut [f64]) {}
+    fn set_states(&mut self, _x: &[f64]) {}
+    fn derivatives(&mut self, _values: &[Value], _dx: &mut [f64]) {}
+    fn event_indicators(&mut self, _values: &[Value], _z: &mut [f64]) {}
+    fn nominals(&self, _x: &mut [f64]) {}
+    fn accept(&mut self, _values: &[Value]) -> Option<String> {
+        None
+    }
+
+    fn do_step(&mut self, values: &[Value], _t: f64, h: f64) -> Result<(), UnitError> {
+        let test = self.test.as_mut().ok_or(UnitError::NotInitialized)?;
+        let input = match test.setup.motion {
+            Motion::Prescribed => None,
+            Motion::Input => Some(Self::inputs(values)?),
+        };
+        // Inputs are checked before anything moves, so a refused step leaves the state of its start.
+        test.advance(h, input)?;
+        self.fresh = false;
+        Ok(())
+    }
+
+    fn save(&self) -> Result<Vec<u8>, UnitError> {
+        Ok(self.test.as_ref().map(Indentation::save).unwrap_or_default())
+    }
+
+    fn restore(&mut self, values: &[Value], bytes: &[u8]) -> Result<(), UnitError> {
+        if bytes.is_empty() {
+            self.test = None;
+            return Ok(());
+        }
+        let threads = Self::threads(values)?;
+        let test = Indentation::restore(bytes, Some(threads)).map_err(|e| UnitError::SavedState(e.to_string()))?;
+        self.test = Some(test);
+        self.fresh = false;
+        Ok(())
+    }
+}
+

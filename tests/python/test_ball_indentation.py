@@ -1,0 +1,155 @@
+"""BallIndentation through fmpy: the default test with no arguments, what its outputs mean, the
+communication step, saved states mid-test, and bad input refused at initialization with the host
+surviving."""
+
+import math
+import shutil
+from pathlib import Path
+
+import numpy as np
+import pytest
+from fmpy.validation import validate_fmu
+
+from fmu_support import MessageLog
+
+LOADING, UNLOADING, DONE = 0, 1, 2
+
+
+@pytest.fixture(scope="module")
+def default_run(indentation):
+    return indentation.simulate()
+
+
+def test_validates_and_offers_co_simulation_only(indentation):
+    assert validate_fmu(str(indentation.path)) == []
+    assert indentation.md.modelExchange is None
+    assert indentation.md.coSimulation.canGetAndSetFMUstate and indentation.md.coSimulation.canSerializeFMUstate
+
+
+def test_model_exchange_is_refused_by_name(indentation):
+    from fmpy.fmi2 import FMU2Model
+
+    log = MessageLog()
+    fmu = FMU2Model(guid=indentation.md.guid, unzipDirectory=indentation.unzipdir, modelIdentifier="BallIndentation", instanceName="me")
+    with pytest.raises(Exception):
+        fmu.instantiate(callbacks=log.callbacks)
+    assert any("Co-Simulation only" in m for m in log.messages()), log.messages()
+
+
+def test_the_default_test_loads_unloads_and_ends(indentation, default_run):
+    r = default_run
+    d = indentation.start("indenter_diameter")
+    h_max = indentation.start("max_penetration")
+    state = r["test_state"]
+    assert state[0] == LOADING and state[-1] == DONE
+    assert np.all(np.diff(state) >= 0), "loading, then unloading, then done"
+    loading = r[state == LOADING]
+    # The depth grows at the indentation speed and turns at max_penetration.
+    assert r["penetration_depth"].max() == pytest.approx(h_max, rel=1e-3)
+    assert r["dimensionless_penetration"].max() == pytest.approx(h_max / (d / 2), rel=1e-3)
+    # While loading: A(h) of Eq. 2.9 and hardness F/A.
+    deep = loading[loading["penetration_depth"] > 0.25 * h_max]
+    h = deep["penetration_depth"]
+    assert np.allclose(deep["projected_area"], math.pi * (d * h - h * h), rtol=1e-12)
+    assert np.allclose(deep["hardness"], deep["indenter_force"] / deep["projected_area"], rtol=1e-12)
+    assert np.all(deep["indenter_force"] > 0) and np.all(deep["indenter_contacts"] > 0)
+    # After unloading: h_c from the tangent lies inside the indent; hardness = F_max / A(h_c), UYS = H / C.
+    last = r[-1]
+    hc = last["contact_depth"]
+    assert 0 < hc < h_max
+    f_max = last["hardness"] * math.pi * (d * hc - hc * hc)
+    assert f_max == pytest.approx(r["indenter_force"].max(), rel=0.05)
+    assert last["unconfined_yield_strength"] == last["hardness"] / indentation.start("constraint_factor")
+    assert last["indenter_contacts"] == 0
+    # Compression in the dynamic bin under a loaded indenter.
+    assert np.mean(deep["hydrostatic_stress"]) > 0 and np.all(deep["deviatoric_stress"] >= 0)
+
+
+def test_the_communication_step_changes_nothing(indentation, default_run):
+    fine = indentation.simulate(output_interval=float(indentation.md.defaultExperiment.stepSize) / 2.7)
+    assert fine["test_state"][-1] == DONE
+    assert fine[-1]["hardness"] == default_run[-1]["hardness"]
+    assert fine[-1]["contact_depth"] == default_run[-1]["contact_depth"]
+
+
+def _outputs(indentation, fmu):
+    names = ["indenter_force", "penetration_depth", "hardness", "hydrostatic_stress", "kinetic_energy"]
+    return fmu.getReal([indentation.vr[n] for n in names])
+
+
+def test_a_saved_state_continues_bit_for_bit(indentation):
+    fmu = indentation.slave("saved")
+    indentation.initialize(fmu)
+    t, h = 0.0, 2e-4
+    for _ in range(20):
+        fmu.doStep(t, h)
+        t += h
+    state = fmu.getFMUstate()
+    serialized = fmu.serializeFMUstate(state)
+    ahead = []
+    for k in range(10):
+        fmu.doStep(t + k * h, h)
+        ahead.append(_outputs(indentation, fmu))
+    for restore in ("state", "serialized"):
+        if restore == "state":
+            fmu.setFMUstate(state)
+        else:
+            fmu.setFMUstate(fmu.deSerializeFMUstate(serialized))
+        again = []
+        for k in range(10):
+            fmu.doStep(t + k * h, h)
+            again.append(_outputs(indentation, fmu))
+        assert again == ahead, restore
+    fmu.freeFMUstate(state)
+    fmu.terminate()
+    fmu.freeInstance()
+
+
+def _refused(indentation, start_values, name, inputs=None):
+    log = MessageLog()
+    fmu = indentation.slave("bad", log)
+    fmu.setupExperiment(startTime=0.0)
+    indentation.set_start_values(fmu, start_values)
+    for k, v in (inputs or {}).items():
+        fmu.setReal([indentation.vr[k]], [v])
+    fmu.enterInitializationMode()
+    with pytest.raises(Exception):
+        fmu.exitInitializationMode()
+    fmu.freeInstance()
+    assert any(name in m for m in log.messages()), log.messages()
+    return log.messages()
+
+
+def test_bad_input_is_refused_at_initialization_and_the_host_survives(indentation, tmp_path):
+    _refused(indentation, {"indenter_diameter": 0.01}, "indenter_diameter")
+    _refused(indentation, {"max_penetration": 0.05}, "max_penetration")
+    _refused(indentation, {"bed_file": str(tmp_path / "missing.pfbed")}, "bed_file")
+    bed = Path(indentation.unzipdir) / "resources" / "bed.pfbed"
+    truncated = tmp_path / "truncated.pfbed"
+    truncated.write_bytes(bed.read_bytes()[: bed.stat().st_size // 2])
+    _refused(indentation, {"bed_file": str(truncated)}, "bed_file")
+    _refused(indentation, {"indenter_motion": "input"}, "indenter_velocity", {"indenter_displacement": 0.0, "indenter_velocity": -0.01})
+    _refused(indentation, {"indenter_motion": "input"}, "indenter_displacement", {"indenter_displacement": 1e-4, "indenter_velocity": 0.01})
+    _refused(indentation, {"indenter_motion": "sideways"}, "indenter_motion")
+    # After all that, a good instance still runs.
+    fmu = indentation.slave("good")
+    indentation.initialize(fmu)
+    fmu.doStep(0.0, 1e-3)
+    assert fmu.getReal([indentation.vr["penetration_depth"]])[0] > 0
+    fmu.terminate()
+    fmu.freeInstance()
+
+
+def test_input_motion_follows_a_host_signal(indentation):
+    speed = indentation.start("indentation_speed")
+    h_max = indentation.start("max_penetration")
+    t_turn = h_max / speed
+    t = np.linspace(0, 2 * t_turn, 201)
+    depth = np.where(t < t_turn, speed * t, h_max - speed * (t - t_turn))
+    rate = np.where(t < t_turn, speed, -speed)
+    signal = np.array(list(zip(t, depth, rate)), dtype=[("time", float), ("indenter_displacement", float), ("indenter_velocity", float)])
+    r = indentation.simulate(start_values={"indenter_motion": "input"}, input=signal, stop_time=2 * t_turn)
+    i = np.argmin(np.abs(r["time"] - t_turn))
+    assert r["penetration_depth"][i] == pytest.approx(h_max, rel=0.02)
+    assert r["indenter_force"][i] > 0
+    assert UNLOADING in r["test_state"]
