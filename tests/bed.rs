@@ -385,7 +385,7 @@ fn an_indenter_added_to_a_prepared_bed_keeps_every_contact_and_feels_the_bed() {
     let loaded = springs(&with);
     assert!(loaded > 50, "the prepared bed must have loaded tangential springs ({loaded})");
     // Clear of the bed, the indenter changes nothing: every contact keeps its memory.
-    with.add_wall(&scene, Wall::sphere("indenter", [0.0, 0.0, top + radius + 0.5 * d], radius)).unwrap();
+    with.add_wall(&scene, Wall::sphere("indenter", [0.0, 0.0, top + radius + 0.5 * d], radius), &scene.particle_wall).unwrap();
     assert_eq!(springs(&with), loaded, "adding a wall must keep every tangential spring");
     plain.run(300);
     with.run(300);

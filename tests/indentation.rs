@@ -44,7 +44,7 @@ fn run(test: &mut Indentation, h: f64) -> Vec<powderfmu::bed::indentation::Readi
 fn a_prescribed_test_loads_unloads_and_gives_the_tangent_hardness() {
     let (engine, scene) = engine();
     let s = setup();
-    let mut test = Indentation::new(engine, scene, s, 0.0).unwrap();
+    let mut test = Indentation::new(engine, scene, s, 0.0, None).unwrap();
     let readings = run(&mut test, 2e-4);
     let states: Vec<TestState> = readings.iter().map(|r| r.state).collect();
     let first_unloading = states.iter().position(|&x| x == TestState::Unloading).expect("an unloading phase");
@@ -73,8 +73,8 @@ fn a_prescribed_test_loads_unloads_and_gives_the_tangent_hardness() {
 fn the_communication_step_changes_nothing_but_when_results_are_read() {
     let (e1, s1) = engine();
     let (e2, s2) = engine();
-    let mut a = Indentation::new(e1, s1, setup(), 0.0).unwrap();
-    let mut b = Indentation::new(e2, s2, setup(), 0.0).unwrap();
+    let mut a = Indentation::new(e1, s1, setup(), 0.0, None).unwrap();
+    let mut b = Indentation::new(e2, s2, setup(), 0.0, None).unwrap();
     run(&mut a, 2e-4);
     run(&mut b, 3.7e-5);
     assert_eq!(a.record.f_max, b.record.f_max);
@@ -85,7 +85,7 @@ fn the_communication_step_changes_nothing_but_when_results_are_read() {
 #[test]
 fn a_saved_test_continues_bit_for_bit() {
     let (engine, scene) = engine();
-    let mut test = Indentation::new(engine, scene, setup(), 0.0).unwrap();
+    let mut test = Indentation::new(engine, scene, setup(), 0.0, None).unwrap();
     for _ in 0..20 {
         test.advance(1e-4, None).unwrap();
     }
@@ -104,7 +104,7 @@ fn a_saved_test_continues_bit_for_bit() {
 fn the_input_motion_follows_the_inputs() {
     let (engine, scene) = engine();
     let s = Setup { motion: Motion::Input, ..setup() };
-    let mut test = Indentation::new(engine, scene, s, -1e-4).unwrap();
+    let mut test = Indentation::new(engine, scene, s, -1e-4, None).unwrap();
     assert!((test.depth() + 1e-4).abs() < 1e-15);
     // Down at 0.05 m/s for 6 ms from 0.1 mm above the surface: 0.2 mm deep.
     let (h, v) = (1e-4, 0.05);
@@ -119,7 +119,7 @@ fn the_input_motion_follows_the_inputs() {
 
 fn refused(setup: Setup, start: f64, name: &str) {
     let (engine, scene) = engine();
-    match Indentation::new(engine, scene, setup, start) {
+    match Indentation::new(engine, scene, setup, start, None) {
         Err(BedError::Param(e)) => assert_eq!(e.parameter(), Some(name), "{e}"),
         Err(other) => panic!("{name}: expected a parameter error, got {other}"),
         Ok(_) => panic!("{name}: expected an error"),

@@ -2,7 +2,9 @@
 fluorescein sphere of radius 2.45 um on silicon, Nan's law, undamped), run through fmpy as a user would.
 
 Prints the rebound of one impact against the energy balance, the sticking velocity found by bisection on
-the FMU against 000 Table 6, and a restitution curve; writes the plots to out/demo/ (PNG).
+the FMU against 000 Table 6, and a restitution curve; then runs the BallIndentation FMU's default test
+(004 Sec. 2.3.5 on the FMU's bed) with no arguments and prints its hardness; writes the plots to
+out/demo/ (PNG).
 
 Usage: python tools/demo.py [--fmu-dir target/fmu] [--cli target/debug/powderfmu] [--out out/demo]
 """
@@ -128,8 +130,45 @@ def main():
     fig.tight_layout()
     path = os.path.join(a.out, "impact.png")
     fig.savefig(path, dpi=110)
-    print(f"\nplots: {path}")
+    paths = [path, indentation(os.path.join(a.fmu_dir, "BallIndentation.fmu"), a.out)]
+    print("\nplots: " + ", ".join(paths))
     return 0
+
+
+def indentation(fmu, out):
+    """The BallIndentation FMU's default test through fmpy with no arguments; prints and plots it."""
+    from fmpy import read_model_description
+
+    md = read_model_description(fmu)
+    start = {v.name: v.start for v in md.modelVariables if v.causality == "parameter"}
+    d, h_max = float(start["indenter_diameter"]), float(start["max_penetration"])
+    print(f"\nball indentation: {fmu}")
+    print(f"  the FMU's bed (resources/bed.pfbed), indenter d = {d * 1e3:.1f} mm to h = {h_max * 1e3:.2f} mm at {float(start['indentation_speed'])} m/s")
+    t0 = time.perf_counter()
+    r = simulate_fmu(fmu)
+    wall = time.perf_counter() - t0
+    loading = r[(r["test_state"] == 0) & (r["dimensionless_penetration"] >= 0.1)]
+    plateau = float(np.mean(loading["hardness"])) if len(loading) else float("nan")
+    last = r[-1]
+    print(f"  wall time {wall:.1f} s, {len(r)} output points; test_state at the end {last['test_state']} (2 = done)")
+    print(f"  F_max {r['indenter_force'].max() * 1e3:.3f} mN at h/r {r['dimensionless_penetration'].max():.3f}")
+    print(f"  hardness while loading, mean over h/r >= 0.1: {plateau:.4g} Pa")
+    print(f"  after unloading: h_c {last['contact_depth'] * 1e3:.4f} mm, hardness F_max/A(h_c) {last['hardness']:.4g} Pa, "
+          f"unconfined yield strength {last['unconfined_yield_strength']:.4g} Pa (C = {start['constraint_factor']})")
+    fig, ax = plt.subplots(1, 2, figsize=(10, 4.2))
+    inside = r["penetration_depth"] >= 0  # after the test the indenter rises on, clear of the bed
+    ax[0].plot(r["penetration_depth"][inside] * 1e3, r["indenter_force"][inside] * 1e3, lw=1.2)
+    ax[0].set(xlabel="penetration depth h [mm]", ylabel="indenter force [mN]", title="force-depth cycle")
+    ok = (r["test_state"] == 0) & (r["dimensionless_penetration"] > 0.02)
+    ax[1].plot(r["dimensionless_penetration"][ok], r["hardness"][ok] / 1e3, lw=1.2, label="F / A(h), loading")
+    ax[1].plot(r["dimensionless_penetration"][ok], r["hydrostatic_stress"][ok] / 1e3, lw=0.8, label="hydrostatic stress, dynamic bin")
+    ax[1].axhline(last["hardness"] / 1e3, color="C3", ls="--", lw=1, label="F_max / A(h_c)")
+    ax[1].set(xlabel="h / r [-]", ylabel="[kPa]", title="hardness against dimensionless penetration")
+    ax[1].legend(fontsize=8)
+    fig.tight_layout()
+    path = os.path.join(out, "indentation.png")
+    fig.savefig(path, dpi=110)
+    return path
 
 
 if __name__ == "__main__":

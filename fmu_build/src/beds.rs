@@ -6,9 +6,6 @@ use powderfmu::bed::{file, prepare, BedScene};
 use std::path::Path;
 use std::time::Instant;
 
-/// The scene of the bed in BallIndentation's resources.
-pub const BALL_INDENTATION_SCENE: &str = "scenes/bed_indentation_quick.json";
-
 /// The bytes of the bed file of `scene` (JSON text), prepared now if not already under `target/beds`.
 pub fn prepared(scene: &[u8], target: &Path) -> Result<Vec<u8>, String> {
     let hash = powderfmu::units::fnv1a64(scene, 0xcbf2_9ce4_8422_2325);

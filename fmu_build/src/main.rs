@@ -112,7 +112,7 @@ fn entries(unit: &UnitInfo, binary: &[u8], root: &Path, target: &Path) -> Result
         Entry { name: "documentation/models.md".into(), data: read(root, "docs/models.md")? },
     ];
     if id == units::ball_indentation::MODEL_IDENTIFIER {
-        let scene = read(root, beds::BALL_INDENTATION_SCENE)?;
+        let scene = units::ball_indentation::DEFAULT_BED_SCENE.as_bytes().to_vec();
         entries.push(Entry { name: format!("resources/{}", units::ball_indentation::RESOURCE_BED), data: beds::prepared(&scene, target)? });
         entries.push(Entry { name: "resources/bed_scene.json".into(), data: scene });
         entries.push(Entry { name: "documentation/bed.md".into(), data: read(root, "docs/bed.md")? });

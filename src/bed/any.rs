@@ -148,12 +148,13 @@ impl AnyEngine {
     }
 
     /// Adds a wall to a running bed (the indenter onto a prepared bed), its interactions from the
-    /// scene's particle-wall template; every contact keeps its memory. Refused when the wall would need
-    /// a shorter time step than the bed's.
-    pub fn add_wall(&mut self, scene: &BedScene, wall: Wall) -> Result<(), BedError> {
+    /// particle-wall scene keys `pair` (the bed's own `particle_wall`, or the indenter's); every contact
+    /// keeps its memory. Refused when the wall would need a shorter time step than the bed's, or a law
+    /// other than the bed's.
+    pub fn add_wall(&mut self, scene: &BedScene, wall: Wall, pair: &serde_json::Map<String, serde_json::Value>) -> Result<(), BedError> {
         with_engine!(self, e => {
             let r0 = scene.species().first().map_or(0.5e-3, |s| s.0);
-            let template = ContactTemplate::wall(&scene.particle_wall, r0, scene.density)?;
+            let template = ContactTemplate::wall(pair, r0, scene.density)?;
             let row = wall_row(scene, &template, &wall)?;
             let limit = stability_limit(scene, &[], std::slice::from_ref(&row));
             if e.dt > limit {

@@ -25,6 +25,7 @@ use super::scene::BedScene;
 use super::stress::{bagi, Cuboid, Volume};
 use super::walls::Wall;
 use crate::error::ParamError;
+use serde_json::{Map, Value};
 use std::f64::consts::PI;
 
 /// Engine steps between two checks of the test's progress (turning, end, unloading points), counted
@@ -145,7 +146,8 @@ impl Indentation {
     /// Puts the indenter into a prepared bed, its lowest point at depth `start_depth` (0 = first touch;
     /// negative = above the surface). Refuses an indenter wider than the die, a depth beyond the bed, a
     /// start inside the bed, and a bed with nothing under the indenter.
-    pub fn new(mut engine: AnyEngine, scene: BedScene, setup: Setup, start_depth: f64) -> Result<Indentation, BedError> {
+    /// `indenter_pair`: the particle-indenter scene keys (none: the bed's particle-wall keys).
+    pub fn new(mut engine: AnyEngine, scene: BedScene, setup: Setup, start_depth: f64, indenter_pair: Option<&Map<String, Value>>) -> Result<Indentation, BedError> {
         let d = setup.indenter_diameter;
         let die = scene.die_diameter;
         if !(d > 0.0 && d < die) {
@@ -178,7 +180,8 @@ impl Indentation {
         let touch = first_touch_height(engine.particles(), r_i)
             .ok_or_else(|| BedError::Setup("no sphere of the bed lies under the indenter: nothing to indent".into()))?;
         let bottom = touch - start_depth;
-        engine.add_wall(&scene, Wall::sphere("indenter", [0.0, 0.0, bottom + r_i], r_i))?;
+        let pair = indenter_pair.unwrap_or(&scene.particle_wall).clone();
+        engine.add_wall(&scene, Wall::sphere("indenter", [0.0, 0.0, bottom + r_i], r_i), &pair)?;
         let indenter = engine.walls().len() - 1;
         let record = Record { state: TestState::Loading, f_max: 0.0, h_max: 0.0, unloading: vec![], contact_depth: None, touch, time_debt: 0.0, steps: 0 };
         let mut test = Indentation { engine, scene, setup, record, indenter };

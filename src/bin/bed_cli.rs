@@ -345,7 +345,7 @@ fn indent_cmd(args: &[String]) -> Result<(), String> {
         motion: Motion::Prescribed,
     };
     let every = a.number("--every", 1e-3, |v: &f64| *v > 0.0, "a time > 0 [s]")?;
-    let mut test = Indentation::new(engine, scene, setup, 0.0).map_err(|e| e.to_string())?;
+    let mut test = Indentation::new(engine, scene, setup, 0.0, None).map_err(|e| e.to_string())?;
     let mut csv = String::from("time_s,depth_m,depth_over_r,force_N,hardness_Pa,hydrostatic_Pa,deviatoric_Pa,contacts,kinetic_energy_J,state\n");
     let started = Instant::now();
     let mut t = 0.0;

@@ -8,17 +8,60 @@
 //! of the bed surface, positive into the bed) and `indenter_velocity`: over a communication step it moves at
 //! constant speed from where it is to displacement + velocity x step.
 
+use super::scene_params;
 use super::variables::{Value, VarType, Variable};
 use super::{Model, UnitError, UnitInfo};
 use crate::bed::file;
 use crate::bed::indentation::{Indentation, Motion, Setup};
-use crate::bed::BedError;
+use crate::bed::{BedError, BedScene};
+use crate::scene::{Key, KeyDefault, KEYS};
+use serde_json::{Map, Value as Json};
 use std::path::{Path, PathBuf};
 
 pub const MODEL_IDENTIFIER: &str = "BallIndentation";
 
 /// The bed in the FMU's resources folder.
 pub const RESOURCE_BED: &str = "bed.pfbed";
+
+/// The scene of the bed the FMU ships (`fmu_build` prepares it); the contact parameters start at its values.
+pub const DEFAULT_BED_SCENE: &str = include_str!("../../scenes/bed_indentation_quick.json");
+
+/// The three contacts whose scene keys are parameters `{contact}.{key}`: the bed's two, which must agree
+/// with the bed file, and the indenter's, free.
+const CONTACTS: [&str; 3] = ["particle_particle", "particle_wall", "particle_indenter"];
+
+/// Which scene keys a contact's parameters hold: the bed sets every radius and the partner; the
+/// particle's own material (and the one law the bed steps) come from particle_particle.
+fn contact_key(contact: &str, key: &Key) -> bool {
+    let bed_sets = ["contact_partner", "particle_radius"];
+    let particle_only = ["contact_model", "particle_density", "particle_youngs_modulus", "particle_poisson_ratio"];
+    !bed_sets.contains(&key.name) && (contact == "particle_particle" || !particle_only.contains(&key.name))
+}
+
+/// The unit's variables: its own, then the scene keys of the three contacts, starting at the shipped bed's.
+fn variables() -> Vec<Variable> {
+    let bed = BedScene::from_json(DEFAULT_BED_SCENE).expect("the shipped bed scene is valid");
+    let mut vars = own_variables();
+    for contact in CONTACTS {
+        let map = if contact == "particle_particle" { &bed.particle_particle } else { &bed.particle_wall };
+        vars.extend(scene_params::group_variables(contact, map, |k| contact_key(contact, k)));
+    }
+    vars
+}
+
+/// The value a bed's contact map gives a key, as the parameters hold it: a choice or a number (its
+/// default when absent), or none for a derived value left to derive.
+fn resolved(key: &Key, map: &Map<String, Json>) -> Option<Json> {
+    // Numbers compare as numbers (JSON's 0 and 0.0 are one value).
+    let given = map.get(key.name).filter(|v| !v.is_null()).map(|v| v.as_f64().map_or_else(|| v.clone(), Json::from));
+    match (key.default, given.as_ref()) {
+        (KeyDefault::Derived(_), Some(v)) if v.as_f64() == Some(0.0) => None,
+        (_, Some(v)) => Some(v.clone()),
+        (KeyDefault::Number(x), None) => Some(Json::from(x)),
+        (KeyDefault::Choice { default, .. }, None) => Some(Json::from(default)),
+        (KeyDefault::Required | KeyDefault::Derived(_), None) => None,
+    }
+}
 
 variable_table! {
     indenter_displacement: Variable::input("indenter_displacement", "m", "with indenter_motion = input: depth of the indenter's lowest point below its first touch of the bed surface, positive into the bed"),
@@ -52,7 +95,7 @@ pub fn info() -> UnitInfo {
     UnitInfo {
         model_identifier: MODEL_IDENTIFIER,
         description: "Ball indentation of a pre-consolidated bed of cohesive spheres by DEM (powderfmu)",
-        variables: own_variables(),
+        variables: variables(),
         n_states: 0,
         n_event_indicators: 0,
         model_exchange: false,
@@ -119,6 +162,46 @@ impl BallIndentation {
         })
     }
 
+    /// The bed's two contacts must be the parameters' (a bed prepared with other materials is another
+    /// powder): the first key that differs is named.
+    fn check_bed(values: &[Value], bed: &BedScene, path: &Path) -> Result<(), UnitError> {
+        let vars = &info_variables();
+        for (contact, bed_map) in [("particle_particle", &bed.particle_particle), ("particle_wall", &bed.particle_wall)] {
+            let given = scene_params::group_map(contact, vars, values)?;
+            for key in KEYS.iter().filter(|k| contact_key(contact, k)) {
+                let (ours, theirs) = (resolved(key, &given), resolved(key, bed_map));
+                if ours != theirs {
+                    let show = |v: &Option<Json>| v.as_ref().map_or("derived (0)".to_string(), |v| v.to_string());
+                    return Err(variable(
+                        "bed_file",
+                        format!(
+                            "bed_file {} was prepared with {contact}.{} = {}, but the parameter is {}: set the parameter to the bed's value, or prepare a bed with yours (`powderfmu bed prepare`)",
+                            path.display(),
+                            key.name,
+                            show(&theirs),
+                            show(&ours)
+                        ),
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The particle-indenter contact: the bed's particle-particle keys with the `particle_indenter.*`
+    /// parameters over them (a derived one at 0 derives).
+    fn indenter_pair(&self, values: &[Value], bed: &BedScene) -> Result<Map<String, Json>, UnitError> {
+        let given = scene_params::group_map("particle_indenter", &info_variables(), values)?;
+        let mut pair = bed.particle_particle.clone();
+        for key in KEYS.iter().filter(|k| contact_key("particle_indenter", k)) {
+            match given.get(key.name) {
+                Some(v) => pair.insert(key.name.into(), v.clone()),
+                None => pair.remove(key.name),
+            };
+        }
+        Ok(pair)
+    }
+
     fn inputs(values: &[Value]) -> Result<(f64, f64), UnitError> {
         let (u, v) = (values[REFS.indenter_displacement].as_real(), values[REFS.indenter_velocity].as_real());
         if !u.is_finite() {
@@ -140,6 +223,8 @@ impl Model for BallIndentation {
             BedError::Setup(why) => variable("bed_file", format!("bed_file {}: {why}", path.display())),
             other => UnitError::from(other),
         })?;
+        Self::check_bed(values, &scene, &path)?;
+        let indenter = self.indenter_pair(values, &scene)?;
         let start = match setup.motion {
             Motion::Prescribed => 0.0,
             Motion::Input => {
@@ -153,7 +238,7 @@ impl Model for BallIndentation {
                 u
             }
         };
-        self.test = Some(Indentation::new(engine, scene, setup, start)?);
+        self.test = Some(Indentation::new(engine, scene, setup, start, Some(&indenter))?);
         self.fresh = false;
         Ok(())
     }
@@ -223,3 +308,9 @@ impl Model for BallIndentation {
     }
 }
 
+
+/// The unit's variable table (built once).
+fn info_variables() -> &'static [Variable] {
+    static VARS: std::sync::OnceLock<Vec<Variable>> = std::sync::OnceLock::new();
+    VARS.get_or_init(variables)
+}

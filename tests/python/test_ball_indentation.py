@@ -131,6 +131,9 @@ def test_bad_input_is_refused_at_initialization_and_the_host_survives(indentatio
     _refused(indentation, {"indenter_motion": "input"}, "indenter_velocity", {"indenter_displacement": 0.0, "indenter_velocity": -0.01})
     _refused(indentation, {"indenter_motion": "input"}, "indenter_displacement", {"indenter_displacement": 1e-4, "indenter_velocity": 0.01})
     _refused(indentation, {"indenter_motion": "sideways"}, "indenter_motion")
+    # A bed prepared with other materials is another powder: the difference is named.
+    messages = _refused(indentation, {"particle_particle.surface_energy": 2.0}, "bed_file")
+    assert any("particle_particle.surface_energy" in m for m in messages), messages
     # After all that, a good instance still runs.
     fmu = indentation.slave("good")
     indentation.initialize(fmu)
@@ -153,3 +156,11 @@ def test_input_motion_follows_a_host_signal(indentation):
     assert r["penetration_depth"][i] == pytest.approx(h_max, rel=0.02)
     assert r["indenter_force"][i] > 0
     assert UNLOADING in r["test_state"]
+
+
+def test_the_indenter_has_its_own_contact(indentation, default_run):
+    """The particle-indenter keys are free (004 Secs. 6.2.1, 6.2.3 vary them); the bed's stay the bed's."""
+    rough = indentation.simulate(start_values={"particle_indenter.friction_coefficient": 0.5})
+    assert rough["test_state"][-1] == DONE
+    assert rough["indenter_force"].max() != default_run["indenter_force"].max()
+    assert indentation.start("particle_indenter.friction_coefficient") == indentation.start("particle_wall.friction_coefficient")
