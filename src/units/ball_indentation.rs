@@ -165,7 +165,7 @@ impl BallIndentation {
     /// The bed's two contacts must be the parameters' (a bed prepared with other materials is another
     /// powder): the first key that differs is named.
     fn check_bed(values: &[Value], bed: &BedScene, path: &Path) -> Result<(), UnitError> {
-        let vars = &info_variables();
+        let vars = info_variables();
         for (contact, bed_map) in [("particle_particle", &bed.particle_particle), ("particle_wall", &bed.particle_wall)] {
             let given = scene_params::group_map(contact, vars, values)?;
             for key in KEYS.iter().filter(|k| contact_key(contact, k)) {
@@ -191,7 +191,7 @@ impl BallIndentation {
     /// The particle-indenter contact: the bed's particle-particle keys with the `particle_indenter.*`
     /// parameters over them (a derived one at 0 derives).
     fn indenter_pair(&self, values: &[Value], bed: &BedScene) -> Result<Map<String, Json>, UnitError> {
-        let given = scene_params::group_map("particle_indenter", &info_variables(), values)?;
+        let given = scene_params::group_map("particle_indenter", info_variables(), values)?;
         let mut pair = bed.particle_particle.clone();
         for key in KEYS.iter().filter(|k| contact_key("particle_indenter", k)) {
             match given.get(key.name) {
