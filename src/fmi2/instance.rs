@@ -242,7 +242,9 @@ impl Instance {
 
     /// Builds the model's initial state from the current values.
     fn initialize_model(&mut self, function: &str) -> Call {
-        match self.model.initialize(&self.values, self.time, self.kind == Kind::ModelExchange) {
+        let result = self.model.initialize(&self.values, self.time, self.kind == Kind::ModelExchange);
+        self.log_events();
+        match result {
             Ok(()) => {
                 self.model_ready = true;
                 self.model.compute(&mut self.values, false);
@@ -404,6 +406,13 @@ impl Instance {
         Ok(())
     }
 
+    /// The model's news since the last call, under logEvents.
+    fn log_events(&mut self) {
+        for message in self.model.take_events() {
+            self.log(fmi2OK, "logEvents", &message);
+        }
+    }
+
     /// Event iteration (fmi2NewDiscreteStates): the history accepts the current state.
     pub fn accept(&mut self) {
         if let Some(message) = self.model.accept(&self.values) {
@@ -424,7 +433,9 @@ impl Instance {
                 self.time
             ));
         }
-        match self.model.do_step(&self.values, t, h) {
+        let result = self.model.do_step(&self.values, t, h);
+        self.log_events();
+        match result {
             Ok(()) => {
                 self.time = t + h;
                 Ok(())

@@ -12,7 +12,7 @@ use super::scene_params;
 use super::variables::{Value, VarType, Variable};
 use super::{Model, UnitError, UnitInfo};
 use crate::bed::file;
-use crate::bed::indentation::{Indentation, Motion, Setup};
+use crate::bed::indentation::{Indentation, Motion, Setup, TestState};
 use crate::bed::{BedError, BedScene};
 use crate::scene::{Key, KeyDefault, KEYS};
 use serde_json::{Map, Value as Json};
@@ -101,7 +101,7 @@ pub fn info() -> UnitInfo {
         model_exchange: false,
         stop_time: 0.03,
         step_size: 2e-4,
-        new_model: |_, resources| Box::new(BallIndentation { resources: resources.map(Path::to_path_buf), test: None, fresh: false }),
+        new_model: |_, resources| Box::new(BallIndentation { resources: resources.map(Path::to_path_buf), test: None, reported: None, events: vec![], fresh: false }),
         guid_cache: std::sync::OnceLock::new(),
     }
 }
@@ -109,6 +109,9 @@ pub fn info() -> UnitInfo {
 pub struct BallIndentation {
     resources: Option<PathBuf>,
     test: Option<Indentation>,
+    /// The test's state at the last report, and what to report (`take_events`).
+    reported: Option<TestState>,
+    events: Vec<String>,
     /// Whether the outputs written last are those of the current state (a reading costs a force pass).
     fresh: bool,
 }
@@ -238,7 +241,19 @@ impl Model for BallIndentation {
                 u
             }
         };
-        self.test = Some(Indentation::new(engine, scene, setup, start, Some(&indenter))?);
+        let test = Indentation::new(engine, scene, setup, start, Some(&indenter))?;
+        let p = test.engine.particles();
+        self.events.push(format!(
+            "bed {}: {} spheres, {:.4e} m high, time step {:.4e} s; indenter d = {:.4e} m, first touch at z = {:.6e} m",
+            path.display(),
+            p.len(),
+            crate::bed::prepare::bed_height(p),
+            test.engine.dt(),
+            setup.indenter_diameter,
+            test.record.touch
+        ));
+        self.reported = Some(test.record.state);
+        self.test = Some(test);
         self.fresh = false;
         Ok(())
     }
@@ -288,11 +303,36 @@ impl Model for BallIndentation {
         // Inputs are checked before anything moves, so a refused step leaves the state of its start.
         test.advance(h, input)?;
         self.fresh = false;
+        // Every change of the test's state since the last report, in order (one step may hold several).
+        let rec = &test.record;
+        while let Some(from) = self.reported.filter(|&s| s != rec.state) {
+            let next = match (from, rec.state) {
+                (TestState::Loading, _) => TestState::Unloading,
+                (TestState::Unloading, TestState::Loading) => TestState::Loading,
+                _ => TestState::Done,
+            };
+            self.events.push(match next {
+                TestState::Loading => format!("loading again at h = {:.4e} m", test.depth()),
+                TestState::Unloading => format!("unloading from h_max = {:.4e} m, F_max = {:.4e} N", rec.h_max, rec.f_max),
+                TestState::Done => match rec.contact_depth {
+                    Some(hc) => format!(
+                        "the indenter has left the bed: h_c = {hc:.4e} m, hardness F_max/A(h_c) = {:.4e} Pa",
+                        rec.f_max / crate::bed::indentation::projected_area(test.setup.indenter_diameter, hc)
+                    ),
+                    None => "the indenter has left the bed; the unloading curve gave no tangent, so the hardness is F_max/A(h_max)".to_string(),
+                },
+            });
+            self.reported = Some(next);
+        }
         Ok(())
     }
 
     fn save(&self) -> Result<Vec<u8>, UnitError> {
         Ok(self.test.as_ref().map(Indentation::save).unwrap_or_default())
+    }
+
+    fn take_events(&mut self) -> Vec<String> {
+        std::mem::take(&mut self.events)
     }
 
     fn restore(&mut self, values: &[Value], bytes: &[u8]) -> Result<(), UnitError> {
@@ -302,6 +342,7 @@ impl Model for BallIndentation {
         }
         let threads = Self::threads(values)?;
         let test = Indentation::restore(bytes, Some(threads)).map_err(|e| UnitError::SavedState(e.to_string()))?;
+        self.reported = Some(test.record.state);
         self.test = Some(test);
         self.fresh = false;
         Ok(())

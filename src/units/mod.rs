@@ -52,6 +52,11 @@ pub trait Model: Send {
     fn do_step(&mut self, values: &[Value], t: f64, h: f64) -> Result<(), UnitError>;
     /// The dynamic state (not the parameters) as bytes (empty: not initialized); `restore` reads it back.
     fn save(&self) -> Result<Vec<u8>, UnitError>;
+    /// What happened since the last call worth telling the user (progress of a long test), for the
+    /// logEvents category; drained by the FMI glue after each call.
+    fn take_events(&mut self) -> Vec<String> {
+        Vec::new()
+    }
     fn restore(&mut self, values: &[Value], bytes: &[u8]) -> Result<(), UnitError>;
 }
 

@@ -164,3 +164,22 @@ def test_the_indenter_has_its_own_contact(indentation, default_run):
     assert rough["test_state"][-1] == DONE
     assert rough["indenter_force"].max() != default_run["indenter_force"].max()
     assert indentation.start("particle_indenter.friction_coefficient") == indentation.start("particle_wall.friction_coefficient")
+
+
+def test_the_test_reports_its_progress_through_the_logger(indentation):
+    from fmpy.fmi2 import FMU2Slave
+
+    log = MessageLog()
+    fmu = FMU2Slave(guid=indentation.md.guid, unzipDirectory=indentation.unzipdir, modelIdentifier="BallIndentation", instanceName="news")
+    fmu.instantiate(callbacks=log.callbacks, loggingOn=True)
+    indentation.initialize(fmu)
+    t, h = 0.0, 1e-3
+    while fmu.getInteger([indentation.vr["test_state"]])[0] != DONE and t < 1.0:
+        fmu.doStep(t, h)
+        t += h
+    fmu.terminate()
+    fmu.freeInstance()
+    events = [r.message for r in log.records if r.category == "logEvents"]
+    assert any(m.startswith("bed ") and "spheres" in m for m in events), events
+    assert any(m.startswith("unloading from h_max") for m in events), events
+    assert any(m.startswith("the indenter has left the bed") for m in events), events
