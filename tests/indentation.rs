@@ -86,11 +86,15 @@ fn the_communication_step_changes_nothing_but_when_results_are_read() {
 fn a_saved_test_continues_bit_for_bit() {
     let (engine, scene) = engine();
     let mut test = Indentation::new(engine, scene, setup(), 0.0, None).unwrap();
+    // A step of the test's own, which the saved state must keep.
+    let dt = 0.7 * test.engine.dt();
+    test.engine.set_time_step(&test.scene, dt).unwrap();
     for _ in 0..20 {
         test.advance(1e-4, None).unwrap();
     }
     let bytes = test.save();
     let mut back = Indentation::restore(&bytes, None).unwrap();
+    assert_eq!(back.engine.dt(), dt);
     for _ in 0..20 {
         test.advance(1e-4, None).unwrap();
         back.advance(1e-4, None).unwrap();
@@ -132,4 +136,11 @@ fn bad_set_ups_are_refused_by_name() {
     refused(Setup { max_penetration: 0.05, ..setup() }, 0.0, "max_penetration");
     refused(Setup { indentation_speed: -1.0, ..setup() }, 0.0, "indentation_speed");
     refused(setup(), 1e-4, "indenter_displacement");
+    let (engine, scene) = engine();
+    let mut test = Indentation::new(engine, scene, setup(), 0.0, None).unwrap();
+    let above = 10.0 * test.engine.dt();
+    match test.engine.set_time_step(&test.scene, above) {
+        Err(BedError::Param(e)) => assert_eq!(e.parameter(), Some("time_step"), "{e}"),
+        other => panic!("a time step above the stability limit must be refused, got {:?}", other.err()),
+    }
 }

@@ -147,6 +147,23 @@ impl AnyEngine {
         with_engine!(self, e => &e.particles)
     }
 
+    /// Sets the time step, refused above the stability limit of the bed's interactions (its walls'
+    /// included) with the limit named.
+    pub fn set_time_step(&mut self, scene: &BedScene, dt: f64) -> Result<(), BedError> {
+        with_engine!(self, e => {
+            let limit = stability_limit(scene, &e.pairs, &e.wall_pairs);
+            if !(dt > 0.0 && dt <= limit) {
+                return Err(BedError::Param(ParamError::OutOfRange {
+                    name: "time_step",
+                    value: dt,
+                    allowed: format!("(0, {limit:.4e}] s: the stability limit of this bed (the Rayleigh time of the smallest sphere, 000 Eq. 71, or 2 sqrt(m*/k), 000 Eq. 68)"),
+                }));
+            }
+            e.dt = dt;
+            Ok(())
+        })
+    }
+
     /// Adds a wall to a running bed (the indenter onto a prepared bed), its interactions from the
     /// particle-wall scene keys `pair` (the bed's own `particle_wall`, or the indenter's); every contact
     /// keeps its memory. Refused when the wall would need a shorter time step than the bed's, or a law

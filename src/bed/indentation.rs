@@ -362,7 +362,13 @@ impl Indentation {
     /// The whole state as bytes: the bed (with the indenter, every contact's memory and the last
     /// forces, `bed::file`) and the record.
     pub fn save(&self) -> Vec<u8> {
-        let saved = Saved { bed: file::encode(&self.engine.to_file(&self.scene)), setup: self.setup, record: self.record.clone(), indenter: self.indenter as u32 };
+        let saved = Saved {
+            bed: file::encode(&self.engine.to_file(&self.scene)),
+            setup: self.setup,
+            record: self.record.clone(),
+            indenter: self.indenter as u32,
+            time_step: self.engine.dt(),
+        };
         bincode::serialize(&saved).expect("an indentation state serializes")
     }
 
@@ -378,7 +384,8 @@ impl Indentation {
             .deserialize(bytes)
             .map_err(|e| BedError::Setup(format!("the saved indentation state cannot be read: {e}")))?;
         let file: BedFile = file::decode(&saved.bed)?;
-        let (engine, scene) = AnyEngine::from_file(&file, threads)?;
+        let (mut engine, scene) = AnyEngine::from_file(&file, threads)?;
+        engine.set_time_step(&scene, saved.time_step)?;
         let indenter = saved.indenter as usize;
         if indenter >= engine.walls().len() {
             return Err(BedError::Setup("the saved indentation state has no indenter".into()));
@@ -393,6 +400,8 @@ struct Saved {
     setup: Setup,
     record: Record,
     indenter: u32,
+    /// The engine's step (a bed file holds its scene's, which the test may have changed).
+    time_step: f64,
 }
 
 /// h_c = h_0 - F_0 / S: where the tangent to the unloading curve at its start (h_0, F_0) = `points[0]`

@@ -89,6 +89,8 @@ variable_table! {
         .with_range(Some(0.0), None),
     bed_file: Variable::parameter("bed_file", Value::String(String::new()), "", "a bed file of `powderfmu bed prepare`; empty: the bed in the FMU's resources"),
     threads: Variable::parameter("threads", Value::Integer(1), "", "threads of the bed engine's force loop, in [1, 256]"),
+    time_step: Variable::parameter("time_step", Value::Real(0.0), "s", "the bed engine's time step; 0 = the bed's own (its scene's time_step or rayleigh_fraction of its stability limit)")
+        .with_range(Some(0.0), None),
 }
 
 pub fn info() -> UnitInfo {
@@ -241,7 +243,12 @@ impl Model for BallIndentation {
                 u
             }
         };
-        let test = Indentation::new(engine, scene, setup, start, Some(&indenter))?;
+        let mut test = Indentation::new(engine, scene, setup, start, Some(&indenter))?;
+        let dt = values[REFS.time_step].as_real();
+        if dt != 0.0 {
+            // After the indenter is in: the limit covers its contacts too.
+            test.engine.set_time_step(&test.scene, dt)?;
+        }
         let p = test.engine.particles();
         self.events.push(format!(
             "bed {}: {} spheres, {:.4e} m high, time step {:.4e} s; indenter d = {:.4e} m, first touch at z = {:.6e} m",
