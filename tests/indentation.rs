@@ -144,3 +144,22 @@ fn bad_set_ups_are_refused_by_name() {
         other => panic!("a time step above the stability limit must be refused, got {:?}", other.err()),
     }
 }
+
+#[test]
+fn hardness_falls_to_a_plateau_beyond_a_tenth_of_the_radius() {
+    // 004 Figs. 5.2-5.3: at small depths a few spheres carry the indenter and F/A(h) is high; beyond
+    // h/r of about 0.1 it levels off.
+    let (engine, scene) = engine();
+    let mut test = Indentation::new(engine, scene, setup(), 0.0, None).unwrap();
+    let readings = run(&mut test, 2e-5);
+    let mean = |lo: f64, hi: f64| {
+        let h: Vec<f64> =
+            readings.iter().filter(|r| r.state == TestState::Loading && r.dimensionless_depth >= lo && r.dimensionless_depth < hi).map(|r| r.hardness).collect();
+        assert!(h.len() > 20, "{} readings in [{lo}, {hi})", h.len());
+        h.iter().sum::<f64>() / h.len() as f64
+    };
+    let (early, plateau) = (mean(0.01, 0.05), mean(0.1, 0.2));
+    let (first, second) = (mean(0.1, 0.15), mean(0.15, 0.2));
+    assert!(early > 1.3 * plateau, "early {early} Pa, plateau {plateau} Pa");
+    assert!((first - second).abs() < 0.25 * plateau, "halves of the plateau {first} and {second} Pa");
+}

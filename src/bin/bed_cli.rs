@@ -17,7 +17,9 @@ pub const USAGE: &str = "  powderfmu bed prepare SCENE.json [-o BED] [--threads 
   powderfmu bed render BED OUT.png [--width PX]         vertical cross-section through the die axis
   powderfmu bed export-lammps BED OUT.data              LAMMPS data file (atom_style sphere)
   powderfmu bed indent BED [--diameter D] [--speed V] [--max-penetration H] [--threads T] [--out CSV]
-                                                        ball indentation (004 Sec. 2.3.5): load to H, unload; force-depth CSV
+                        [--every S] [--indenter JSON] [--time-step DT]
+                                                        ball indentation (004 Sec. 2.3.5): load to H, unload; force-depth CSV;
+                                                        --indenter: scene keys of the particle-indenter contact over the bed's walls' 
   powderfmu bed bench BED --model M [--steps N] [--threads T] [--stiffness K] [--yield-pressure P]
                         [--surface-energy G] [--rolling-friction MU]
                                                         particle-steps per second of the force loop";
@@ -333,7 +335,7 @@ fn bench_cmd(args: &[String]) -> Result<(), String> {
 }
 
 fn indent_cmd(args: &[String]) -> Result<(), String> {
-    let a = parse(args, &["--diameter", "--speed", "--max-penetration", "--threads", "--out", "--every"])?;
+    let a = parse(args, &["--diameter", "--speed", "--max-penetration", "--threads", "--out", "--every", "--indenter", "--time-step"])?;
     let (engine, scene) = load(a.need(0, "BED (a prepared bed file)")?, threads_option(&a)?)?;
     let mean = scene.size_distribution.mean_diameter();
     let d = a.number("--diameter", 16.0 * mean, |v: &f64| *v > 0.0, "a diameter > 0 [m]")?;
@@ -345,7 +347,21 @@ fn indent_cmd(args: &[String]) -> Result<(), String> {
         motion: Motion::Prescribed,
     };
     let every = a.number("--every", 1e-3, |v: &f64| *v > 0.0, "a time > 0 [s]")?;
-    let mut test = Indentation::new(engine, scene, setup, 0.0, None).map_err(|e| e.to_string())?;
+    let indenter = match a.get("--indenter") {
+        None => None,
+        Some(text) => {
+            let overlay: serde_json::Map<String, serde_json::Value> =
+                serde_json::from_str(text).map_err(|e| format!("--indenter must be a JSON object of scene keys: {e}"))?;
+            let mut pair = scene.particle_wall.clone();
+            pair.extend(overlay);
+            Some(pair)
+        }
+    };
+    let mut test = Indentation::new(engine, scene, setup, 0.0, indenter.as_ref()).map_err(|e| e.to_string())?;
+    if let Some(dt) = a.get("--time-step") {
+        let dt: f64 = dt.parse().map_err(|_| format!("--time-step = `{dt}` is not a number [s]"))?;
+        test.engine.set_time_step(&test.scene, dt).map_err(|e| e.to_string())?;
+    }
     let mut csv = String::from("time_s,depth_m,depth_over_r,force_N,hardness_Pa,hydrostatic_Pa,deviatoric_Pa,contacts,kinetic_energy_J,state\n");
     let started = Instant::now();
     let mut t = 0.0;
@@ -359,14 +375,18 @@ fn indent_cmd(args: &[String]) -> Result<(), String> {
             r.depth, r.dimensionless_depth, r.force, r.hardness, r.hydrostatic_stress, r.deviatoric_stress, r.contacts, r.kinetic_energy, r.state as u8
         );
         if r.state == TestState::Done || t > limit {
+            let wall = started.elapsed().as_secs_f64();
+            let particle_steps = test.engine.particles().len() as f64 * test.record.steps as f64;
             eprintln!(
-                "indentation: h_max {:.4e} m (h/r {:.3}), F_max {:.4e} N, h_c {:.4e} m, hardness {:.4e} Pa, {:.1} s wall time",
+                "indentation: h_max {:.4e} m (h/r {:.3}), F_max {:.4e} N, h_c {:.4e} m, hardness {:.4e} Pa, {:.1} s wall time, {} steps, {:.3e} particle-steps/s",
                 test.record.h_max,
                 test.record.h_max / (0.5 * d),
                 test.record.f_max,
                 r.contact_depth,
                 r.hardness,
-                started.elapsed().as_secs_f64()
+                wall,
+                test.record.steps,
+                particle_steps / wall
             );
             break;
         }
