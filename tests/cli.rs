@@ -237,3 +237,15 @@ fn jkr_quantities_need_no_yield_pressure() {
     let active = v["sticking_velocity"].as_f64().unwrap();
     assert!((active / v_s - 1.0).abs() < 1e-3, "{active} vs {v_s}");
 }
+
+#[test]
+#[cfg(unix)]
+fn a_closed_pipe_ends_the_tool_quietly() {
+    use std::process::Stdio;
+    // `powderfmu analyze --help | head -1`: the reader goes away after the first line.
+    let mut child = Command::new(env!("CARGO_BIN_EXE_powderfmu")).args(["analyze", "--help"]).stdout(Stdio::piped()).stderr(Stdio::piped()).spawn().unwrap();
+    drop(child.stdout.take());
+    let out = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!stderr.contains("panicked"), "{stderr}");
+}

@@ -15,6 +15,13 @@ const USAGE: &str = "usage:
 ";
 
 fn main() -> ExitCode {
+    // A closed pipe (`powderfmu bed info BED | head`) ends the tool quietly, as it ends other Unix
+    // tools, instead of a panic on the next print. Rust sets SIGPIPE to "ignore" before main.
+    #[cfg(unix)]
+    // SAFETY: called once at the start of main, before any other thread exists.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
     let args: Vec<String> = std::env::args().skip(1).collect();
     match args.first().map(String::as_str) {
         Some("analyze") => run_analyze(&args[1..]),
