@@ -184,3 +184,26 @@ def test_the_test_reports_its_progress_through_the_logger(indentation):
     assert any(m.startswith("bed ") and "spheres" in m for m in events), events
     assert any(m.startswith("unloading from h_max") for m in events), events
     assert any(m.startswith("the indenter has left the bed") for m in events), events
+
+
+def test_the_engine_threads_end_with_the_instance(indentation):
+    """threads = 2 starts the bed engine's own pool; fmi2FreeInstance joins it (Linux: /proc/self/task)."""
+    import os
+
+    before = len(os.listdir("/proc/self/task"))
+    fmu = indentation.slave("threads")
+    indentation.initialize(fmu, {"threads": 2})
+    fmu.doStep(0.0, 2e-3)
+    assert fmu.getReal([indentation.vr["penetration_depth"]])[0] > 0
+    during = len(os.listdir("/proc/self/task"))
+    fmu.terminate()
+    fmu.freeInstance()
+    # Every worker has left when fmi2FreeInstance returns; the kernel reaps the thread a moment later.
+    import time
+
+    start = time.monotonic()
+    while len(os.listdir("/proc/self/task")) != before and time.monotonic() - start < 1.0:
+        time.sleep(0.001)
+    after = len(os.listdir("/proc/self/task"))
+    assert during > before, "two threads start a pool"
+    assert after == before, f"{after - before} threads left after fmi2FreeInstance"
