@@ -4,6 +4,7 @@
 use powderfmu::bed::file::{self, BedFile};
 use powderfmu::bed::indentation::{projected_area, Indentation, Motion, Setup, TestState};
 use powderfmu::bed::prepare;
+use powderfmu::bed::walls::Wall;
 use powderfmu::bed::{AnyEngine, BedError, BedScene};
 use std::sync::OnceLock;
 
@@ -162,4 +163,19 @@ fn hardness_falls_to_a_plateau_beyond_a_tenth_of_the_radius() {
     let (first, second) = (mean(0.1, 0.15), mean(0.15, 0.2));
     assert!(early > 1.3 * plateau, "early {early} Pa, plateau {plateau} Pa");
     assert!((first - second).abs() < 0.25 * plateau, "halves of the plateau {first} and {second} Pa");
+}
+
+#[test]
+fn the_indenter_contacts_from_its_contact_list_are_all_the_touching_spheres() {
+    let (engine, scene) = engine();
+    let mut test = Indentation::new(engine, scene, setup(), 0.0, None).unwrap();
+    let indenter = test.engine.walls().last().unwrap().clone();
+    for _ in 0..40 {
+        test.advance(2e-4, None).unwrap();
+        let wall = Wall { position: test.engine.walls().last().unwrap().position, ..indenter.clone() };
+        let p = test.engine.particles();
+        let all = p.position.iter().zip(&p.radius).filter(|(x, r)| wall.touch(**x, **r).overlap > 0.0).count();
+        assert_eq!(test.contacts(), all);
+    }
+    assert!(test.contacts() > 0);
 }

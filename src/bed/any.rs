@@ -186,6 +186,15 @@ impl AnyEngine {
         })
     }
 
+    /// Spheres touching wall `w` now. Only the wall's contact list is searched: every sphere that can
+    /// touch it before the next list rebuild is on it.
+    pub fn wall_touching(&self, w: usize) -> usize {
+        with_engine!(self, e => {
+            let (wall, p) = (&e.walls[w], &e.particles);
+            e.wall_contacts[w].particle.iter().filter(|&&i| wall.touch(p.position[i as usize], p.radius[i as usize]).overlap > 0.0).count()
+        })
+    }
+
     pub fn walls(&self) -> &[Wall] {
         with_engine!(self, e => &e.walls)
     }

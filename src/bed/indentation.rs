@@ -180,8 +180,8 @@ impl Indentation {
         let touch = first_touch_height(engine.particles(), r_i)
             .ok_or_else(|| BedError::Setup("no sphere of the bed lies under the indenter: nothing to indent".into()))?;
         let bottom = touch - start_depth;
-        let pair = indenter_pair.unwrap_or(&scene.particle_wall).clone();
-        engine.add_wall(&scene, Wall::sphere("indenter", [0.0, 0.0, bottom + r_i], r_i), &pair)?;
+        let pair = indenter_pair.unwrap_or(&scene.particle_wall);
+        engine.add_wall(&scene, Wall::sphere("indenter", [0.0, 0.0, bottom + r_i], r_i), pair)?;
         let indenter = engine.walls().len() - 1;
         let record = Record { state: TestState::Loading, f_max: 0.0, h_max: 0.0, unloading: vec![], contact_depth: None, touch, time_debt: 0.0, steps: 0 };
         let mut test = Indentation { engine, scene, setup, record, indenter };
@@ -213,9 +213,7 @@ impl Indentation {
 
     /// Spheres touching the indenter.
     pub fn contacts(&self) -> usize {
-        let wall = self.indenter().clone();
-        let p = self.engine.particles();
-        p.position.iter().zip(&p.radius).filter(|(x, r)| wall.touch(**x, **r).overlap > 0.0).count()
+        self.engine.wall_touching(self.indenter)
     }
 
     /// Advances the test by `h` seconds. With `Motion::Input`, `input` = (depth, rate) at the start of

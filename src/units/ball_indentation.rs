@@ -103,12 +103,16 @@ pub fn info() -> UnitInfo {
         model_exchange: false,
         stop_time: 0.03,
         step_size: 2e-4,
-        new_model: |_, resources| Box::new(BallIndentation { resources: resources.map(Path::to_path_buf), test: None, reported: None, events: vec![], fresh: false }),
+        new_model: |u, resources| {
+            Box::new(BallIndentation { variables: u.variables.clone(), resources: resources.map(Path::to_path_buf), test: None, reported: None, events: vec![], fresh: false })
+        },
         guid_cache: std::sync::OnceLock::new(),
     }
 }
 
 pub struct BallIndentation {
+    /// The unit's variable table (the contacts' parameters are read from it by name prefix).
+    variables: Vec<Variable>,
     resources: Option<PathBuf>,
     test: Option<Indentation>,
     /// The test's state at the last report, and what to report (`take_events`).
@@ -169,8 +173,8 @@ impl BallIndentation {
 
     /// The bed's two contacts must be the parameters' (a bed prepared with other materials is another
     /// powder): the first key that differs is named.
-    fn check_bed(values: &[Value], bed: &BedScene, path: &Path) -> Result<(), UnitError> {
-        let vars = info_variables();
+    fn check_bed(&self, values: &[Value], bed: &BedScene, path: &Path) -> Result<(), UnitError> {
+        let vars = &self.variables;
         for (contact, bed_map) in [("particle_particle", &bed.particle_particle), ("particle_wall", &bed.particle_wall)] {
             let given = scene_params::group_map(contact, vars, values)?;
             for key in KEYS.iter().filter(|k| contact_key(contact, k)) {
@@ -196,7 +200,7 @@ impl BallIndentation {
     /// The particle-indenter contact: the bed's particle-particle keys with the `particle_indenter.*`
     /// parameters over them (a derived one at 0 derives).
     fn indenter_pair(&self, values: &[Value], bed: &BedScene) -> Result<Map<String, Json>, UnitError> {
-        let given = scene_params::group_map("particle_indenter", info_variables(), values)?;
+        let given = scene_params::group_map("particle_indenter", &self.variables, values)?;
         let mut pair = bed.particle_particle.clone();
         for key in KEYS.iter().filter(|k| contact_key("particle_indenter", k)) {
             match given.get(key.name) {
@@ -228,7 +232,7 @@ impl Model for BallIndentation {
             BedError::Setup(why) => variable("bed_file", format!("bed_file {}: {why}", path.display())),
             other => UnitError::from(other),
         })?;
-        Self::check_bed(values, &scene, &path)?;
+        self.check_bed(values, &scene, &path)?;
         let indenter = self.indenter_pair(values, &scene)?;
         let start = match setup.motion {
             Motion::Prescribed => 0.0,
@@ -357,8 +361,3 @@ impl Model for BallIndentation {
 }
 
 
-/// The unit's variable table (built once).
-fn info_variables() -> &'static [Variable] {
-    static VARS: std::sync::OnceLock<Vec<Variable>> = std::sync::OnceLock::new();
-    VARS.get_or_init(variables)
-}
