@@ -368,6 +368,23 @@ fn contact_memory_survives_list_rebuilds_and_bed_files() {
 }
 
 #[test]
+fn a_preparation_resumed_from_a_bed_file_after_any_phase_ends_bit_for_bit_where_one_run_ends() {
+    let scene = soft(json!({"particle_count": 150, "die_diameter": 0.008}));
+    let (whole, _) = prepared(&scene);
+    for phase in ["fill", "settle", "consolidate", "unload"] {
+        let (part, _) = prepare::prepare_until(&scene, phase, &mut |_| {}).unwrap();
+        let (saved, _) = AnyEngine::from_file(&file::decode(&file::encode(&part.to_file(&scene))).unwrap(), None).unwrap();
+        assert_eq!(prepare::phase_done(&saved, &scene), phase, "the phase a bed went through is read from its piston");
+        let (rest, report) = prepare::resume(saved, &scene, "relax", &mut |_| {}).unwrap();
+        let after: Vec<&str> = report.phases.iter().map(|p| p.0).collect();
+        let index = prepare::PHASES.iter().position(|&p| p == phase).unwrap();
+        assert_eq!(after, prepare::PHASES[index + 1..].to_vec(), "resumed after {phase}");
+        assert_eq!(rest.time(), whole.time(), "resumed after {phase}");
+        assert_eq!(rest.particles().position, whole.particles().position, "resumed after {phase}: not the same bed");
+    }
+}
+
+#[test]
 fn an_indenter_added_to_a_prepared_bed_keeps_every_contact_and_feels_the_bed() {
     let scene = soft(json!({"particle_count": 150, "die_diameter": 0.008}));
     let (e, _) = prepared(&scene);

@@ -211,6 +211,11 @@ impl AnyEngine {
         with_engine!(self, e => e.run(steps))
     }
 
+    /// Rebuilds the neighbour and wall contact lists now, keeping every contact's memory in range.
+    pub fn rebuild(&mut self) {
+        with_engine!(self, e => e.rebuild())
+    }
+
     pub fn dt(&self) -> f64 {
         with_engine!(self, e => e.dt)
     }

@@ -216,94 +216,140 @@ pub fn prepare(scene: &BedScene, progress: &mut dyn FnMut(&Progress)) -> Result<
 
 /// The protocol up to and including phase `last` (one of `PHASES`).
 pub fn prepare_until(scene: &BedScene, last: &str, progress: &mut dyn FnMut(&Progress)) -> Result<(AnyEngine, Report), BedError> {
-    if !PHASES.contains(&last) {
-        return Err(BedError::Setup(format!("unknown phase `{last}`: allowed {}", PHASES.join(", "))));
-    }
+    check_phase(last)?;
     let particles = fill(scene)?;
     let fill_height = bed_height(&particles);
-    let mut e = AnyEngine::build(scene, particles, die(scene))?;
-    let mut report = Report { time_step: e.dt(), ..Default::default() };
+    let e = AnyEngine::build(scene, particles, die(scene))?;
     progress(&Progress { phase: "fill", fraction: overall("fill", 1.0), time: 0.0, steps: 0, detail: format!("{} spheres, fill {fill_height:.4} m high", scene.particle_count) });
-    if last == "fill" {
-        return Ok((e, report));
-    }
+    run_phases(e, scene, "fill", last, fill_height, progress)
+}
 
-    let fall = (2.0 * fill_height / scene.gravity.max(1e-3)).sqrt();
-    let (t, s) = calm(&mut e, scene, "settle", fall, 50.0 * fall + 0.1, progress)?;
-    report.phases.push(("settle", t, s));
-    if last == "settle" {
-        return Ok((e, report));
+/// The last phase a saved bed went through, read from its piston: parked at the top of the die before
+/// consolidation, moving down during it, parked above the bed after unloading.
+pub fn phase_done(e: &AnyEngine, scene: &BedScene) -> &'static str {
+    let piston = &e.walls()[PISTON];
+    if piston.velocity[2] < 0.0 {
+        "consolidate"
+    } else if piston.position[2] == scene.die_height {
+        if e.time() == 0.0 {
+            "fill"
+        } else {
+            "settle"
+        }
+    } else {
+        "unload"
     }
+}
 
-    // Consolidate: the piston comes down from just above the bed at v = strain_rate x height.
-    let h0 = bed_height(e.particles());
-    let speed = scene.strain_rate * h0;
-    {
-        let piston = &mut e.walls_mut()[PISTON];
-        piston.position[2] = h0 + 0.02 * scene.size_distribution.mean_diameter();
-        piston.velocity = [0.0, 0.0, -speed];
+/// Continues a saved bed (`powderfmu bed prepare --resume`) after the phase it went through, up to and
+/// including `last`: a preparation of hours can be done in parts, and nothing is lost when one stops.
+pub fn resume(e: AnyEngine, scene: &BedScene, last: &str, progress: &mut dyn FnMut(&Progress)) -> Result<(AnyEngine, Report), BedError> {
+    check_phase(last)?;
+    let done = phase_done(&e, scene);
+    // The fill column's height, as `fill` makes it: the scale of the settling and relaxation times.
+    let psd = &scene.size_distribution;
+    let fill_height = psd.solid_volume(scene.particle_count) / (scene.fill_solid_fraction * PI * 0.25 * scene.die_diameter * scene.die_diameter) + psd.max_diameter();
+    run_phases(e, scene, done, last, fill_height, progress)
+}
+
+fn check_phase(last: &str) -> Result<(), BedError> {
+    if PHASES.contains(&last) {
+        Ok(())
+    } else {
+        Err(BedError::Setup(format!("unknown phase `{last}`: allowed {}", PHASES.join(", "))))
     }
-    let t0 = e.time();
-    let mut steps = 0u64;
-    let mut window = std::collections::VecDeque::with_capacity(100);
+}
+
+/// Runs the phases after `done` up to and including `last`.
+fn run_phases(mut e: AnyEngine, scene: &BedScene, done: &str, last: &str, fill_height: f64, progress: &mut dyn FnMut(&Progress)) -> Result<(AnyEngine, Report), BedError> {
+    let mut report = Report { time_step: e.dt(), ..Default::default() };
+    let index = |name: &str| PHASES.iter().position(|&p| p == name).unwrap_or(0);
+    let (first, last_index) = (index(done) + 1, index(last));
+    let runs = |phase: &str| (first..=last_index).contains(&index(phase));
     let mut last_report = std::time::Instant::now();
-    loop {
-        e.step();
-        steps += 1;
-        if window.len() == 100 {
-            window.pop_front();
-        }
-        window.push_back(piston_stress(&e, scene));
-        let mean = window.iter().sum::<f64>() / window.len() as f64;
-        if window.len() == 100 && mean >= scene.consolidation_stress {
-            report.consolidation_stress = mean;
-            let top = e.walls()[PISTON].position[2];
-            let region = Region { radius: 0.5 * scene.die_diameter, z_low: 0.25 * top, z_high: 0.75 * top };
-            report.stress_at_target = Some(bagi(&mut e, &region));
-            break;
-        }
-        let travel = h0 - e.walls()[PISTON].position[2];
-        if travel > 0.5 * h0 {
-            return Err(BedError::Setup(format!(
-                "consolidate: the piston travelled half the bed height without reaching {} Pa (reached {mean:.4e} Pa)",
-                scene.consolidation_stress
-            )));
-        }
-        if last_report.elapsed().as_millis() > 200 {
-            last_report = std::time::Instant::now();
-            progress(&Progress { phase: "consolidate", fraction: overall("consolidate", mean / scene.consolidation_stress), time: e.time(), steps, detail: format!("piston stress {mean:.4e} Pa") });
-        }
-    }
-    report.phases.push(("consolidate", e.time() - t0, steps));
-    if last == "consolidate" {
-        return Ok((e, report));
+    let fall = (2.0 * fill_height / scene.gravity.max(1e-3)).sqrt();
+    if runs("settle") {
+        let (t, s) = calm(&mut e, scene, "settle", fall, 50.0 * fall + 0.1, progress)?;
+        report.phases.push(("settle", t, s));
     }
 
-    // Unload at the same speed until the piston has carried no force for 100 steps; then it is parked
-    // one mean diameter higher, out of reach.
-    let t0 = e.time();
-    e.walls_mut()[PISTON].velocity = [0.0, 0.0, speed];
-    let mut steps = 0u64;
-    let mut free_steps = 0;
-    while free_steps < 100 {
-        e.step();
-        steps += 1;
-        free_steps = if e.walls()[PISTON].force == [0.0; 3] { free_steps + 1 } else { 0 };
-        if last_report.elapsed().as_millis() > 200 {
-            last_report = std::time::Instant::now();
-            let sigma = piston_stress(&e, scene);
-            progress(&Progress { phase: "unload", fraction: overall("unload", 1.0 - sigma / report.consolidation_stress), time: e.time(), steps, detail: format!("piston stress {sigma:.4e} Pa") });
+    if runs("consolidate") {
+        // Consolidate: the piston comes down from just above the bed at v = strain_rate x height.
+        let h0 = bed_height(e.particles());
+        let speed = scene.strain_rate * h0;
+        {
+            let piston = &mut e.walls_mut()[PISTON];
+            piston.position[2] = h0 + 0.02 * scene.size_distribution.mean_diameter();
+            piston.velocity = [0.0, 0.0, -speed];
         }
-    }
-    e.walls_mut()[PISTON].position[2] += scene.size_distribution.mean_diameter();
-    e.walls_mut()[PISTON].velocity = [0.0; 3];
-    report.phases.push(("unload", e.time() - t0, steps));
-    if last == "unload" {
-        return Ok((e, report));
+        let t0 = e.time();
+        let mut steps = 0u64;
+        let mut window = std::collections::VecDeque::with_capacity(100);
+        loop {
+            e.step();
+            steps += 1;
+            if window.len() == 100 {
+                window.pop_front();
+            }
+            window.push_back(piston_stress(&e, scene));
+            let mean = window.iter().sum::<f64>() / window.len() as f64;
+            if window.len() == 100 && mean >= scene.consolidation_stress {
+                report.consolidation_stress = mean;
+                let top = e.walls()[PISTON].position[2];
+                let region = Region { radius: 0.5 * scene.die_diameter, z_low: 0.25 * top, z_high: 0.75 * top };
+                report.stress_at_target = Some(bagi(&mut e, &region));
+                break;
+            }
+            let travel = h0 - e.walls()[PISTON].position[2];
+            if travel > 0.5 * h0 {
+                return Err(BedError::Setup(format!(
+                    "consolidate: the piston travelled half the bed height without reaching {} Pa (reached {mean:.4e} Pa)",
+                    scene.consolidation_stress
+                )));
+            }
+            if last_report.elapsed().as_millis() > 200 {
+                last_report = std::time::Instant::now();
+                progress(&Progress { phase: "consolidate", fraction: overall("consolidate", mean / scene.consolidation_stress), time: e.time(), steps, detail: format!("piston stress {mean:.4e} Pa") });
+            }
+        }
+        report.phases.push(("consolidate", e.time() - t0, steps));
     }
 
-    let (t, s) = calm(&mut e, scene, "relax", 1e-3, 5.0 * fall + 0.1, progress)?;
-    report.phases.push(("relax", t, s));
-    progress(&Progress { phase: "relax", fraction: 1.0, time: e.time(), steps: s, detail: "done".into() });
+    if runs("unload") {
+        // Unload at the same speed until the piston has carried no force for 100 steps; then it is parked
+        // one mean diameter higher, out of reach.
+        let t0 = e.time();
+        // The piston turns: up at the speed it came down with.
+        let speed = -e.walls()[PISTON].velocity[2];
+        if report.consolidation_stress == 0.0 {
+            // Resumed after consolidation: the stress it reached is the piston's now.
+            report.consolidation_stress = piston_stress(&e, scene);
+        }
+        e.walls_mut()[PISTON].velocity = [0.0, 0.0, speed];
+        let mut steps = 0u64;
+        let mut free_steps = 0;
+        while free_steps < 100 {
+            e.step();
+            steps += 1;
+            free_steps = if e.walls()[PISTON].force == [0.0; 3] { free_steps + 1 } else { 0 };
+            if last_report.elapsed().as_millis() > 200 {
+                last_report = std::time::Instant::now();
+                let sigma = piston_stress(&e, scene);
+                progress(&Progress { phase: "unload", fraction: overall("unload", 1.0 - sigma / report.consolidation_stress), time: e.time(), steps, detail: format!("piston stress {sigma:.4e} Pa") });
+            }
+        }
+        e.walls_mut()[PISTON].position[2] += scene.size_distribution.mean_diameter();
+        e.walls_mut()[PISTON].velocity = [0.0; 3];
+        // The jump ends the piston's contacts now, not at the next list rebuild, so a bed saved here
+        // holds no contact out of range.
+        e.rebuild();
+        report.phases.push(("unload", e.time() - t0, steps));
+    }
+
+    if runs("relax") {
+        let (t, s) = calm(&mut e, scene, "relax", 1e-3, 5.0 * fall + 0.1, progress)?;
+        report.phases.push(("relax", t, s));
+        progress(&Progress { phase: "relax", fraction: 1.0, time: e.time(), steps: s, detail: "done".into() });
+    }
     Ok((e, report))
 }

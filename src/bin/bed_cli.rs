@@ -12,6 +12,8 @@ use std::time::Instant;
 
 pub const USAGE: &str = "  powderfmu bed prepare SCENE.json [-o BED] [--threads N] [--until PHASE]
                                                         fill, settle, consolidate, unload, relax (004 Sec. 5.1.3)
+  powderfmu bed prepare --resume BED [-o BED] [--threads N] [--until PHASE]
+                                                        continue a bed saved with --until after the phase it went through
   powderfmu bed info BED                                count, height, solid fraction, coordination, overlap, stress
   powderfmu bed snapshot BED OUT.vtk|OUT.csv            spheres for ParaView (VTK) or a spreadsheet (CSV)
   powderfmu bed render BED OUT.png [--width PX]         vertical cross-section through the die axis
@@ -125,20 +127,31 @@ impl Bar {
 }
 
 fn prepare_cmd(args: &[String]) -> Result<(), String> {
-    let a = parse(args, &["-o", "--output", "--threads", "--until"])?;
+    let a = parse(args, &["-o", "--output", "--threads", "--until", "--resume"])?;
     let until = a.get("--until").unwrap_or("relax");
     if !prepare::PHASES.contains(&until) {
         return Err(format!("--until = `{until}` is not allowed: give one of {}", prepare::PHASES.join(", ")));
     }
-    let scene_path = a.need(0, "the bed scene file (JSON)")?;
-    let text = std::fs::read_to_string(scene_path).map_err(|e| format!("cannot read bed scene `{scene_path}`: {e}"))?;
-    let mut scene = BedScene::from_json(&text).map_err(|e| format!("{scene_path}: {e}"))?;
-    if let Some(t) = threads_option(&a)? {
+    let resume = a.get("--resume");
+    let threads = threads_option(&a)?;
+    let (mut scene, saved, default_out) = match resume {
+        Some(bed) => {
+            let (engine, scene) = load(bed, threads)?;
+            (scene, Some(engine), PathBuf::from(bed))
+        }
+        None => {
+            let scene_path = a.need(0, "the bed scene file (JSON), or --resume BED")?;
+            let text = std::fs::read_to_string(scene_path).map_err(|e| format!("cannot read bed scene `{scene_path}`: {e}"))?;
+            let scene = BedScene::from_json(&text).map_err(|e| format!("{scene_path}: {e}"))?;
+            (scene, None, Path::new(scene_path).with_extension("bed"))
+        }
+    };
+    if let Some(t) = threads {
         scene.threads = t;
     }
     let out = match a.get("-o").or(a.get("--output")) {
         Some(o) => PathBuf::from(o),
-        None => Path::new(scene_path).with_extension("bed"),
+        None => default_out,
     };
     eprintln!(
         "preparing {} spheres ({:?}, mean diameter {:.3e} m) in a die of {} m, to {} Pa, on {} thread(s) -> {}",
@@ -151,7 +164,15 @@ fn prepare_cmd(args: &[String]) -> Result<(), String> {
         out.display()
     );
     let mut bar = Bar { start: Instant::now(), tty: std::io::stderr().is_terminal(), last_line: -1.0 };
-    let (mut engine, report) = prepare::prepare_until(&scene, until, &mut |p| bar.show(p)).map_err(|e| e.to_string())?;
+    let (mut engine, report) = match saved {
+        Some(engine) => {
+            let done = prepare::phase_done(&engine, &scene);
+            eprintln!("resuming {} after phase `{done}` (bed time {:.4e} s)", resume.unwrap_or_default(), engine.time());
+            prepare::resume(engine, &scene, until, &mut |p| bar.show(p))
+        }
+        None => prepare::prepare_until(&scene, until, &mut |p| bar.show(p)),
+    }
+    .map_err(|e| e.to_string())?;
     if bar.tty {
         eprintln!();
     }
