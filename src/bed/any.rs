@@ -211,6 +211,11 @@ impl AnyEngine {
         with_engine!(self, e => e.run(steps))
     }
 
+    /// See `Engine::hold`.
+    pub fn hold(&mut self, held: &[bool]) {
+        with_engine!(self, e => e.hold(held))
+    }
+
     /// Rebuilds the neighbour and wall contact lists now, keeping every contact's memory in range.
     pub fn rebuild(&mut self) {
         with_engine!(self, e => e.rebuild())

@@ -59,6 +59,27 @@ pub struct Setup {
     /// C of Eq. 2.10.
     pub constraint_factor: f64,
     pub motion: Motion,
+    /// The shortcut of `fidelity = fast`: only the spheres within `m` a_max of the indenter move (see
+    /// `mobile_zone`); the others are held where the bed left them. None: every sphere moves (`full`).
+    pub mobile_zone: Option<f64>,
+}
+
+/// The mobile zone of `fidelity = fast`, in contact radii a_max = (d h_max - h_max^2)^(1/2) of the
+/// deepest indentation: chosen from the measured work-precision curve (docs/indentation.md).
+pub const FAST_MOBILE_ZONE: f64 = 3.0;
+
+/// Which spheres the shortcut holds: those whose centre lies farther than L = m a_max from the die axis,
+/// or deeper than L below the indenter's deepest point, with L at least the dynamic bin plus two mean
+/// diameters (the bin's stress must see only moving spheres). `touch`: height of the first touch [m].
+pub fn held_outside(p: &Particles, setup: &Setup, touch: f64, mean_diameter: f64) -> Vec<bool> {
+    let Some(m) = setup.mobile_zone else {
+        return vec![false; p.len()];
+    };
+    let (d, h) = (setup.indenter_diameter, setup.max_penetration);
+    let a_max = (d * h - h * h).max(0.0).sqrt();
+    let reach = (m * a_max).max((0.5 * BIN[0].max(BIN[1]) + 2.0) * mean_diameter).max((BIN[2] + 2.0) * mean_diameter);
+    let floor = touch - h - reach;
+    p.position.iter().map(|x| (x[0] * x[0] + x[1] * x[1]).sqrt() > reach || x[2] < floor).collect()
 }
 
 /// Where the test is.
@@ -183,6 +204,13 @@ impl Indentation {
         let pair = indenter_pair.unwrap_or(&scene.particle_wall);
         engine.add_wall(&scene, Wall::sphere("indenter", [0.0, 0.0, bottom + r_i], r_i), pair)?;
         let indenter = engine.walls().len() - 1;
+        if let Some(m) = setup.mobile_zone {
+            if !(m > 0.0 && m.is_finite()) {
+                return Err(ParamError::OutOfRange { name: "mobile_zone", value: m, allowed: "(0, inf) contact radii".into() }.into());
+            }
+            let held = held_outside(engine.particles(), &setup, touch, scene.size_distribution.mean_diameter());
+            engine.hold(&held);
+        }
         let record = Record { state: TestState::Loading, f_max: 0.0, h_max: 0.0, unloading: vec![], contact_depth: None, touch, time_debt: 0.0, steps: 0 };
         let mut test = Indentation { engine, scene, setup, record, indenter };
         if setup.motion == Motion::Prescribed {
@@ -366,6 +394,7 @@ impl Indentation {
             record: self.record.clone(),
             indenter: self.indenter as u32,
             time_step: self.engine.dt(),
+            held: self.engine.particles().held.clone(),
         };
         bincode::serialize(&saved).expect("an indentation state serializes")
     }
@@ -384,6 +413,12 @@ impl Indentation {
         let file: BedFile = file::decode(&saved.bed)?;
         let (mut engine, scene) = AnyEngine::from_file(&file, threads)?;
         engine.set_time_step(&scene, saved.time_step)?;
+        if saved.held.len() != engine.particles().len() {
+            return Err(BedError::Setup("the saved indentation state holds a different number of spheres than its bed".into()));
+        }
+        if saved.held.iter().any(|&h| h) {
+            engine.hold(&saved.held);
+        }
         let indenter = saved.indenter as usize;
         if indenter >= engine.walls().len() {
             return Err(BedError::Setup("the saved indentation state has no indenter".into()));
@@ -400,6 +435,8 @@ struct Saved {
     indenter: u32,
     /// The engine's step (a bed file holds its scene's, which the test may have changed).
     time_step: f64,
+    /// The spheres held by the shortcut.
+    held: Vec<bool>,
 }
 
 /// h_c = h_0 - F_0 / S: where the tangent to the unloading curve at its start (h_0, F_0) = `points[0]`

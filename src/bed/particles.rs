@@ -22,6 +22,9 @@ pub struct Particles {
     pub inv_inertia: Vec<f64>,
     /// Species: the size class of the distribution, which selects the interaction of each pair.
     pub species: Vec<u16>,
+    /// Held in place (a shortcut of the indentation, `Engine::hold`): not moved, and pairs of two held
+    /// spheres are not computed.
+    pub held: Vec<bool>,
 }
 
 impl Particles {
@@ -44,6 +47,7 @@ impl Particles {
         self.inv_mass.push(1.0 / mass);
         self.inv_inertia.push(1.0 / (0.4 * mass * radius * radius));
         self.species.push(species);
+        self.held.push(false);
     }
 
     /// Reorders every array by `order` (new index k holds old particle `order[k]`).
@@ -58,6 +62,7 @@ impl Particles {
         apply(&mut self.mass, order);
         apply(&mut self.inv_mass, order);
         apply(&mut self.inv_inertia, order);
+        apply(&mut self.held, order);
         apply(&mut self.species, order);
     }
 

@@ -12,7 +12,7 @@ use super::scene_params;
 use super::variables::{Value, VarType, Variable};
 use super::{Model, UnitError, UnitInfo};
 use crate::bed::file;
-use crate::bed::indentation::{Indentation, Motion, Setup, TestState};
+use crate::bed::indentation::{Indentation, Motion, Setup, TestState, FAST_MOBILE_ZONE};
 use crate::bed::{BedError, BedScene};
 use crate::scene::{Key, KeyDefault, KEYS};
 use serde_json::{Map, Value as Json};
@@ -91,6 +91,7 @@ variable_table! {
     threads: Variable::parameter("threads", Value::Integer(1), "", "threads of the bed engine's force loop, in [1, 256]"),
     time_step: Variable::parameter("time_step", Value::Real(0.0), "s", "the bed engine's time step; 0 = the bed's own (its scene's time_step or rayleigh_fraction of its stability limit)")
         .with_range(Some(0.0), None),
+    fidelity: Variable::parameter("fidelity", Value::String("fast".into()), "", "fast (only the spheres within 3 contact radii a_max of the deepest indentation move, the others are held where the bed left them; its error is measured in docs/indentation.md) or full (every sphere moves)"),
 }
 
 pub fn info() -> UnitInfo {
@@ -162,12 +163,18 @@ impl BallIndentation {
             "input" => Motion::Input,
             other => return Err(variable("indenter_motion", format!("parameter `indenter_motion` = \"{other}\" is not known: allowed prescribed, input"))),
         };
+        let mobile_zone = match values[REFS.fidelity].as_str() {
+            "fast" => Some(FAST_MOBILE_ZONE),
+            "full" => None,
+            other => return Err(variable("fidelity", format!("parameter `fidelity` = \"{other}\" is not known: allowed fast, full"))),
+        };
         Ok(Setup {
             indenter_diameter: values[REFS.indenter_diameter].as_real(),
             indentation_speed: values[REFS.indentation_speed].as_real(),
             max_penetration: values[REFS.max_penetration].as_real(),
             constraint_factor: values[REFS.constraint_factor].as_real(),
             motion,
+            mobile_zone,
         })
     }
 

@@ -131,6 +131,7 @@ def test_bad_input_is_refused_at_initialization_and_the_host_survives(indentatio
     _refused(indentation, {"indenter_motion": "input"}, "indenter_velocity", {"indenter_displacement": 0.0, "indenter_velocity": -0.01})
     _refused(indentation, {"indenter_motion": "input"}, "indenter_displacement", {"indenter_displacement": 1e-4, "indenter_velocity": 0.01})
     _refused(indentation, {"indenter_motion": "sideways"}, "indenter_motion")
+    _refused(indentation, {"fidelity": "medium"}, "fidelity")
     _refused(indentation, {"time_step": 1e-3}, "time_step")
     # A bed prepared with other materials is another powder: the difference is named.
     messages = _refused(indentation, {"particle_particle.surface_energy": 2.0}, "bed_file")

@@ -226,6 +226,22 @@ impl<L: BedLaw> Engine<L> {
         self.with_pool(|e| e.step_inner());
     }
 
+    /// Holds the spheres marked in `held` where they are (at rest) and releases the others: a held sphere
+    /// does not move, pairs of two held spheres are not computed, and held spheres touch no wall. What a
+    /// moving sphere feels from a held neighbour is unchanged. Their contacts with each other are
+    /// forgotten. Used by the indentation's `fidelity = fast` for the spheres far from the indenter.
+    pub fn hold(&mut self, held: &[bool]) {
+        assert_eq!(held.len(), self.particles.len(), "one flag per sphere");
+        for (i, &h) in held.iter().enumerate() {
+            if h {
+                self.particles.velocity[i] = [0.0; 3];
+                self.particles.angular_velocity[i] = [0.0; 3];
+            }
+        }
+        self.particles.held = held.to_vec();
+        self.rebuild();
+    }
+
     /// Several steps.
     pub fn run(&mut self, steps: u64) {
         self.with_pool(|e| {
@@ -265,7 +281,7 @@ impl<L: BedLaw> Engine<L> {
         let dt = if drift { self.dt } else { 0.0 };
         let g = self.gravity;
         if threads == 1 {
-            return kick_range(0, &mut p.velocity, &mut p.angular_velocity, &mut p.position, &p.inv_mass, &p.inv_inertia, &p.radius, acc, reference, g, h, dt);
+            return kick_range(0, &mut p.velocity, &mut p.angular_velocity, &mut p.position, (&p.inv_mass, &p.inv_inertia, &p.radius, &p.held), acc, reference, g, h, dt);
         }
         let chunk = p.len().div_ceil(threads).max(1);
         let chunks: Vec<_> = p
@@ -273,12 +289,12 @@ impl<L: BedLaw> Engine<L> {
             .chunks_mut(chunk)
             .zip(p.angular_velocity.chunks_mut(chunk))
             .zip(p.position.chunks_mut(chunk))
-            .zip(p.inv_mass.chunks(chunk).zip(p.inv_inertia.chunks(chunk)).zip(p.radius.chunks(chunk)))
+            .zip(p.inv_mass.chunks(chunk).zip(p.inv_inertia.chunks(chunk)).zip(p.radius.chunks(chunk)).zip(p.held.chunks(chunk)))
             .enumerate()
             .collect();
         chunks
             .into_par_iter()
-            .map(|(k, (((v, w), x), ((im, ii), r)))| kick_range(k * chunk, v, w, x, im, ii, r, acc, reference, g, h, dt))
+            .map(|(k, (((v, w), x), (((im, ii), r), held)))| kick_range(k * chunk, v, w, x, (im, ii, r, held), acc, reference, g, h, dt))
             .reduce(|| 0.0, f64::max)
     }
 
@@ -353,9 +369,7 @@ fn kick_range(
     v: &mut [Vec3],
     w: &mut [Vec3],
     x: &mut [Vec3],
-    im: &[f64],
-    ii: &[f64],
-    r: &[f64],
+    (im, ii, r, held): (&[f64], &[f64], &[f64], &[bool]),
     acc: &Accum,
     reference: &[Vec3],
     g: Vec3,
@@ -364,9 +378,12 @@ fn kick_range(
 ) -> f64 {
     let n = v.len();
     let (force, torque, rolling) = (&acc.force[base..base + n], &acc.torque[base..base + n], &acc.rolling[base..base + n]);
-    let (w, x, im, ii, r) = (&mut w[..n], &mut x[..n], &im[..n], &ii[..n], &r[..n]);
+    let (w, x, im, ii, r, held) = (&mut w[..n], &mut x[..n], &im[..n], &ii[..n], &r[..n], &held[..n]);
     let mut moved: f64 = 0.0;
     for q in 0..n {
+        if held[q] {
+            continue;
+        }
         let (f, t) = (force[q], torque[q]);
         for c in 0..3 {
             v[q][c] += (f[c] * im[q] + g[c]) * h;
