@@ -382,6 +382,24 @@ fn a_preparation_resumed_from_a_bed_file_after_any_phase_ends_bit_for_bit_where_
         assert_eq!(rest.time(), whole.time(), "resumed after {phase}");
         assert_eq!(rest.particles().position, whole.particles().position, "resumed after {phase}: not the same bed");
     }
+    // A checkpoint taken within a phase (as `bed prepare` writes them) names the phase before it and
+    // the preparation goes on from there to a bed of the same height within 2 %.
+    for within in ["settle", "consolidate", "unload"] {
+        let mut checkpoint = None;
+        prepare::prepare_until(&scene, within, &mut |p| {
+            if p.phase == within && p.fraction < 0.99 && checkpoint.is_none() && p.time > 0.0 {
+                checkpoint = Some(file::encode(&p.bed.to_file(&scene)));
+            }
+        })
+        .unwrap();
+        let (saved, _) = AnyEngine::from_file(&file::decode(&checkpoint.expect("a checkpoint within the phase")).unwrap(), None).unwrap();
+        let index = prepare::PHASES.iter().position(|&p| p == within).unwrap();
+        assert_eq!(prepare::phase_done(&saved, &scene), prepare::PHASES[index - 1], "a checkpoint within {within}");
+        let (rest, report) = prepare::resume(saved, &scene, "relax", &mut |_| {}).unwrap();
+        assert_eq!(report.phases.first().unwrap().0, within);
+        let (h, h_whole) = (bed_height(rest.particles()), bed_height(whole.particles()));
+        assert!(rel(h, h_whole) < 0.02, "resumed within {within}: bed {h} m high vs {h_whole} m");
+    }
 }
 
 #[test]

@@ -11,8 +11,8 @@ use super::walls::Wall;
 use std::f64::consts::PI;
 
 /// Progress of a long preparation, for a progress bar.
-#[derive(Debug, Clone)]
-pub struct Progress {
+#[derive(Clone)]
+pub struct Progress<'a> {
     pub phase: &'static str,
     /// Estimated fraction of the whole preparation done, in [0, 1].
     pub fraction: f64,
@@ -21,6 +21,8 @@ pub struct Progress {
     pub steps: u64,
     /// A short reading of the phase's own measure (kinetic energy, piston stress).
     pub detail: String,
+    /// The bed as it is: a caller may save it (`bed prepare` writes a checkpoint every few minutes).
+    pub bed: &'a AnyEngine,
 }
 
 /// What each phase did.
@@ -188,7 +190,7 @@ fn calm(e: &mut AnyEngine, scene: &BedScene, phase: &'static str, min_time: f64,
             let f = *first.get_or_insert(ratio.max(10.0 * scene.settle_energy_ratio));
             0.5 + 0.5 * ((f / ratio.max(1e-300)).ln() / (f / scene.settle_energy_ratio).ln()).clamp(0.0, 1.0)
         };
-        progress(&Progress { phase, fraction: overall(phase, within), time: e.time(), steps, detail: format!("kinetic energy ratio {ratio:.2e}") });
+        progress(&Progress { phase, fraction: overall(phase, within), time: e.time(), steps, detail: format!("kinetic energy ratio {ratio:.2e}"), bed: e });
         if t >= min_time && ratio < scene.settle_energy_ratio {
             return Ok((t, steps));
         }
@@ -220,21 +222,25 @@ pub fn prepare_until(scene: &BedScene, last: &str, progress: &mut dyn FnMut(&Pro
     let particles = fill(scene)?;
     let fill_height = bed_height(&particles);
     let e = AnyEngine::build(scene, particles, die(scene))?;
-    progress(&Progress { phase: "fill", fraction: overall("fill", 1.0), time: 0.0, steps: 0, detail: format!("{} spheres, fill {fill_height:.4} m high", scene.particle_count) });
+    progress(&Progress { phase: "fill", fraction: overall("fill", 1.0), time: 0.0, steps: 0, detail: format!("{} spheres, fill {fill_height:.4} m high", scene.particle_count), bed: &e });
     run_phases(e, scene, "fill", last, fill_height, progress)
 }
 
-/// The last phase a saved bed went through, read from its piston: parked at the top of the die before
-/// consolidation, moving down during it, parked above the bed after unloading.
+/// The last phase a saved bed went through, read from its piston and its motion: parked at the top of
+/// the die before consolidation (settled once the bed is at rest), moving down during consolidation,
+/// turned (moving up) once it carries the target stress and while unloading, parked above the bed after. A
+/// checkpoint taken within a phase names the phase before it, and `resume` goes on with the phase.
 pub fn phase_done(e: &AnyEngine, scene: &BedScene) -> &'static str {
     let piston = &e.walls()[PISTON];
     if piston.velocity[2] < 0.0 {
+        "settle"
+    } else if piston.velocity[2] > 0.0 {
         "consolidate"
     } else if piston.position[2] == scene.die_height {
-        if e.time() == 0.0 {
-            "fill"
-        } else {
+        if e.time() > 0.0 && energy_ratio(e, scene) < scene.settle_energy_ratio {
             "settle"
+        } else {
+            "fill"
         }
     } else {
         "unload"
@@ -266,18 +272,23 @@ fn run_phases(mut e: AnyEngine, scene: &BedScene, done: &str, last: &str, fill_h
     let index = |name: &str| PHASES.iter().position(|&p| p == name).unwrap_or(0);
     let (first, last_index) = (index(done) + 1, index(last));
     let runs = |phase: &str| (first..=last_index).contains(&index(phase));
-    let mut last_report = std::time::Instant::now();
+    // Progress every REPORT_EVERY steps of the piston's phases (by steps, not by the clock, so that what
+    // a caller sees and saves does not depend on the machine).
+    const REPORT_EVERY: u64 = 1000;
     let fall = (2.0 * fill_height / scene.gravity.max(1e-3)).sqrt();
     if runs("settle") {
-        let (t, s) = calm(&mut e, scene, "settle", fall, 50.0 * fall + 0.1, progress)?;
+        // A checkpoint within the settling has settled for its bed time already.
+        let before = e.time();
+        let (t, s) = calm(&mut e, scene, "settle", (fall - before).max(0.0), 50.0 * fall + 0.1 - before, progress)?;
         report.phases.push(("settle", t, s));
     }
 
     if runs("consolidate") {
         // Consolidate: the piston comes down from just above the bed at v = strain_rate x height.
+        // (A checkpoint within the consolidation goes on where its piston is.)
         let h0 = bed_height(e.particles());
-        let speed = scene.strain_rate * h0;
-        {
+        if e.walls()[PISTON].velocity[2] >= 0.0 {
+            let speed = scene.strain_rate * h0;
             let piston = &mut e.walls_mut()[PISTON];
             piston.position[2] = h0 + 0.02 * scene.size_distribution.mean_diameter();
             piston.velocity = [0.0, 0.0, -speed];
@@ -307,11 +318,13 @@ fn run_phases(mut e: AnyEngine, scene: &BedScene, done: &str, last: &str, fill_h
                     scene.consolidation_stress
                 )));
             }
-            if last_report.elapsed().as_millis() > 200 {
-                last_report = std::time::Instant::now();
-                progress(&Progress { phase: "consolidate", fraction: overall("consolidate", mean / scene.consolidation_stress), time: e.time(), steps, detail: format!("piston stress {mean:.4e} Pa") });
+            if steps % REPORT_EVERY == 0 {
+                progress(&Progress { phase: "consolidate", fraction: overall("consolidate", mean / scene.consolidation_stress), time: e.time(), steps, detail: format!("piston stress {mean:.4e} Pa"), bed: &e });
             }
         }
+        // The piston turns at once: a bed saved here says by its piston that it is consolidated.
+        let speed = e.walls()[PISTON].velocity[2].abs();
+        e.walls_mut()[PISTON].velocity = [0.0, 0.0, speed];
         report.phases.push(("consolidate", e.time() - t0, steps));
     }
 
@@ -319,23 +332,20 @@ fn run_phases(mut e: AnyEngine, scene: &BedScene, done: &str, last: &str, fill_h
         // Unload at the same speed until the piston has carried no force for 100 steps; then it is parked
         // one mean diameter higher, out of reach.
         let t0 = e.time();
-        // The piston turns: up at the speed it came down with.
-        let speed = -e.walls()[PISTON].velocity[2];
+        // The piston goes up at the speed it came down with (it turned at the end of the consolidation).
         if report.consolidation_stress == 0.0 {
             // Resumed after consolidation: the stress it reached is the piston's now.
             report.consolidation_stress = piston_stress(&e, scene);
         }
-        e.walls_mut()[PISTON].velocity = [0.0, 0.0, speed];
         let mut steps = 0u64;
         let mut free_steps = 0;
         while free_steps < 100 {
             e.step();
             steps += 1;
             free_steps = if e.walls()[PISTON].force == [0.0; 3] { free_steps + 1 } else { 0 };
-            if last_report.elapsed().as_millis() > 200 {
-                last_report = std::time::Instant::now();
+            if steps % REPORT_EVERY == 0 {
                 let sigma = piston_stress(&e, scene);
-                progress(&Progress { phase: "unload", fraction: overall("unload", 1.0 - sigma / report.consolidation_stress), time: e.time(), steps, detail: format!("piston stress {sigma:.4e} Pa") });
+                progress(&Progress { phase: "unload", fraction: overall("unload", 1.0 - sigma / report.consolidation_stress), time: e.time(), steps, detail: format!("piston stress {sigma:.4e} Pa"), bed: &e });
             }
         }
         e.walls_mut()[PISTON].position[2] += scene.size_distribution.mean_diameter();
@@ -349,7 +359,7 @@ fn run_phases(mut e: AnyEngine, scene: &BedScene, done: &str, last: &str, fill_h
     if runs("relax") {
         let (t, s) = calm(&mut e, scene, "relax", 1e-3, 5.0 * fall + 0.1, progress)?;
         report.phases.push(("relax", t, s));
-        progress(&Progress { phase: "relax", fraction: 1.0, time: e.time(), steps: s, detail: "done".into() });
+        progress(&Progress { phase: "relax", fraction: 1.0, time: e.time(), steps: s, detail: "done".into(), bed: &e });
     }
     Ok((e, report))
 }

@@ -12,8 +12,9 @@ use std::time::Instant;
 
 pub const USAGE: &str = "  powderfmu bed prepare SCENE.json [-o BED] [--threads N] [--until PHASE]
                                                         fill, settle, consolidate, unload, relax (004 Sec. 5.1.3)
-  powderfmu bed prepare --resume BED [-o BED] [--threads N] [--until PHASE]
-                                                        continue a bed saved with --until after the phase it went through
+  powderfmu bed prepare --resume BED [-o BED] [--threads N] [--until PHASE] [--checkpoint MIN]
+                                                        continue a bed saved with --until, or a checkpoint (written
+                                                        every MIN minutes, default 10, as OUT.checkpoint.pfbed)
   powderfmu bed info BED                                count, height, solid fraction, coordination, overlap, stress
   powderfmu bed snapshot BED OUT.vtk|OUT.csv            spheres for ParaView (VTK) or a spreadsheet (CSV)
   powderfmu bed render BED OUT.png [--width PX]         vertical cross-section through the die axis
@@ -128,7 +129,8 @@ impl Bar {
 }
 
 fn prepare_cmd(args: &[String]) -> Result<(), String> {
-    let a = parse(args, &["-o", "--output", "--threads", "--until", "--resume"])?;
+    let a = parse(args, &["-o", "--output", "--threads", "--until", "--resume", "--checkpoint"])?;
+    let every = a.number("--checkpoint", 10.0f64, |m| m.is_finite() && *m > 0.0, "give minutes > 0")?;
     let until = a.get("--until").unwrap_or("relax");
     if !prepare::PHASES.contains(&until) {
         return Err(format!("--until = `{until}` is not allowed: give one of {}", prepare::PHASES.join(", ")));
@@ -165,19 +167,39 @@ fn prepare_cmd(args: &[String]) -> Result<(), String> {
         out.display()
     );
     let mut bar = Bar { start: Instant::now(), tty: std::io::stderr().is_terminal(), last_line: -1.0 };
+    // Every few minutes the bed as it is goes to a checkpoint file beside the output, so that a stopped
+    // preparation of hours loses at most those minutes: `--resume` it.
+    let checkpoint = out.with_extension("checkpoint.pfbed");
+    let mut last_checkpoint = Instant::now();
+    let mut show = |p: &Progress| {
+        bar.show(p);
+        if last_checkpoint.elapsed().as_secs_f64() > 60.0 * every {
+            last_checkpoint = Instant::now();
+            if let Err(e) = file::save(&checkpoint, p.bed, &scene) {
+                eprintln!("warning: cannot write the checkpoint {}: {e}", checkpoint.display());
+            }
+        }
+    };
     let (mut engine, report) = match saved {
         Some(engine) => {
             let done = prepare::phase_done(&engine, &scene);
             eprintln!("resuming {} after phase `{done}` (bed time {:.4e} s)", resume.unwrap_or_default(), engine.time());
-            prepare::resume(engine, &scene, until, &mut |p| bar.show(p))
+            prepare::resume(engine, &scene, until, &mut show)
         }
-        None => prepare::prepare_until(&scene, until, &mut |p| bar.show(p)),
+        None => prepare::prepare_until(&scene, until, &mut show),
     }
-    .map_err(|e| e.to_string())?;
+    .map_err(|e| {
+        if checkpoint.exists() {
+            format!("{e}\nthe last checkpoint is {}", checkpoint.display())
+        } else {
+            e.to_string()
+        }
+    })?;
     if bar.tty {
         eprintln!();
     }
     file::save(&out, &engine, &scene).map_err(|e| format!("cannot write bed file `{}`: {e}", out.display()))?;
+    let _ = std::fs::remove_file(&checkpoint);
     println!("time step: {:.4e} s", report.time_step);
     for (phase, t, steps) in &report.phases {
         println!("{phase:<12} {t:.4e} s simulated, {steps} steps");
