@@ -6,6 +6,7 @@ use super::interaction::{BedLaw, Interaction, ContactTemplate};
 use super::particles::Particles;
 use super::scene::BedScene;
 use super::walls::Wall;
+use super::Vec3;
 use crate::error::ParamError;
 use crate::scene::ModelKind;
 
@@ -214,6 +215,20 @@ impl AnyEngine {
     /// See `Engine::hold`.
     pub fn hold(&mut self, held: &[bool]) {
         with_engine!(self, e => e.hold(held))
+    }
+
+    /// See `Engine::release_disturbed`.
+    pub fn release_disturbed(&mut self, threshold: f64) -> usize {
+        with_engine!(self, e => e.release_disturbed(threshold))
+    }
+
+    pub fn held_reference(&self) -> Vec<Vec3> {
+        with_engine!(self, e => e.held_reference().to_vec())
+    }
+
+    /// See `Engine::restore_held`.
+    pub fn restore_held(&mut self, held: Vec<bool>, reference: Vec<Vec3>) {
+        with_engine!(self, e => e.restore_held(held, reference))
     }
 
     /// Rebuilds the neighbour and wall contact lists now, keeping every contact's memory in range.

@@ -44,8 +44,7 @@ impl NeighborList {
     }
 
     /// Rebuilds the list for these positions and radii.
-    /// The list of pairs within range; a pair of two `held` spheres is left out (empty `held`: none is).
-    pub fn build(&mut self, position: &[Vec3], radius: &[f64], held: &[bool]) {
+    pub fn build(&mut self, position: &[Vec3], radius: &[f64]) {
         let n = position.len();
         self.reference = position.to_vec();
         self.builds += 1;
@@ -107,11 +106,9 @@ impl NeighborList {
         }
         let skin = self.skin;
         self.start.push(0);
-        let is_held = |k: usize| held.get(k).copied().unwrap_or(false);
         for i in 0..n {
             let xi = position[i];
             let ri = radius[i];
-            let held_i = is_held(i);
             let k = coord(&xi);
             let row_begin = self.partner.len();
             for dz in -1i64..=1 {
@@ -131,7 +128,7 @@ impl NeighborList {
                         }
                         let c = index([x as usize, y as usize, z as usize]);
                         for &j in &self.cell_items[self.cell_start[c] as usize..self.cell_start[c + 1] as usize] {
-                            if (j as usize) <= i || (held_i && is_held(j as usize)) {
+                            if (j as usize) <= i {
                                 continue;
                             }
                             let d = super::sub(position[j as usize], xi);
@@ -192,7 +189,7 @@ mod tests {
         let x: Vec<Vec3> = (0..n).map(|_| [rng.uniform() * 0.01, rng.uniform() * 0.01, rng.uniform() * 0.02]).collect();
         let r: Vec<f64> = (0..n).map(|_| 3e-4 + 4e-4 * rng.uniform()).collect();
         let mut list = NeighborList::new(1e-4);
-        list.build(&x, &r, &[]);
+        list.build(&x, &r);
         let mut brute = Vec::new();
         for i in 0..n {
             for j in i + 1..n {

@@ -1,7 +1,7 @@
 //! `powderfmu bed ...`: prepare a bed, describe it, look at it, export it, time it.
 
 use powderfmu::bed::file::{self, BedFile};
-use powderfmu::bed::indentation::{Indentation, Motion, Setup, TestState, FAST_MOBILE_ZONE};
+use powderfmu::bed::indentation::{Indentation, Motion, Setup, Shortcut, TestState, FAST};
 use powderfmu::bed::prepare::{self, Progress};
 use powderfmu::bed::stress::{bagi, Region};
 use powderfmu::bed::{export, render, AnyEngine, BedScene};
@@ -20,10 +20,10 @@ pub const USAGE: &str = "  powderfmu bed prepare SCENE.json [-o BED] [--threads 
   powderfmu bed render BED OUT.png [--width PX]         vertical cross-section through the die axis
   powderfmu bed export-lammps BED OUT.data              LAMMPS data file (atom_style sphere)
   powderfmu bed indent BED [--diameter D] [--speed V] [--max-penetration H] [--threads T] [--out CSV]
-                        [--every S] [--indenter JSON] [--time-step DT] [--fidelity full|fast] [--mobile-zone M]
+                        [--every S] [--indenter JSON] [--time-step DT] [--fidelity full|fast] [--mobile-zone M] [--release E]
                                                         ball indentation (004 Sec. 2.3.5): load to H, unload; force-depth CSV;
                                                         --indenter: scene keys of the particle-indenter contact over the bed's walls' 
-                                                        --fidelity fast (or --mobile-zone M): only spheres within M a_max move
+                                                        --fidelity fast: spheres beyond M a_max held until the force on one changes by E sigma_c d^2
   powderfmu bed bench BED --model M [--steps N] [--threads T] [--stiffness K] [--yield-pressure P]
                         [--surface-energy G] [--rolling-friction MU]
                                                         particle-steps per second of the force loop";
@@ -379,7 +379,7 @@ fn bench_cmd(args: &[String]) -> Result<(), String> {
 }
 
 fn indent_cmd(args: &[String]) -> Result<(), String> {
-    let a = parse(args, &["--diameter", "--speed", "--max-penetration", "--threads", "--out", "--every", "--indenter", "--time-step", "--fidelity", "--mobile-zone"])?;
+    let a = parse(args, &["--diameter", "--speed", "--max-penetration", "--threads", "--out", "--every", "--indenter", "--time-step", "--fidelity", "--mobile-zone", "--release"])?;
     let (engine, scene) = load(a.need(0, "BED (a prepared bed file)")?, threads_option(&a)?)?;
     let mean = scene.size_distribution.mean_diameter();
     let d = a.number("--diameter", 16.0 * mean, |v: &f64| *v > 0.0, "a diameter > 0 [m]")?;
@@ -389,11 +389,13 @@ fn indent_cmd(args: &[String]) -> Result<(), String> {
         max_penetration: a.number("--max-penetration", 0.1 * d, |v: &f64| *v > 0.0, "a depth > 0 [m]")?,
         constraint_factor: 3.0,
         motion: Motion::Prescribed,
-        mobile_zone: match (a.get("--fidelity"), a.get("--mobile-zone")) {
+        shortcut: match (a.get("--fidelity"), a.get("--mobile-zone").or(a.get("--release"))) {
             (Some("full") | None, None) => None,
-            (Some("fast") | None, Some(_)) => Some(a.number("--mobile-zone", FAST_MOBILE_ZONE, |m: &f64| *m > 0.0 && m.is_finite(), "a factor > 0 on the contact radius a_max")?),
-            (Some("fast"), None) => Some(FAST_MOBILE_ZONE),
-            (Some("full"), Some(_)) => return Err("--mobile-zone is the shortcut of --fidelity fast; --fidelity full moves every sphere".into()),
+            (Some("fast") | None, _) => Some(Shortcut {
+                zone: a.number("--mobile-zone", FAST.zone, |m: &f64| *m > 0.0 && m.is_finite(), "a factor > 0 on the contact radius a_max")?,
+                release: a.number("--release", FAST.release, |e: &f64| *e > 0.0, "a fraction > 0 of consolidation_stress x d^2 (inf: never)")?,
+            }),
+            (Some("full"), Some(_)) => return Err("--mobile-zone and --release set the shortcut of --fidelity fast; --fidelity full moves every sphere".into()),
             (Some(other), _) => return Err(format!("--fidelity = `{other}` is not allowed: give fast or full")),
         },
     };

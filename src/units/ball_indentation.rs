@@ -12,7 +12,7 @@ use super::scene_params;
 use super::variables::{Value, VarType, Variable};
 use super::{Model, UnitError, UnitInfo};
 use crate::bed::file;
-use crate::bed::indentation::{Indentation, Motion, Setup, TestState, FAST_MOBILE_ZONE};
+use crate::bed::indentation::{Indentation, Motion, Setup, TestState, FAST};
 use crate::bed::{BedError, BedScene};
 use crate::scene::{Key, KeyDefault, KEYS};
 use serde_json::{Map, Value as Json};
@@ -91,7 +91,7 @@ variable_table! {
     threads: Variable::parameter("threads", Value::Integer(1), "", "threads of the bed engine's force loop, in [1, 256]"),
     time_step: Variable::parameter("time_step", Value::Real(0.0), "s", "the bed engine's time step; 0 = the bed's own (its scene's time_step or rayleigh_fraction of its stability limit)")
         .with_range(Some(0.0), None),
-    fidelity: Variable::parameter("fidelity", Value::String("fast".into()), "", "fast (only the spheres within 3 contact radii a_max of the deepest indentation move, the others are held where the bed left them; its error is measured in docs/indentation.md) or full (every sphere moves)"),
+    fidelity: Variable::parameter("fidelity", Value::String("fast".into()), "", "fast (the spheres farther than 3 contact radii a_max from the deepest indentation are held where the bed left them until the force on one changes by 0.1 consolidation_stress x d^2; its error is measured in docs/indentation.md) or full (every sphere moves)"),
 }
 
 pub fn info() -> UnitInfo {
@@ -163,8 +163,8 @@ impl BallIndentation {
             "input" => Motion::Input,
             other => return Err(variable("indenter_motion", format!("parameter `indenter_motion` = \"{other}\" is not known: allowed prescribed, input"))),
         };
-        let mobile_zone = match values[REFS.fidelity].as_str() {
-            "fast" => Some(FAST_MOBILE_ZONE),
+        let shortcut = match values[REFS.fidelity].as_str() {
+            "fast" => Some(FAST),
             "full" => None,
             other => return Err(variable("fidelity", format!("parameter `fidelity` = \"{other}\" is not known: allowed fast, full"))),
         };
@@ -174,7 +174,7 @@ impl BallIndentation {
             max_penetration: values[REFS.max_penetration].as_real(),
             constraint_factor: values[REFS.constraint_factor].as_real(),
             motion,
-            mobile_zone,
+            shortcut,
         })
     }
 

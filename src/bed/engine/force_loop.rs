@@ -129,8 +129,12 @@ fn run_part<L: BedLaw>(s: &Shared<L>, part: Part<L::History>) {
         let ri = p.radius[i];
         let table = &s.pairs[p.species[i] as usize * s.species..];
         let first = s.list.start[i] as usize;
+        let held_i = p.held.get(i) == Some(&true);
         for (k, &j) in (first..).zip(s.list.row(i)) {
             let j = j as usize;
+            if held_i && p.held[j] {
+                continue; // two held spheres: neither moves, their contact and its memory stay as they are
+            }
             let d = sub(p.position[j], xi);
             let dist2 = dot(d, d);
             let rj = p.radius[j];

@@ -22,7 +22,7 @@ impl<L: BedLaw> Engine<L> {
     pub fn rebuild(&mut self) {
         let old_start = std::mem::take(&mut self.list.start);
         let old_partner = std::mem::take(&mut self.list.partner);
-        self.list.build(&self.particles.position, &self.particles.radius, &self.particles.held);
+        self.list.build(&self.particles.position, &self.particles.radius);
         // For each new slot, the old slot of the same pair (or none): the pair keeps its memory; a new
         // pair starts with the initial history of its own interaction.
         let old_slots: Vec<u32> = (0..old_partner.len() as u32).collect();
@@ -56,9 +56,6 @@ impl<L: BedLaw> Engine<L> {
             let mut k_old = 0;
             let new = &mut self.wall_contacts[w];
             for i in 0..self.particles.len() {
-                if self.particles.held[i] {
-                    continue;
-                }
                 let t = wall.touch(self.particles.position[i], self.particles.radius[i]);
                 if t.overlap > -skin {
                     while k_old < old.particle.len() && (old.particle[k_old] as usize) < i {

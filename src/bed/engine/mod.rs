@@ -61,6 +61,8 @@ pub struct Engine<L: BedLaw> {
     pool: Option<Pool>,
     threads: usize,
     record_dipoles: bool,
+    /// The force on each held sphere when it was held (`hold`).
+    held_reference: Vec<Vec3>,
 }
 
 impl<L: BedLaw> std::fmt::Debug for Engine<L> {
@@ -123,6 +125,7 @@ impl<L: BedLaw> Engine<L> {
             pool,
             threads,
             record_dipoles: false,
+            held_reference: vec![],
         };
         e.rebuild();
         e.compute_forces();
@@ -226,10 +229,10 @@ impl<L: BedLaw> Engine<L> {
         self.with_pool(|e| e.step_inner());
     }
 
-    /// Holds the spheres marked in `held` where they are (at rest) and releases the others: a held sphere
-    /// does not move, pairs of two held spheres are not computed, and held spheres touch no wall. What a
-    /// moving sphere feels from a held neighbour is unchanged. Their contacts with each other are
-    /// forgotten. Used by the indentation's `fidelity = fast` for the spheres far from the indenter.
+    /// Holds the spheres marked in `held` where they are, at rest, until disturbed (`release_disturbed`):
+    /// a held sphere does not move, and the contacts between two held spheres are not computed (their
+    /// memory stays as it is: neither moves). Everything a moving sphere feels is unchanged. Used by the
+    /// indentation's `fidelity = fast` for the spheres far from the indenter.
     pub fn hold(&mut self, held: &[bool]) {
         assert_eq!(held.len(), self.particles.len(), "one flag per sphere");
         for (i, &h) in held.iter().enumerate() {
@@ -239,7 +242,49 @@ impl<L: BedLaw> Engine<L> {
             }
         }
         self.particles.held = held.to_vec();
-        self.rebuild();
+        self.held_reference = self.partial_forces();
+    }
+
+    /// The forces of one pass without increments, the totals of the last step left as they were.
+    fn partial_forces(&mut self) -> Vec<Vec3> {
+        let saved = self.total.clone();
+        self.compute_forces_without_increment();
+        let forces = self.total.force.clone();
+        self.total = saved;
+        forces
+    }
+
+    /// Releases every held sphere whose force from its moving neighbours and the walls has changed by more
+    /// than `threshold` [N] since it was held; the released then move with the complete forces of the
+    /// current state. Returns how many were released.
+    pub fn release_disturbed(&mut self, threshold: f64) -> usize {
+        let mut released = 0;
+        for i in 0..self.particles.len() {
+            if self.particles.held[i] {
+                let d = sub(self.total.force[i], self.held_reference[i]);
+                if dot(d, d) > threshold * threshold {
+                    self.particles.held[i] = false;
+                    released += 1;
+                }
+            }
+        }
+        if released > 0 {
+            // The last step's totals of a released sphere miss its contacts with held neighbours.
+            self.compute_forces_without_increment();
+        }
+        released
+    }
+
+    /// The force on each sphere when it was held (for a saved state).
+    pub fn held_reference(&self) -> &[Vec3] {
+        &self.held_reference
+    }
+
+    /// Puts back held spheres and their reference forces from a saved state.
+    pub fn restore_held(&mut self, held: Vec<bool>, reference: Vec<Vec3>) {
+        assert!(held.len() == self.particles.len() && reference.len() == held.len(), "one flag and force per sphere");
+        self.particles.held = held;
+        self.held_reference = reference;
     }
 
     /// Several steps.
