@@ -22,8 +22,15 @@ fn prepare_then_info_snapshot_render_export_and_bench() {
     let scene = d.join("small.json");
     std::fs::write(&scene, r#"{"particle_particle": {"particle_youngs_modulus": 55e6}, "particle_count": 120, "die_diameter": 0.007}"#).unwrap();
     let bed = d.join("small.bed");
-    let (code, out, err) = run(&["bed", "prepare", scene.to_str().unwrap(), "-o", bed.to_str().unwrap()]);
+    // In two parts: settled, with a checkpoint at every progress report, then resumed to the end.
+    let settled = d.join("settled.bed");
+    let (code, out, err) = run(&["bed", "prepare", scene.to_str().unwrap(), "--until", "settle", "--checkpoint", "1e-6", "-o", settled.to_str().unwrap()]);
     assert_eq!(code, 0, "{err}");
+    assert!(out.contains("settle") && !out.contains("consolidate"), "{out}");
+    assert!(!d.join("settled.checkpoint.pfbed").exists(), "the checkpoint goes once the bed is written");
+    let (code, out, err) = run(&["bed", "prepare", "--resume", settled.to_str().unwrap(), "-o", bed.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("after phase `settle`"), "{err}");
     // Progress lines (not a terminal here) up to 100 %, and the consolidation report.
     assert!(err.contains("settle") && err.contains("100%"), "{err}");
     assert!(out.contains("consolidation stress reached") && out.contains("bed written to"), "{out}");
@@ -53,6 +60,14 @@ fn prepare_then_info_snapshot_render_export_and_bench() {
     let (code, out, err) = run(&["bed", "bench", bed.to_str().unwrap(), "--model", "hertz", "--steps", "50", "--warmup", "0"]);
     assert_eq!(code, 0, "{err}");
     assert!(out.contains("particle_steps_per_s=") && out.contains("bytes_per_particle="), "{out}");
+    let curve = d.join("indent.csv");
+    let indent = |fidelity: &str| run(&["bed", "indent", bed.to_str().unwrap(), "--diameter", "0.003", "--max-penetration", "0.0003", "--speed", "0.1", "--fidelity", fidelity, "--out", curve.to_str().unwrap()]);
+    let (code, _, err) = indent("fast");
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("hardness") && err.contains("spheres moving"), "{err}");
+    let (code, _, err) = indent("medium");
+    assert_eq!(code, 2);
+    assert!(err.contains("--fidelity") && err.contains("fast or full"), "{err}");
     std::fs::remove_dir_all(&d).unwrap();
 }
 
