@@ -368,6 +368,44 @@ fn contact_memory_survives_list_rebuilds_and_bed_files() {
 }
 
 #[test]
+fn a_bed_in_motion_saved_at_any_step_continues_bit_for_bit() {
+    // Settling spheres collide and part: a contact with memory may have moved beyond the list's range
+    // since the last build. The reloaded engine must still hold it, as the saving engine does.
+    let scene = soft(json!({"particle_count": 300, "die_diameter": 0.008}));
+    let (mut e, _) = prepare::prepare_until(&scene, "fill", &mut |_| {}).unwrap();
+    for moment in 0..40 {
+        e.run(500);
+        let (mut back, _) = AnyEngine::from_file(&file::decode(&file::encode(&e.to_file(&scene))).unwrap(), None).unwrap();
+        e.run(150);
+        back.run(150);
+        assert_eq!(e.particles().position, back.particles().position, "saved at moment {moment}");
+    }
+}
+
+#[test]
+fn a_saved_contact_beyond_the_list_range_is_kept_on_loading() {
+    // Two touching spheres of a prepared bed, one moved 3 skins away in the file: as a contact that
+    // parted since the saving engine's last list build. Loading keeps it in the list with its memory.
+    let scene = soft(json!({"particle_count": 150, "die_diameter": 0.008}));
+    let (e, _) = prepared(&scene);
+    let mut f = e.to_file(&scene);
+    let p = e.particles();
+    let gap = |i: usize, j: usize| -> [f64; 3] { [0, 1, 2].map(|c| p.position[j][c] - p.position[i][c]) };
+    let length = |d: [f64; 3]| (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+    let (i, j) = (0..p.len())
+        .flat_map(|i| (i + 1..p.len()).map(move |j| (i, j)))
+        .find(|&(i, j)| length(gap(i, j)) < 0.999 * (p.radius[i] + p.radius[j]))
+        .expect("a touching pair");
+    let skin = with_engine!(&e, x => x.list.skin);
+    let d = gap(i, j);
+    for c in 0..3 {
+        f.position[j][c] += 3.0 * skin * d[c] / length(d);
+    }
+    let (back, _) = AnyEngine::from_file(&file::decode(&file::encode(&f)).unwrap(), None).unwrap();
+    assert!(with_engine!(&back, x => x.list.row(i).contains(&(j as u32))), "the pair ({i}, {j}) is in the list");
+}
+
+#[test]
 fn a_preparation_resumed_from_a_bed_file_after_any_phase_ends_bit_for_bit_where_one_run_ends() {
     let scene = soft(json!({"particle_count": 150, "die_diameter": 0.008}));
     let (whole, _) = prepared(&scene);

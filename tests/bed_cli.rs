@@ -36,7 +36,7 @@ fn prepare_then_info_snapshot_render_export_and_bench() {
     assert!(out.contains("consolidation stress reached") && out.contains("bed written to"), "{out}");
     let (code, out, err) = run(&["bed", "info", bed.to_str().unwrap()]);
     assert_eq!(code, 0, "{err}");
-    for field in ["particles:            120", "bed height:", "solid fraction:", "coordination number:", "mean overlap:", "sigma_zz"] {
+    for field in ["particles:            120", "bed height:", "solid fraction:", "coordination number:", "mean overlap:", "sigma_zz", "prepared through `unload`"] {
         assert!(out.contains(field), "`{field}` missing in\n{out}");
     }
     let solid: f64 = out.lines().find(|l| l.starts_with("solid fraction")).unwrap().split_whitespace().last().unwrap().parse().unwrap();

@@ -81,6 +81,39 @@ impl<L: BedLaw> Engine<L> {
             bincode::deserialize(pairs).map_err(|e| BedError::Setup(format!("bed file: contacts unreadable ({e})")))?;
         let walls: Vec<Vec<SavedWallContact<L::History>>> =
             bincode::deserialize(walls).map_err(|e| BedError::Setup(format!("bed file: wall contacts unreadable ({e})")))?;
+        // A saved contact beyond the list's range (its spheres moved apart since the saving engine last
+        // built its list) is put into the list: the saving engine held it until its next rebuild.
+        let n = self.particles.len() as u32;
+        let outside: Vec<(u32, u32)> =
+            pairs.iter().filter(|c| c.0 < c.1 && c.1 < n && self.list.row(c.0 as usize).binary_search(&c.1).is_err()).map(|c| (c.0, c.1)).collect();
+        let mut grown = !outside.is_empty();
+        if grown {
+            self.list.insert_pairs(&outside);
+            let slots = self.list.partner.len();
+            let init = self.pairs[0].initial;
+            self.normal.resize(slots, init);
+            self.spring.resize(slots, [0.0; 3]);
+            self.radius.resize(slots, 0.0);
+        }
+        for (w, list) in walls.iter().enumerate() {
+            if let Some(wc) = self.wall_contacts.get_mut(w) {
+                let init = self.wall_pairs[w][0].initial;
+                for &(i, ..) in list {
+                    if let Err(k) = wc.particle.binary_search(&i) {
+                        if i < n {
+                            wc.particle.insert(k, i);
+                            wc.normal.insert(k, init);
+                            wc.spring.insert(k, [0.0; 3]);
+                            wc.radius.insert(k, 0.0);
+                            grown = true;
+                        }
+                    }
+                }
+            }
+        }
+        if grown {
+            self.partition();
+        }
         // Every slot starts as a pair that has never touched (the engine's first force pass may have
         // loaded springs); the file then says which remember something.
         for i in 0..self.list.rows() {
@@ -99,7 +132,6 @@ impl<L: BedLaw> Engine<L> {
                 wc.radius[k] = 0.0;
             }
         }
-        let n = self.particles.len() as u32;
         for (i, j, h, s, a) in pairs {
             if i >= n || j >= n {
                 return Err(BedError::Setup(format!("bed file: contact ({i}, {j}) names a particle beyond {n}")));

@@ -145,6 +145,32 @@ impl NeighborList {
         }
     }
 
+    /// Adds pairs (i < j) that are not in the list, keeping each row sorted: a saved contact that has
+    /// moved beyond the list's range since the saving engine's last build still belongs to it until the
+    /// next rebuild, and the loaded engine must hold it too to continue the same way.
+    pub fn insert_pairs(&mut self, extra: &[(u32, u32)]) {
+        if extra.is_empty() {
+            return;
+        }
+        let rows = self.rows();
+        let mut add: Vec<Vec<u32>> = vec![Vec::new(); rows];
+        for &(i, j) in extra {
+            add[i as usize].push(j);
+        }
+        let mut start = Vec::with_capacity(rows + 1);
+        let mut partner = Vec::with_capacity(self.partner.len() + extra.len());
+        start.push(0);
+        for (i, more) in add.iter_mut().enumerate() {
+            more.extend_from_slice(self.row(i));
+            more.sort_unstable();
+            more.dedup();
+            partner.extend_from_slice(more);
+            start.push(partner.len() as u32);
+        }
+        self.start = start;
+        self.partner = partner;
+    }
+
     /// Bytes held.
     pub fn memory_bytes(&self) -> usize {
         (self.start.capacity() + self.partner.capacity() + self.cell_start.capacity() + self.cell_items.capacity() + self.cell_of.capacity())
@@ -205,6 +231,20 @@ mod tests {
         }
         assert!(!brute.is_empty());
         assert_eq!(found, brute);
+    }
+
+    #[test]
+    fn inserted_pairs_join_their_rows_in_order_and_other_rows_stay() {
+        let mut a = NeighborList::new(0.0);
+        // Rows 0: [2, 5], 1: [5], 2: [], 3: [].
+        a.start = vec![0, 2, 3, 3, 3];
+        a.partner = vec![2, 5, 5];
+        // Row 1 gets 3 and a pair it has; row 2 gets 5 (as row 1's last partner: both must stay).
+        a.insert_pairs(&[(1, 3), (1, 5), (2, 5), (0, 3)]);
+        assert_eq!(a.row(0), &[2, 3, 5]);
+        assert_eq!(a.row(1), &[3, 5]);
+        assert_eq!(a.row(2), &[5]);
+        assert_eq!(a.row(3), &[] as &[u32]);
     }
 
     #[test]

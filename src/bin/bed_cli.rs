@@ -239,6 +239,7 @@ fn describe(engine: &mut AnyEngine, scene: &BedScene) {
     println!("mean overlap:         {mean_overlap:.4e} m ({:.3e} of the mean diameter)", mean_overlap / mean_d);
     println!("kinetic energy:       {:.4e} J", p.kinetic_energy());
     println!("time step:            {:.4e} s", engine.dt());
+    println!("bed time:             {:.5e} s, prepared through `{}`", engine.time(), prepare::phase_done(engine, scene));
     println!("memory:               {:.0} bytes per particle", engine.memory_bytes() as f64 / n.max(1) as f64);
     // Bagi's stress in the middle of the bed, a die radius wide minus two diameters.
     let region = Region { radius: 0.5 * scene.die_diameter - 2.0 * mean_d, z_low: 0.25 * height, z_high: 0.75 * height };

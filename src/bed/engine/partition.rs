@@ -117,7 +117,7 @@ impl Sink<'_> {
 impl<L: BedLaw> Engine<L> {
     /// Splits the rows into `threads` parts of about equal work (list slots plus one per row), and sizes
     /// each part's spill buffer for the partners beyond its rows.
-    pub(super) fn partition(&mut self) {
+    pub(crate) fn partition(&mut self) {
         let n = self.particles.len();
         let t = self.threads;
         let total = self.list.partner.len() + n;
