@@ -143,7 +143,8 @@ def indentation(fmu, out):
     start = {v.name: v.start for v in md.modelVariables if v.causality == "parameter"}
     d, h_max = float(start["indenter_diameter"]), float(start["max_penetration"])
     print(f"\nball indentation: {fmu}")
-    print(f"  the FMU's bed (resources/bed.pfbed), indenter d = {d * 1e3:.1f} mm to h = {h_max * 1e3:.2f} mm at {float(start['indentation_speed'])} m/s")
+    print(f"  the FMU's bed (resources/bed.pfbed), indenter d = {d * 1e3:.1f} mm to h = {h_max * 1e3:.2f} mm at {float(start['indentation_speed'])} m/s, "
+          f"fidelity {start['fidelity']}")
     t0 = time.perf_counter()
     r = simulate_fmu(fmu)
     wall = time.perf_counter() - t0
