@@ -1,42 +1,28 @@
 //! The one error type for bad input: it names the parameter, the value given and what is allowed.
 
-use std::fmt;
 
 /// A parameter that is missing, out of range, or inconsistent with another.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum ParamError {
     /// A numeric value outside its allowed range.
+    #[error("parameter `{name}` = {value:e} is out of range: allowed {allowed}")]
     OutOfRange { name: &'static str, value: f64, allowed: String },
     /// A value the law needs that the scene does not give.
+    #[error("parameter `{name}` is required: {why}")]
     Missing { name: &'static str, why: String },
     /// A string value that is not one of the known choices.
+    #[error("parameter `{name}` = \"{value}\" is not known: allowed {allowed}")]
     UnknownChoice { name: String, value: String, allowed: String },
     /// Two or more values that are each valid but not together.
+    #[error("parameter `{name}`: {why}")]
     Inconsistent { name: &'static str, why: String },
     /// A scene key that no parameter has (most often a typo).
+    #[error("unknown scene key `{name}`{hint}")]
     UnknownKey { name: String, hint: String },
     /// The scene file is not what it should be (not JSON, wrong type of a value).
+    #[error("malformed scene: {what}")]
     Malformed { what: String },
 }
-
-impl fmt::Display for ParamError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            ParamError::OutOfRange { name, value, allowed } => {
-                write!(f, "parameter `{name}` = {value:e} is out of range: allowed {allowed}")
-            }
-            ParamError::Missing { name, why } => write!(f, "parameter `{name}` is required: {why}"),
-            ParamError::UnknownChoice { name, value, allowed } => {
-                write!(f, "parameter `{name}` = \"{value}\" is not known: allowed {allowed}")
-            }
-            ParamError::Inconsistent { name, why } => write!(f, "parameter `{name}`: {why}"),
-            ParamError::UnknownKey { name, hint } => write!(f, "unknown scene key `{name}`{hint}"),
-            ParamError::Malformed { what } => write!(f, "malformed scene: {what}"),
-        }
-    }
-}
-
-impl std::error::Error for ParamError {}
 
 impl ParamError {
     /// The parameter the error is about, if it names one.

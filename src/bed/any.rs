@@ -41,27 +41,12 @@ macro_rules! define_any_engine {
 crate::law_table!(define_any_engine; $);
 
 /// Why an engine cannot be built: a parameter (named) or the set-up.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum BedError {
-    Param(ParamError),
+    #[error(transparent)]
+    Param(#[from] ParamError),
+    #[error("{0}")]
     Setup(String),
-}
-
-impl std::fmt::Display for BedError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self {
-            BedError::Param(e) => write!(f, "{e}"),
-            BedError::Setup(s) => write!(f, "{s}"),
-        }
-    }
-}
-
-impl std::error::Error for BedError {}
-
-impl From<ParamError> for BedError {
-    fn from(e: ParamError) -> BedError {
-        BedError::Param(e)
-    }
 }
 
 impl From<String> for BedError {

@@ -114,29 +114,20 @@ pub struct Sphere {
 }
 
 /// Why a step could not be completed.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum StepError {
     /// The state or force became non-finite.
+    #[error("the sphere's state became non-finite at t = {t:e} s")]
     NotFinite { t: f64 },
     /// The step size fell below the resolution of time.
+    #[error("the integrator's step size fell below the resolution of time at t = {t:e} s")]
     StepTooSmall { t: f64 },
     /// More steps than allowed in one communication step.
+    #[error("more than {limit} integrator steps in one communication step (at t = {t:e} s); use shorter communication steps")]
     TooManySteps { t: f64, limit: u64 },
     /// The law switched branches without the state moving (branch intervals that do not meet).
+    #[error("the contact switched branches repeatedly without moving at t = {t:e} s")]
     NoProgress { t: f64 },
-}
-
-impl std::fmt::Display for StepError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self {
-            StepError::NotFinite { t } => write!(f, "the sphere's state became non-finite at t = {t:e} s"),
-            StepError::StepTooSmall { t } => write!(f, "the integrator's step size fell below the resolution of time at t = {t:e} s"),
-            StepError::TooManySteps { t, limit } => {
-                write!(f, "more than {limit} integrator steps in one communication step (at t = {t:e} s); use shorter communication steps")
-            }
-            StepError::NoProgress { t } => write!(f, "the contact switched branches repeatedly without moving at t = {t:e} s"),
-        }
-    }
 }
 
 pub(super) const MAX_STEPS: u64 = 10_000_000;

@@ -11,21 +11,14 @@ use crate::law::{Branch, NormalLaw};
 use crate::numeric::{brent, tanh_sinh};
 
 /// Why a quasi-static impact could not be computed.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum BalanceError {
     /// The overlap grew past the limit without stopping the sphere.
+    #[error("the sphere was not stopped before an overlap of {overlap:e} m")]
     NoTurningPoint { overlap: f64 },
     /// Too many branch switches (a law that chatters between branches).
+    #[error("more than 10000 branch segments on one quasi-static path")]
     TooManySegments,
-}
-
-impl std::fmt::Display for BalanceError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self {
-            BalanceError::NoTurningPoint { overlap } => write!(f, "the sphere was not stopped before an overlap of {overlap:e} m"),
-            BalanceError::TooManySegments => write!(f, "more than 10000 branch segments on one quasi-static path"),
-        }
-    }
 }
 
 const MAX_SEGMENTS: usize = 10_000;

@@ -3,46 +3,24 @@
 
 use crate::error::ParamError;
 use crate::impact::StepError;
-use std::fmt;
 
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum UnitError {
     /// A scene parameter out of its range or inconsistent with another (named, with the allowed range).
-    Param(ParamError),
+    #[error(transparent)]
+    Param(#[from] ParamError),
     /// A unit's own parameter or input refused; the message names it and its allowed range.
+    #[error("{why}")]
     Variable { name: &'static str, why: String },
     /// The integrator could not complete the step (the state stays that of the step's start).
-    Step(StepError),
+    #[error(transparent)]
+    Step(#[from] StepError),
     /// A saved state that cannot be read, or that no contact of these parameters can be in.
+    #[error("{0}")]
     SavedState(String),
     /// A call that needs an initialized unit.
+    #[error("the unit is not initialized")]
     NotInitialized,
-}
-
-impl fmt::Display for UnitError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            UnitError::Param(e) => write!(f, "{e}"),
-            UnitError::Variable { why, .. } => write!(f, "{why}"),
-            UnitError::Step(e) => write!(f, "{e}"),
-            UnitError::SavedState(why) => write!(f, "{why}"),
-            UnitError::NotInitialized => write!(f, "the unit is not initialized"),
-        }
-    }
-}
-
-impl std::error::Error for UnitError {}
-
-impl From<ParamError> for UnitError {
-    fn from(e: ParamError) -> UnitError {
-        UnitError::Param(e)
-    }
-}
-
-impl From<StepError> for UnitError {
-    fn from(e: StepError) -> UnitError {
-        UnitError::Step(e)
-    }
 }
 
 #[cfg(test)]
