@@ -484,6 +484,10 @@ fn bad_bed_files_are_refused_by_what_is_wrong() {
     let mut other = bytes.clone();
     other[8] = 9;
     assert!(err(&other).contains("format version 9"));
+    // The bincode files of earlier releases are refused by name, not read as garbage.
+    other[8] = 2;
+    let old = err(&other);
+    assert!(old.contains("format version 2") && old.contains("bincode") && old.contains("bed prepare"), "{old}");
     assert!(err(b"hello, not a bed at all").contains("magic"));
     let mut flipped = bytes.clone();
     let mid = bytes.len() / 2;

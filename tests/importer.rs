@@ -243,6 +243,14 @@ fn saved_state_restores_and_repeats_the_step_bit_for_bit() {
     assert!(log.lock().unwrap().last().unwrap().2.contains("checksum"));
     bytes[n / 2] ^= 0x10;
     assert_eq!(unsafe { de(c, bytes.as_ptr(), n - 3, &mut s2) }, fmi2Error);
+    // A state of the bincode era (format version 2), checksum intact: refused by name.
+    let mut old: Vec<u8> = bytes.iter().map(|&b| b as u8).collect();
+    old[8..12].copy_from_slice(&2u32.to_le_bytes());
+    let sum = units::fnv1a64(&old[..n - 8], 0xcbf2_9ce4_8422_2325);
+    old[n - 8..].copy_from_slice(&sum.to_le_bytes());
+    assert_eq!(unsafe { de(c, old.as_ptr() as *const c_char, n, &mut s2) }, fmi2Error);
+    let said = log.lock().unwrap().last().unwrap().2.clone();
+    assert!(said.contains("format version 2") && said.contains("bincode"), "{said}");
     assert_eq!(unsafe { de(c, bytes.as_ptr(), n, &mut s2) }, fmi2OK);
     assert_eq!(unsafe { set_state(c, s2) }, fmi2OK);
     assert_eq!(run(20), first, "a deserialized state continues identically");

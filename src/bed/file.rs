@@ -1,7 +1,7 @@
 //! The bed file: a prepared bed, compact and versioned.
 //!
 //! Layout: the magic `PFBED\0\0\0`, the format version (u32 little-endian), the payload length (u64),
-//! the payload (bincode of `BedFile`), and the FNV-1a checksum of the payload (u64). The reader checks
+//! the payload (`codec`, postcard, of `BedFile`), and the FNV-1a checksum of the payload (u64). The reader checks
 //! each in turn and names what is wrong. The writer writes a temporary file beside the target and
 //! renames it, so a bed file is either whole or absent.
 
@@ -20,7 +20,8 @@ use std::path::Path;
 type SavedWallContact<H> = (u32, H, Vec3, f64);
 
 pub const MAGIC: &[u8; 8] = b"PFBED\0\0\0";
-pub const VERSION: u32 = 2;
+/// 3: postcard payload (`codec`). 2 and 1 were bincode 1.x, which is unmaintained (RUSTSEC-2025-0141).
+pub const VERSION: u32 = 3;
 
 /// What a bed file holds.
 #[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
@@ -33,9 +34,9 @@ pub struct BedFile {
     pub angular_velocity: Vec<Vec3>,
     pub species: Vec<u16>,
     pub walls: Vec<Wall>,
-    /// bincode of the particle contacts `Vec<(i, j, history, spring, contact radius)>` of the scene's law.
+    /// `codec` bytes of the particle contacts `Vec<(i, j, history, spring, contact radius)>` of the scene's law.
     pub contacts: Vec<u8>,
-    /// bincode of the wall contacts `Vec<Vec<(i, history, spring, contact radius)>>`, one list per wall.
+    /// `codec` bytes of the wall contacts `Vec<Vec<(i, history, spring, contact radius)>>`, one list per wall.
     pub wall_contacts: Vec<u8>,
     /// The forces, torques and rolling loads of the last step: a loaded bed continues exactly where it
     /// was saved (velocity Verlet's next half kick uses them).
@@ -72,15 +73,15 @@ impl<L: BedLaw> Engine<L> {
                     .collect()
             })
             .collect();
-        (bincode::serialize(&pairs).unwrap_or_default(), bincode::serialize(&walls).unwrap_or_default())
+        (crate::codec::to_bytes(&pairs).unwrap_or_default(), crate::codec::to_bytes(&walls).unwrap_or_default())
     }
 
     /// Puts saved contacts back into the current lists (they are within range: they were in contact).
     fn restore_contacts(&mut self, pairs: &[u8], walls: &[u8]) -> Result<(), BedError> {
         let pairs: Vec<(u32, u32, L::History, Vec3, f64)> =
-            bincode::deserialize(pairs).map_err(|e| BedError::Setup(format!("bed file: contacts unreadable ({e})")))?;
+            crate::codec::from_bytes(pairs).map_err(|e| BedError::Setup(format!("bed file: contacts unreadable ({e})")))?;
         let walls: Vec<Vec<SavedWallContact<L::History>>> =
-            bincode::deserialize(walls).map_err(|e| BedError::Setup(format!("bed file: wall contacts unreadable ({e})")))?;
+            crate::codec::from_bytes(walls).map_err(|e| BedError::Setup(format!("bed file: wall contacts unreadable ({e})")))?;
         // A saved contact beyond the list's range (its spheres moved apart since the saving engine last
         // built its list) is put into the list: the saving engine held it until its next rebuild.
         let n = self.particles.len() as u32;
@@ -214,7 +215,7 @@ impl AnyEngine {
 
 /// Encodes a bed file.
 pub fn encode(file: &BedFile) -> Vec<u8> {
-    let payload = bincode::serialize(file).unwrap_or_default();
+    let payload = crate::codec::to_bytes(file).unwrap_or_default();
     let mut out = Vec::with_capacity(payload.len() + 28);
     out.extend_from_slice(MAGIC);
     out.extend_from_slice(&VERSION.to_le_bytes());
@@ -231,6 +232,11 @@ pub fn decode(bytes: &[u8]) -> Result<BedFile, BedError> {
         return Err(bad("it does not start with the bed file magic `PFBED`".into()));
     }
     let version = u32::from_le_bytes(bytes[8..12].try_into().unwrap_or([0; 4]));
+    if version == 1 || version == 2 {
+        return Err(bad(format!(
+            "format version {version} (bincode, written by powderfmu before postcard replaced it), this powderfmu reads version {VERSION}; prepare the bed again with `powderfmu bed prepare`"
+        )));
+    }
     if version != VERSION {
         return Err(bad(format!("format version {version}, this powderfmu reads version {VERSION}; prepare the bed again with `powderfmu bed prepare`")));
     }
@@ -247,7 +253,7 @@ pub fn decode(bytes: &[u8]) -> Result<BedFile, BedError> {
     if sum != fnv1a(payload) {
         return Err(bad("checksum mismatch: the file is corrupt".into()));
     }
-    bincode::deserialize(payload).map_err(|e| bad(format!("payload unreadable ({e})")))
+    crate::codec::from_bytes(payload).map_err(|e| bad(format!("payload unreadable ({e})")))
 }
 
 /// Writes `bytes` to `path` atomically: a temporary file in the same folder, synced, then renamed.

@@ -414,20 +414,13 @@ impl Indentation {
             held: self.engine.particles().held.clone(),
             held_reference: self.engine.held_reference(),
         };
-        bincode::serialize(&saved).expect("an indentation state serializes")
+        crate::codec::to_bytes(&saved).expect("an indentation state serializes")
     }
 
     /// Reads back what `save` wrote, with `threads` threads.
     pub fn restore(bytes: &[u8], threads: Option<usize>) -> Result<Indentation, BedError> {
-        use bincode::Options;
-        // Nothing inside can be larger than the bytes themselves: the limit keeps a corrupt length from
-        // asking for more memory than that.
-        let saved: Saved = bincode::DefaultOptions::new()
-            .with_fixint_encoding()
-            .with_limit(bytes.len() as u64 + 64)
-            .reject_trailing_bytes()
-            .deserialize(bytes)
-            .map_err(|e| BedError::Setup(format!("the saved indentation state cannot be read: {e}")))?;
+        let saved: Saved =
+            crate::codec::from_bytes(bytes).map_err(|e| BedError::Setup(format!("the saved indentation state cannot be read: {e}")))?;
         let file: BedFile = file::decode(&saved.bed)?;
         let (mut engine, scene) = AnyEngine::from_file(&file, threads)?;
         engine.set_time_step(&scene, saved.time_step)?;

@@ -337,8 +337,8 @@ fn with_model(
     }
     f.scene = scene.to_string();
     // No contacts of the old law: empty lists (an empty list encodes the same whatever its item type).
-    f.contacts = bincode::serialize(&Vec::<()>::new()).map_err(|e| e.to_string())?;
-    f.wall_contacts = bincode::serialize(&vec![Vec::<()>::new(); f.walls.len()]).map_err(|e| e.to_string())?;
+    f.contacts = powderfmu::codec::to_bytes(&Vec::<()>::new())?;
+    f.wall_contacts = powderfmu::codec::to_bytes(&vec![Vec::<()>::new(); f.walls.len()])?;
     AnyEngine::from_file(&f, Some(threads)).map_err(|e| format!("{path} under {model}: {e}"))
 }
 

@@ -11,7 +11,8 @@ use crate::units::variables::{Value, VarType};
 use crate::units::UnitInfo;
 
 const MAGIC: &[u8; 8] = b"PFMUSTAT";
-pub const VERSION: u32 = 2;
+/// 3: the model's own bytes are postcard (`codec`); 2 had bincode 1.x there.
+pub const VERSION: u32 = 3;
 
 /// What a saved state holds.
 pub struct Saved {
@@ -125,6 +126,9 @@ pub fn read(unit: &UnitInfo, bytes: &[u8]) -> Result<Saved, String> {
     let (body, sum) = bytes.split_at(bytes.len() - 8);
     let mut r = Reader { bytes: body, at: 8 };
     let version = r.u32("format version")?;
+    if version == 2 {
+        return Err(format!("format version 2 (its model part in bincode, from powderfmu before postcard replaced it); this FMU reads version {VERSION}: save the state again with this FMU"));
+    }
     if version != VERSION {
         return Err(format!("format version {version}; this FMU reads version {VERSION}"));
     }

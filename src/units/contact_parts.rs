@@ -71,5 +71,5 @@ impl Outputs {
 /// Serializes a unit's snapshot; a failure is an error the host sees, never an empty state (which
 /// `restore` would read as "not initialized").
 pub fn encode<T: serde::Serialize>(snapshot: &T) -> Result<Vec<u8>, UnitError> {
-    bincode::serialize(snapshot).map_err(|e| UnitError::SavedState(format!("the model state cannot be serialized: {e}")))
+    crate::codec::to_bytes(snapshot).map_err(|e| UnitError::SavedState(format!("the model state cannot be serialized: {e}")))
 }

@@ -128,14 +128,11 @@ pub fn by_identifier(id: &str) -> Option<&'static UnitInfo> {
     all().iter().find(|u| u.model_identifier == id)
 }
 
-/// Reads a model snapshot written by `bincode::serialize`, refusing anything larger than 1 MiB or with
-/// bytes left over.
+/// Reads a model snapshot written by `contact_parts::encode` (`codec`), refusing anything larger than
+/// 1 MiB (a contact unit's snapshot is a few hundred bytes) or with bytes left over.
 pub(crate) fn decode<T: serde::de::DeserializeOwned>(bytes: &[u8]) -> Result<T, UnitError> {
-    use bincode::Options;
-    bincode::DefaultOptions::new()
-        .with_fixint_encoding()
-        .with_limit(1 << 20)
-        .reject_trailing_bytes()
-        .deserialize(bytes)
-        .map_err(|e| UnitError::SavedState(format!("the saved model state cannot be read: {e}")))
+    if bytes.len() > 1 << 20 {
+        return Err(UnitError::SavedState(format!("the saved model state cannot be read: {} bytes, above the 1 MiB a contact unit's state can take", bytes.len())));
+    }
+    crate::codec::from_bytes(bytes).map_err(|e| UnitError::SavedState(format!("the saved model state cannot be read: {e}")))
 }
