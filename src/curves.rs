@@ -8,15 +8,16 @@ use crate::scene::Scene;
 use crate::theory::energy_balance;
 use std::fmt::Write;
 
-/// The force along a path that starts apart (at -|first turn|) and runs straight through each turning
-/// overlap in `turns` [m], `points` states per leg. CSV: overlap, force, stiffness, branch, contact state.
-pub fn force_overlap_csv(scene: &Scene, turns: &[f64], points: usize) -> Result<String, ParamError> {
-    if turns.is_empty() || turns.iter().any(|t| !t.is_finite()) {
-        return Err(ParamError::Malformed { what: "--path needs one or more finite overlaps in metres".into() });
+/// The force along a path that starts at `start` (default apart, at -|first turn|) and runs straight
+/// through each turning overlap in `turns` [m], `points` states per leg. CSV: overlap, force, stiffness,
+/// branch, contact state.
+pub fn force_overlap_csv(scene: &Scene, start: Option<f64>, turns: &[f64], points: usize) -> Result<String, ParamError> {
+    if turns.is_empty() || turns.iter().chain(&start).any(|t| !t.is_finite()) {
+        return Err(ParamError::Malformed { what: "--path needs one or more finite overlaps in metres (and --start a finite one)".into() });
     }
     let law = AnyLaw::from_scene(scene)?;
     let mut h = law.initial_history();
-    let mut alpha = -turns[0].abs();
+    let mut alpha = start.unwrap_or(-turns[0].abs());
     let mut out = String::from("overlap_m,force_N,stiffness_N_per_m,branch,contact_state\n");
     let points = points.max(2);
     for &target in turns {

@@ -34,8 +34,11 @@ fn prepare_then_info_snapshot_render_export_and_bench() {
     // Progress lines (not a terminal here) up to 100 %, and the consolidation report.
     assert!(err.contains("settle") && err.contains("100%"), "{err}");
     assert!(out.contains("consolidation stress reached") && out.contains("bed written to"), "{out}");
+    let memory = |out: &str| out.lines().find(|l| l.starts_with("memory:")).map(str::to_string);
+    let prepared = memory(&out);
     let (code, out, err) = run(&["bed", "info", bed.to_str().unwrap()]);
     assert_eq!(code, 0, "{err}");
+    assert!(prepared.is_some() && prepared == memory(&out), "bed prepare and bed info give one memory per particle: {prepared:?} vs {:?}", memory(&out));
     for field in ["particles:            120", "bed height:", "solid fraction:", "coordination number:", "mean overlap:", "sigma_zz", "prepared through `unload`"] {
         assert!(out.contains(field), "`{field}` missing in\n{out}");
     }
@@ -67,7 +70,7 @@ fn prepare_then_info_snapshot_render_export_and_bench() {
     assert!(err.contains("hardness") && err.contains("spheres moving"), "{err}");
     let (code, _, err) = indent("medium");
     assert_eq!(code, 2);
-    assert!(err.contains("--fidelity") && err.contains("fast or full"), "{err}");
+    assert!(err.contains("--fidelity") && err.contains("fast, full"), "{err}");
     std::fs::remove_dir_all(&d).unwrap();
 }
 
@@ -87,7 +90,7 @@ fn bad_input_fails_by_name_and_writes_nothing() {
     assert_eq!(code, 2);
     assert!(err.contains("--until") && err.contains("settle"), "{err}");
     let junk = d.join("junk.bed");
-    std::fs::write(&junk, b"PFBED\0\0\0\x02\0\0\0\xff\xff\0\0\0\0\0\0").unwrap();
+    std::fs::write(&junk, b"PFBED\0\0\0\x03\0\0\0\xff\xff\0\0\0\0\0\0").unwrap();
     let (code, _, err) = run(&["bed", "info", junk.to_str().unwrap()]);
     assert_eq!(code, 2);
     assert!(err.contains("truncated"), "{err}");

@@ -249,3 +249,62 @@ fn a_closed_pipe_ends_the_tool_quietly() {
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(!stderr.contains("panicked"), "{stderr}");
 }
+
+#[test]
+fn every_subcommand_has_help_and_errors_name_the_option() {
+    for args in [
+        &["--help"][..],
+        &["analyze", "--help"],
+        &["curve", "--help"],
+        &["restitution", "--help"],
+        &["completions", "--help"],
+        &["bed", "--help"],
+        &["bed", "prepare", "--help"],
+        &["bed", "info", "--help"],
+        &["bed", "snapshot", "--help"],
+        &["bed", "render", "--help"],
+        &["bed", "export-lammps", "--help"],
+        &["bed", "indent", "--help"],
+        &["bed", "bench", "--help"],
+    ] {
+        let (code, out, err) = run(args);
+        assert_eq!(code, 0, "{args:?}: {err}");
+        assert!(out.contains("Usage: powderfmu"), "{args:?}: {out}");
+    }
+    let (code, _, err) = run(&["curve", "x.json", "--path", "1e-6", "--points", "1"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("--points") && err.contains("2..=1000000"), "{err}");
+    let (code, _, err) = run(&["bed", "render", "x.bed", "y.png", "--width", "wide"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("--width"), "{err}");
+    let (code, _, err) = run(&["restitution", "x.json", "--velocitys", "1"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("--velocitys") && err.contains("--velocities"), "a misspelt option is named with the right one: {err}");
+}
+
+#[test]
+fn shell_completions_cover_the_subcommands() {
+    for shell in ["bash", "zsh", "fish", "elvish", "powershell"] {
+        let (code, out, err) = run(&["completions", shell]);
+        assert_eq!(code, 0, "{shell}: {err}");
+        assert!(out.contains("restitution") && out.contains("export-lammps"), "{shell}");
+    }
+    let (code, _, _) = run(&["completions", "tcsh"]);
+    assert_eq!(code, 2);
+}
+
+#[test]
+fn curve_starts_where_asked() {
+    let scene = write_scene("curve_start.json", &table5(2.45e-6, 30e6));
+    let (code, out, err) = run(&["curve", scene.to_str().unwrap(), "--path", "2e-9", "--start", "-1e-9", "--points", "3"]);
+    assert_eq!(code, 0, "{err}");
+    let overlaps: Vec<f64> = out.lines().skip(1).map(|l| l.split(',').next().unwrap().parse().unwrap()).collect();
+    assert_eq!(overlaps.len(), 3);
+    for (got, want) in overlaps.iter().zip([0.0, 1e-9, 2e-9]) {
+        assert!((got - want).abs() < 1e-21, "{overlaps:?}");
+    }
+    let (_, out, _) = run(&["curve", scene.to_str().unwrap(), "--path", "2e-9", "--points", "2"]);
+    let first: f64 = out.lines().nth(1).unwrap().split(',').next().unwrap().parse().unwrap();
+    assert_eq!(first, 0.0, "by default the path starts at -2e-9 and its first state is halfway, at 0");
+}
+

@@ -6,7 +6,7 @@ the FMU against 000 Table 6, and a restitution curve; then runs the BallIndentat
 (004 Sec. 2.3.5 on the FMU's bed) with no arguments and prints its hardness; writes the plots to
 out/demo/ (PNG).
 
-Usage: python tools/demo.py [--fmu-dir target/fmu] [--cli target/debug/powderfmu] [--out out/demo]
+Usage: python tools/demo.py [--fmu-dir target/fmu] [--cli target/release/powderfmu] [--out out/demo]
 """
 
 import argparse
@@ -75,7 +75,7 @@ def energy_balance(cli, v):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--fmu-dir", default=os.path.join(ROOT, "target", "fmu"))
-    ap.add_argument("--cli", default=os.path.join(ROOT, "target", "debug", "powderfmu"))
+    ap.add_argument("--cli", default=os.path.join(ROOT, "target", "release", "powderfmu"))
     ap.add_argument("--out", default=os.path.join(ROOT, "out", "demo"))
     a = ap.parse_args()
     fmu = os.path.join(a.fmu_dir, "ParticleWallImpact.fmu")

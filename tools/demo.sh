@@ -6,6 +6,6 @@ cd "$(dirname "$0")/.."
 python=$(bash tools/venv.sh)
 echo "== Building the FMUs (target/fmu) and the command-line tool"
 cargo run --locked --quiet -p fmu_build
-cargo build --locked --quiet --bin powderfmu
+cargo build --locked --quiet --release --bin powderfmu
 echo "== fmpy demonstration"
 "$python" tools/demo.py "$@"

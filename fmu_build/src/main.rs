@@ -6,7 +6,7 @@
 //! Usage: `cargo run -p fmu_build [-- --out DIR] [--skip-build] [--update-interface]`.
 //! `--update-interface` rewrites the checked-in `modelDescription/*.xml` and docs tables instead.
 
-use fmu_build::archive::{write_zip, Entry};
+use fmu_build::archive::{zip_bytes, Entry};
 use fmu_build::{beds, interface};
 use powderfmu::units::{self, model_description, UnitInfo};
 use std::path::{Path, PathBuf};
@@ -89,8 +89,7 @@ fn run() -> Result<(), String> {
         }
         let path = o.out.join(format!("{}.fmu", unit.model_identifier));
         let entries = entries(unit, &binary, &root, &target)?;
-        let mut bytes = Vec::new();
-        write_zip(entries, &mut bytes).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+        let bytes = zip_bytes(entries).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
         interface::write_atomic(&path, &bytes)?;
         println!("fmu_build: wrote {} ({:.1} MiB, GUID {})", path.display(), bytes.len() as f64 / 1048576.0, unit.guid());
     }

@@ -6,156 +6,236 @@ use powderfmu::bed::prepare::{self, Progress};
 use powderfmu::bed::stress::{bagi, Region};
 use powderfmu::bed::{export, render, AnyEngine, BedScene};
 use powderfmu::with_engine;
+use crate::options;
+use clap::Subcommand;
+use indicatif::{ProgressBar, ProgressStyle};
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-pub const USAGE: &str = "  powderfmu bed prepare SCENE.json [-o BED] [--threads N] [--until PHASE]
-                                                        fill, settle, consolidate, unload, relax (004 Sec. 5.1.3)
-  powderfmu bed prepare --resume BED [-o BED] [--threads N] [--until PHASE] [--checkpoint MIN]
-                                                        continue a bed saved with --until, or a checkpoint (written
-                                                        every MIN minutes, default 10, as OUT.checkpoint.pfbed)
-  powderfmu bed info BED                                count, height, solid fraction, coordination, overlap, stress
-  powderfmu bed snapshot BED OUT.vtk|OUT.csv            spheres for ParaView (VTK) or a spreadsheet (CSV)
-  powderfmu bed render BED OUT.png [--width PX]         vertical cross-section through the die axis
-  powderfmu bed export-lammps BED OUT.data              LAMMPS data file (atom_style sphere)
-  powderfmu bed indent BED [--diameter D] [--speed V] [--max-penetration H] [--threads T] [--out CSV]
-                        [--every S] [--indenter JSON] [--time-step DT] [--fidelity full|fast] [--mobile-zone M] [--release E]
-                                                        ball indentation (004 Sec. 2.3.5): load to H, unload; force-depth CSV;
-                                                        --indenter: scene keys of the particle-indenter contact over the bed's walls' 
-                                                        --fidelity fast: spheres beyond M a_max held until the force on one changes by E sigma_c d^2
-  powderfmu bed bench BED --model M [--steps N] [--threads T] [--stiffness K] [--yield-pressure P]
-                        [--surface-energy G] [--rolling-friction MU]
-                                                        particle-steps per second of the force loop";
-
-pub fn run(args: &[String]) -> Result<(), String> {
-    match args.first().map(String::as_str) {
-        Some("prepare") => prepare_cmd(&args[1..]),
-        Some("info") => info_cmd(&args[1..]),
-        Some("snapshot") => snapshot_cmd(&args[1..]),
-        Some("render") => render_cmd(&args[1..]),
-        Some("export-lammps") => export_cmd(&args[1..]),
-        Some("bench") => bench_cmd(&args[1..]),
-        Some("indent") => indent_cmd(&args[1..]),
-        Some(other) => Err(format!("unknown bed subcommand `{other}`\nusage:\n{USAGE}")),
-        None => Err(format!("usage:\n{USAGE}")),
-    }
+/// `powderfmu bed ...`
+#[derive(Subcommand)]
+pub enum BedCommand {
+    /// Prepare a bed: fill, settle, consolidate, unload, relax (`004` Sec. 5.1.3, Sec. 6.1)
+    ///
+    /// A preparation of hours runs in parts: every --checkpoint minutes the bed goes to
+    /// OUT.checkpoint.pfbed, and `--resume` goes on from a checkpoint or from a bed saved with --until.
+    Prepare {
+        /// The bed scene (JSON; `docs/bed.md` lists its keys); not with --resume
+        #[arg(required_unless_present = "resume", conflicts_with = "resume")]
+        scene: Option<PathBuf>,
+        /// The bed file to write (default: the scene's name with .bed, or the resumed file)
+        #[arg(short, long, value_name = "BED")]
+        output: Option<PathBuf>,
+        /// Threads of the force loop (default: the scene's `threads`)
+        #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..=256))]
+        threads: Option<u16>,
+        /// The last phase to run
+        #[arg(long, value_name = "PHASE", default_value = "relax", value_parser = clap::builder::PossibleValuesParser::new(prepare::PHASES))]
+        until: String,
+        /// Continue a saved bed or checkpoint after the phase it went through
+        #[arg(long, value_name = "BED")]
+        resume: Option<PathBuf>,
+        /// Minutes between checkpoints [min]
+        #[arg(long, value_name = "MIN", default_value_t = 10.0, value_parser = options::positive("min"))]
+        checkpoint: f64,
+    },
+    /// Count, height, solid fraction, coordination, overlap, stress of a bed file
+    Info {
+        /// The bed file
+        bed: PathBuf,
+    },
+    /// The spheres for ParaView (OUT.vtk) or a spreadsheet (OUT.csv)
+    Snapshot {
+        /// The bed file
+        bed: PathBuf,
+        /// The output file, ending in .vtk or .csv
+        out: PathBuf,
+    },
+    /// A vertical cross-section through the die axis as a PNG, coloured by vertical stress
+    Render {
+        /// The bed file
+        bed: PathBuf,
+        /// The output PNG
+        out: PathBuf,
+        /// Image width [px]
+        #[arg(long, value_name = "PX", default_value_t = 900, value_parser = clap::value_parser!(u32).range(50..=10000))]
+        width: u32,
+    },
+    /// A LAMMPS data file (atom_style sphere)
+    ExportLammps {
+        /// The bed file
+        bed: PathBuf,
+        /// The output data file
+        out: PathBuf,
+    },
+    /// Ball indentation (`004` Sec. 2.3.5): load to --max-penetration, unload; force-depth CSV
+    Indent(IndentArgs),
+    /// Particle-steps per second of the force loop on a bed under a chosen law
+    Bench(BenchArgs),
 }
 
-/// Positional arguments and `--flag value` options.
-struct Args {
-    positional: Vec<String>,
-    options: Vec<(String, String)>,
+#[derive(clap::Args)]
+pub struct IndentArgs {
+    /// A prepared bed file
+    bed: PathBuf,
+    /// Indenter diameter [m] (default 16 mean sphere diameters)
+    #[arg(long, value_name = "M", value_parser = options::positive("m"))]
+    diameter: Option<f64>,
+    /// Indentation speed, loading and unloading [m/s]
+    #[arg(long, value_name = "M_PER_S", default_value_t = 0.02, value_parser = options::positive("m/s"))]
+    speed: f64,
+    /// Depth to load to [m] (default a tenth of the diameter: h/r = 0.2)
+    #[arg(long, value_name = "M", value_parser = options::positive("m"))]
+    max_penetration: Option<f64>,
+    /// Threads of the force loop (default: the bed scene's)
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..=256))]
+    threads: Option<u16>,
+    /// The CSV to write (default: stdout)
+    #[arg(long, value_name = "CSV")]
+    out: Option<PathBuf>,
+    /// Time between CSV rows [s]
+    #[arg(long, value_name = "S", default_value_t = 1e-3, value_parser = options::positive("s"))]
+    every: f64,
+    /// Scene keys of the particle-indenter contact over the bed's walls' (a JSON object)
+    #[arg(long, value_name = "JSON")]
+    indenter: Option<String>,
+    /// A fixed time step [s] (refused above the bed's stability limit)
+    #[arg(long, value_name = "S", value_parser = options::positive("s"))]
+    time_step: Option<f64>,
+    /// fast: spheres beyond --mobile-zone a_max held until the force on one changes by --release sigma_c d^2;
+    /// full: every sphere moves (the default, unless --mobile-zone or --release is given)
+    #[arg(long, value_enum)]
+    fidelity: Option<Fidelity>,
+    /// Mobile zone of --fidelity fast, as a factor on the largest contact radius a_max [-]
+    #[arg(long, value_name = "M", value_parser = options::positive("-"))]
+    mobile_zone: Option<f64>,
+    /// Release threshold of --fidelity fast, a fraction of consolidation_stress x d^2 (inf: never) [-]
+    #[arg(long, value_name = "E", value_parser = options::positive("-"))]
+    release: Option<f64>,
 }
 
-fn parse(args: &[String], flags: &[&str]) -> Result<Args, String> {
-    let mut out = Args { positional: vec![], options: vec![] };
-    let mut i = 0;
-    while i < args.len() {
-        let a = &args[i];
-        if a.starts_with('-') {
-            if !flags.contains(&a.as_str()) {
-                return Err(format!("unknown option `{a}` (allowed here: {})", flags.join(", ")));
-            }
-            let v = args.get(i + 1).ok_or_else(|| format!("option `{a}` needs a value"))?;
-            out.options.push((a.clone(), v.clone()));
-            i += 2;
-        } else {
-            out.positional.push(a.clone());
-            i += 1;
+#[derive(Clone, Copy, PartialEq, clap::ValueEnum)]
+pub enum Fidelity {
+    Fast,
+    Full,
+}
+
+#[derive(clap::Args)]
+pub struct BenchArgs {
+    /// A prepared bed file
+    bed: PathBuf,
+    /// The law: hooke, hertz, jkr, nan or any contact_model
+    #[arg(long)]
+    model: String,
+    /// Timed steps
+    #[arg(long, default_value_t = 2000, value_parser = clap::value_parser!(u64).range(1..=100_000_000))]
+    steps: u64,
+    /// Steps before the timing
+    #[arg(long, default_value_t = 200, value_parser = clap::value_parser!(u64).range(0..=100_000_000))]
+    warmup: u64,
+    /// Threads of the force loop
+    #[arg(long, value_name = "N", default_value_t = 1, value_parser = clap::value_parser!(u16).range(1..=256))]
+    threads: u16,
+    /// Spring stiffness of hooke [N/m]
+    #[arg(long, value_name = "N_PER_M", default_value_t = 2e5, value_parser = options::in_range(0.0, 1e12, false, "N/m"))]
+    stiffness: f64,
+    /// Yield pressure of the elasto-plastic laws [Pa]
+    #[arg(long, value_name = "PA", default_value_t = 2e6, value_parser = options::in_range(0.0, 1e13, false, "Pa"))]
+    yield_pressure: f64,
+    /// Interface energy [J/m^2] (default: the bed's)
+    #[arg(long, value_name = "J_PER_M2", value_parser = options::in_range(0.0, 1e3, true, "J/m^2"))]
+    surface_energy: Option<f64>,
+    /// Rolling friction coefficient, particles and walls [-] (default: the bed's)
+    #[arg(long, value_name = "MU", value_parser = options::in_range(0.0, 10.0, true, "-"))]
+    rolling_friction: Option<f64>,
+}
+
+pub fn run(command: BedCommand) -> Result<(), String> {
+    match command {
+        BedCommand::Prepare { scene, output, threads, until, resume, checkpoint } => {
+            prepare_cmd(scene, output, threads.map(usize::from), &until, resume, checkpoint)
         }
-    }
-    Ok(out)
-}
-
-impl Args {
-    fn get(&self, flag: &str) -> Option<&str> {
-        self.options.iter().rev().find(|(f, _)| f == flag).map(|(_, v)| v.as_str())
-    }
-
-    fn number<T: std::str::FromStr>(&self, flag: &str, default: T, check: impl Fn(&T) -> bool, allowed: &str) -> Result<T, String> {
-        match self.get(flag) {
-            None => Ok(default),
-            Some(text) => match text.parse::<T>() {
-                Ok(v) if check(&v) => Ok(v),
-                _ => Err(format!("{flag} = `{text}` is not allowed: {allowed}")),
-            },
-        }
-    }
-
-    fn need(&self, k: usize, what: &str) -> Result<&str, String> {
-        self.positional.get(k).map(String::as_str).ok_or_else(|| format!("missing {what}"))
+        BedCommand::Info { bed } => info_cmd(&bed),
+        BedCommand::Snapshot { bed, out } => snapshot_cmd(&bed, &out),
+        BedCommand::Render { bed, out, width } => render_cmd(&bed, &out, width),
+        BedCommand::ExportLammps { bed, out } => export_cmd(&bed, &out),
+        BedCommand::Bench(a) => bench_cmd(a),
+        BedCommand::Indent(a) => indent_cmd(a),
     }
 }
 
-fn threads_option(a: &Args) -> Result<Option<usize>, String> {
-    if a.get("--threads").is_none() {
-        return Ok(None);
-    }
-    a.number("--threads", 1usize, |t| (1..=256).contains(t), "give a whole number in [1, 256]").map(Some)
-}
-
-/// A progress bar on a terminal (redrawn in place), or a line per 5 % elsewhere (logs, CI).
+/// The preparation's progress: an indicatif bar on a terminal (with the time left), or a plain line per
+/// 5 % elsewhere (logs, CI), which a reader of a log can follow.
 struct Bar {
     start: Instant,
-    tty: bool,
+    bar: Option<ProgressBar>,
     last_line: f64,
 }
 
 impl Bar {
+    fn new() -> Bar {
+        let bar = std::io::stderr().is_terminal().then(|| {
+            let b = ProgressBar::new(1000);
+            b.set_style(
+                ProgressStyle::with_template("[{bar:30}] {percent:>3}% {msg}  elapsed {elapsed_precise}  left ~{eta_precise}")
+                    .expect("a valid template")
+                    .progress_chars("#>."),
+            );
+            b
+        });
+        Bar { start: Instant::now(), bar, last_line: -1.0 }
+    }
+
     fn show(&mut self, p: &Progress) {
-        let elapsed = self.start.elapsed().as_secs_f64();
-        let left = if p.fraction > 0.01 { elapsed * (1.0 - p.fraction) / p.fraction } else { f64::NAN };
-        let clock = |s: f64| if s.is_finite() { format!("{:02}:{:02}", (s / 60.0) as u64, (s % 60.0) as u64) } else { "--:--".into() };
-        let filled = (p.fraction * 30.0) as usize;
-        let line = format!(
-            "[{}{}] {:3.0}% {:<11} t = {:.4e} s  {}  elapsed {}  left ~{}",
-            "#".repeat(filled),
-            ".".repeat(30 - filled),
-            100.0 * p.fraction,
-            p.phase,
-            p.time,
-            p.detail,
-            clock(elapsed),
-            clock(left)
-        );
-        if self.tty {
-            eprint!("\r{line}\x1b[K");
-        } else if p.fraction >= self.last_line + 0.05 || p.fraction >= 1.0 {
-            self.last_line = p.fraction;
-            eprintln!("{line}");
+        let what = format!("{:<11} t = {:.4e} s  {}", p.phase, p.time, p.detail);
+        match &self.bar {
+            Some(b) => {
+                b.set_position((p.fraction * 1000.0) as u64);
+                b.set_message(what);
+            }
+            None if p.fraction >= self.last_line + 0.05 || p.fraction >= 1.0 => {
+                self.last_line = p.fraction;
+                let elapsed = self.start.elapsed().as_secs_f64();
+                let left = if p.fraction > 0.01 { elapsed * (1.0 - p.fraction) / p.fraction } else { f64::NAN };
+                eprintln!("{:3.0}% {what}  elapsed {}  left ~{}", 100.0 * p.fraction, clock(elapsed), clock(left));
+            }
+            None => {}
+        }
+    }
+
+    fn finish(&self) {
+        if let Some(b) = &self.bar {
+            b.finish();
         }
     }
 }
 
-fn prepare_cmd(args: &[String]) -> Result<(), String> {
-    let a = parse(args, &["-o", "--output", "--threads", "--until", "--resume", "--checkpoint"])?;
-    let every = a.number("--checkpoint", 10.0f64, |m| m.is_finite() && *m > 0.0, "give minutes > 0")?;
-    let until = a.get("--until").unwrap_or("relax");
-    if !prepare::PHASES.contains(&until) {
-        return Err(format!("--until = `{until}` is not allowed: give one of {}", prepare::PHASES.join(", ")));
+fn clock(s: f64) -> String {
+    if s.is_finite() {
+        format!("{:02}:{:02}:{:02}", (s / 3600.0) as u64, ((s % 3600.0) / 60.0) as u64, (s % 60.0) as u64)
+    } else {
+        "--:--:--".into()
     }
-    let resume = a.get("--resume");
-    let threads = threads_option(&a)?;
-    let (mut scene, saved, default_out) = match resume {
-        Some(bed) => {
+}
+
+fn prepare_cmd(scene_path: Option<PathBuf>, output: Option<PathBuf>, threads: Option<usize>, until: &str, resume: Option<PathBuf>, every: f64) -> Result<(), String> {
+    let (mut scene, saved, default_out) = match (&resume, scene_path) {
+        (Some(bed), _) => {
             let (engine, scene) = load(bed, threads)?;
-            (scene, Some(engine), PathBuf::from(bed))
+            (scene, Some(engine), bed.clone())
         }
-        None => {
-            let scene_path = a.need(0, "the bed scene file (JSON), or --resume BED")?;
-            let text = std::fs::read_to_string(scene_path).map_err(|e| format!("cannot read bed scene `{scene_path}`: {e}"))?;
-            let scene = BedScene::from_json(&text).map_err(|e| format!("{scene_path}: {e}"))?;
-            (scene, None, Path::new(scene_path).with_extension("bed"))
+        (None, Some(scene_path)) => {
+            let text = std::fs::read_to_string(&scene_path).map_err(|e| format!("cannot read bed scene `{}`: {e}", scene_path.display()))?;
+            let scene = BedScene::from_json(&text).map_err(|e| format!("{}: {e}", scene_path.display()))?;
+            (scene, None, scene_path.with_extension("bed"))
         }
+        (None, None) => return Err("give the bed scene file (JSON), or --resume BED".into()),
     };
     if let Some(t) = threads {
         scene.threads = t;
     }
-    let out = match a.get("-o").or(a.get("--output")) {
-        Some(o) => PathBuf::from(o),
-        None => default_out,
-    };
+    let out = output.unwrap_or(default_out);
     eprintln!(
         "preparing {} spheres ({:?}, mean diameter {:.3e} m) in a die of {} m, to {} Pa, on {} thread(s) -> {}",
         scene.particle_count,
@@ -166,7 +246,7 @@ fn prepare_cmd(args: &[String]) -> Result<(), String> {
         scene.threads,
         out.display()
     );
-    let mut bar = Bar { start: Instant::now(), tty: std::io::stderr().is_terminal(), last_line: -1.0 };
+    let mut bar = Bar::new();
     // Every few minutes the bed as it is goes to a checkpoint file beside the output, so that a stopped
     // preparation of hours loses at most those minutes: `--resume` it.
     let checkpoint = out.with_extension("checkpoint.pfbed");
@@ -180,10 +260,10 @@ fn prepare_cmd(args: &[String]) -> Result<(), String> {
             }
         }
     };
-    let (mut engine, report) = match saved {
+    let (engine, report) = match saved {
         Some(engine) => {
             let done = prepare::phase_done(&engine, &scene);
-            eprintln!("resuming {} after phase `{done}` (bed time {:.4e} s)", resume.unwrap_or_default(), engine.time());
+            eprintln!("resuming {} after phase `{done}` (bed time {:.4e} s)", resume.as_deref().unwrap_or(Path::new("")).display(), engine.time());
             prepare::resume(engine, &scene, until, &mut show)
         }
         None => prepare::prepare_until(&scene, until, &mut show),
@@ -195,9 +275,7 @@ fn prepare_cmd(args: &[String]) -> Result<(), String> {
             e.to_string()
         }
     })?;
-    if bar.tty {
-        eprintln!();
-    }
+    bar.finish();
     file::save(&out, &engine, &scene).map_err(|e| format!("cannot write bed file `{}`: {e}", out.display()))?;
     let _ = std::fs::remove_file(&checkpoint);
     println!("time step: {:.4e} s", report.time_step);
@@ -213,13 +291,17 @@ fn prepare_cmd(args: &[String]) -> Result<(), String> {
         );
     }
     println!("wall time: {:.1} s", bar.start.elapsed().as_secs_f64());
+    drop(engine);
+    // The bed as the file gives it back (one thread), so that every number here, memory included, is the
+    // one `bed info` prints for the file.
+    let (mut engine, scene) = load(&out, Some(1))?;
     describe(&mut engine, &scene);
     println!("bed written to {}", out.display());
     Ok(())
 }
 
-fn load(path: &str, threads: Option<usize>) -> Result<(AnyEngine, BedScene), String> {
-    file::load(Path::new(path), threads).map_err(|e| format!("{path}: {e}"))
+fn load(path: &Path, threads: Option<usize>) -> Result<(AnyEngine, BedScene), String> {
+    file::load(path, threads).map_err(|e| format!("{}: {e}", path.display()))
 }
 
 /// The numbers `bed info` prints.
@@ -240,7 +322,7 @@ fn describe(engine: &mut AnyEngine, scene: &BedScene) {
     println!("kinetic energy:       {:.4e} J", p.kinetic_energy());
     println!("time step:            {:.4e} s", engine.dt());
     println!("bed time:             {:.5e} s, prepared through `{}`", engine.time(), prepare::phase_done(engine, scene));
-    println!("memory:               {:.0} bytes per particle", engine.memory_bytes() as f64 / n.max(1) as f64);
+    println!("memory:               {:.0} bytes per particle (the engine on one thread, as loaded from the file)", engine.memory_bytes() as f64 / n.max(1) as f64);
     // Bagi's stress in the middle of the bed, a die radius wide minus two diameters.
     let region = Region { radius: 0.5 * scene.die_diameter - 2.0 * mean_d, z_low: 0.25 * height, z_high: 0.75 * height };
     let s = bagi(engine, &region);
@@ -253,38 +335,28 @@ fn describe(engine: &mut AnyEngine, scene: &BedScene) {
     );
 }
 
-fn info_cmd(args: &[String]) -> Result<(), String> {
-    let a = parse(args, &[])?;
-    let path = a.need(0, "the bed file")?;
+fn info_cmd(path: &Path) -> Result<(), String> {
     let (mut engine, scene) = load(path, Some(1))?;
-    println!("bed file:             {path} (format version {})", file::VERSION);
+    println!("bed file:             {} (format version {})", path.display(), file::VERSION);
     describe(&mut engine, &scene);
     Ok(())
 }
 
-fn snapshot_cmd(args: &[String]) -> Result<(), String> {
-    let a = parse(args, &[])?;
-    let (path, out) = (a.need(0, "the bed file")?, a.need(1, "the output file (.vtk or .csv)")?);
+fn snapshot_cmd(path: &Path, out: &Path) -> Result<(), String> {
+    let format = out.extension().and_then(|e| e.to_str()).filter(|e| *e == "vtk" || *e == "csv");
+    let Some(format) = format else { return Err(format!("output `{}`: give a file ending in .vtk or .csv", out.display())) };
     let (engine, _) = load(path, Some(1))?;
-    let text = if out.ends_with(".vtk") {
-        export::vtk(&engine)
-    } else if out.ends_with(".csv") {
-        export::csv(&engine)
-    } else {
-        return Err(format!("output `{out}`: give a file ending in .vtk or .csv"));
-    };
-    file::write_atomic(Path::new(out), text.as_bytes()).map_err(|e| format!("cannot write `{out}`: {e}"))?;
-    println!("{} spheres written to {out}", engine.particles().len());
+    let text = if format == "vtk" { export::vtk(&engine) } else { export::csv(&engine) };
+    file::write_atomic(out, text.as_bytes()).map_err(|e| format!("cannot write `{}`: {e}", out.display()))?;
+    println!("{} spheres written to {}", engine.particles().len(), out.display());
     Ok(())
 }
 
-fn render_cmd(args: &[String]) -> Result<(), String> {
-    let a = parse(args, &["--width"])?;
-    let (path, out) = (a.need(0, "the bed file")?, a.need(1, "the output PNG")?);
-    let width = a.number("--width", 900u32, |w| (50..=10000).contains(w), "give a whole number of pixels in [50, 10000]")?;
+fn render_cmd(path: &Path, out: &Path, width: u32) -> Result<(), String> {
     let (mut engine, scene) = load(path, Some(1))?;
     let (png, legend) = render::cross_section(&mut engine, scene.die_diameter, width)?;
-    file::write_atomic(Path::new(out), &png).map_err(|e| format!("cannot write `{out}`: {e}"))?;
+    file::write_atomic(out, &png).map_err(|e| format!("cannot write `{}`: {e}", out.display()))?;
+    let out = out.display();
     println!(
         "{}x{} px, {} spheres cut by the plane y = 0; colour: vertical stress per sphere, {:.3e} Pa (dark blue) to {:.3e} Pa (yellow), log scale; grey: unloaded -> {out}",
         legend.width, legend.height, legend.spheres_cut, legend.stress_low, legend.stress_high
@@ -292,19 +364,17 @@ fn render_cmd(args: &[String]) -> Result<(), String> {
     Ok(())
 }
 
-fn export_cmd(args: &[String]) -> Result<(), String> {
-    let a = parse(args, &[])?;
-    let (path, out) = (a.need(0, "the bed file")?, a.need(1, "the output data file")?);
+fn export_cmd(path: &Path, out: &Path) -> Result<(), String> {
     let (engine, scene) = load(path, Some(1))?;
     let text = powderfmu::bed::lammps::data_file(&engine, scene.density);
-    file::write_atomic(Path::new(out), text.as_bytes()).map_err(|e| format!("cannot write `{out}`: {e}"))?;
-    println!("{} spheres written to {out}", engine.particles().len());
+    file::write_atomic(out, text.as_bytes()).map_err(|e| format!("cannot write `{}`: {e}", out.display()))?;
+    println!("{} spheres written to {}", engine.particles().len(), out.display());
     Ok(())
 }
 
 /// The bed of `path` under another law: same positions and walls, contacts start fresh.
 fn with_model(
-    path: &str,
+    path: &Path,
     model: &str,
     stiffness: f64,
     yield_pressure: f64,
@@ -312,8 +382,8 @@ fn with_model(
     threads: usize,
     rolling: Option<f64>,
 ) -> Result<(AnyEngine, BedScene), String> {
-    let bytes = std::fs::read(path).map_err(|e| format!("cannot read bed file `{path}`: {e}"))?;
-    let mut f: BedFile = file::decode(&bytes).map_err(|e| format!("{path}: {e}"))?;
+    let bytes = std::fs::read(path).map_err(|e| format!("cannot read bed file `{}`: {e}", path.display()))?;
+    let mut f: BedFile = file::decode(&bytes).map_err(|e| format!("{}: {e}", path.display()))?;
     let mut scene: serde_json::Value = serde_json::from_str(&f.scene).map_err(|e| e.to_string())?;
     let law = if model == "hooke" { "linear" } else { model };
     for key in ["particle_particle", "particle_wall"] {
@@ -339,28 +409,13 @@ fn with_model(
     // No contacts of the old law: empty lists (an empty list encodes the same whatever its item type).
     f.contacts = powderfmu::codec::to_bytes(&Vec::<()>::new())?;
     f.wall_contacts = powderfmu::codec::to_bytes(&vec![Vec::<()>::new(); f.walls.len()])?;
-    AnyEngine::from_file(&f, Some(threads)).map_err(|e| format!("{path} under {model}: {e}"))
+    AnyEngine::from_file(&f, Some(threads)).map_err(|e| format!("{} under {model}: {e}", path.display()))
 }
 
-fn bench_cmd(args: &[String]) -> Result<(), String> {
-    let a = parse(args, &["--model", "--steps", "--threads", "--stiffness", "--warmup", "--yield-pressure", "--surface-energy", "--rolling-friction"])?;
-    let rolling = match a.get("--rolling-friction") {
-        None => None,
-        Some(_) => Some(a.number("--rolling-friction", 0.0f64, |m| m.is_finite() && *m >= 0.0 && *m < 10.0, "give a rolling friction coefficient in [0, 10)")?),
-    };
-    let path = a.need(0, "the bed file")?;
-    let model = a.get("--model").ok_or("--model is required: hooke, hertz, jkr, nan or any contact_model")?;
-    let steps = a.number("--steps", 2000u64, |s| (1..=100_000_000).contains(s), "give a whole number in [1, 1e8]")?;
-    let warmup = a.number("--warmup", 200u64, |s| *s <= 100_000_000, "give a whole number in [0, 1e8]")?;
-    let threads = a.number("--threads", 1usize, |t| (1..=256).contains(t), "give a whole number in [1, 256]")?;
-    let stiffness = a.number("--stiffness", 2e5f64, |k| k.is_finite() && *k > 0.0 && *k < 1e12, "give a spring stiffness in (0, 1e12) N/m")?;
-    let yield_pressure =
-        a.number("--yield-pressure", 2e6f64, |p| p.is_finite() && *p > 0.0 && *p < 1e13, "give a yield pressure in (0, 1e13) Pa")?;
-    let surface_energy = match a.get("--surface-energy") {
-        None => None,
-        Some(_) => Some(a.number("--surface-energy", 0.0f64, |g| g.is_finite() && *g >= 0.0 && *g < 1e3, "give an interface energy in [0, 1e3) J/m^2")?),
-    };
-    let (mut engine, _) = with_model(path, model, stiffness, yield_pressure, surface_energy, threads, rolling)?;
+fn bench_cmd(a: BenchArgs) -> Result<(), String> {
+    let BenchArgs { bed, model, steps, warmup, threads, stiffness, yield_pressure, surface_energy, rolling_friction } = a;
+    let threads = usize::from(threads);
+    let (mut engine, _) = with_model(&bed, &model, stiffness, yield_pressure, surface_energy, threads, rolling_friction)?;
     engine.run(warmup);
     let n = engine.particles().len();
     let start = Instant::now();
@@ -379,29 +434,29 @@ fn bench_cmd(args: &[String]) -> Result<(), String> {
     Ok(())
 }
 
-fn indent_cmd(args: &[String]) -> Result<(), String> {
-    let a = parse(args, &["--diameter", "--speed", "--max-penetration", "--threads", "--out", "--every", "--indenter", "--time-step", "--fidelity", "--mobile-zone", "--release"])?;
-    let (engine, scene) = load(a.need(0, "BED (a prepared bed file)")?, threads_option(&a)?)?;
+fn indent_cmd(a: IndentArgs) -> Result<(), String> {
+    let (engine, scene) = load(&a.bed, a.threads.map(usize::from))?;
     let mean = scene.size_distribution.mean_diameter();
-    let d = a.number("--diameter", 16.0 * mean, |v: &f64| *v > 0.0, "a diameter > 0 [m]")?;
+    let d = a.diameter.unwrap_or(16.0 * mean);
+    let tuned = a.mobile_zone.is_some() || a.release.is_some();
+    let shortcut = match a.fidelity {
+        Some(Fidelity::Full) if tuned => {
+            return Err("--mobile-zone and --release set the shortcut of --fidelity fast; --fidelity full moves every sphere".into())
+        }
+        Some(Fidelity::Full) => None,
+        None if !tuned => None,
+        _ => Some(Shortcut { zone: a.mobile_zone.unwrap_or(FAST.zone), release: a.release.unwrap_or(FAST.release) }),
+    };
     let setup = Setup {
         indenter_diameter: d,
-        indentation_speed: a.number("--speed", 0.02, |v: &f64| *v > 0.0, "a speed > 0 [m/s]")?,
-        max_penetration: a.number("--max-penetration", 0.1 * d, |v: &f64| *v > 0.0, "a depth > 0 [m]")?,
+        indentation_speed: a.speed,
+        max_penetration: a.max_penetration.unwrap_or(0.1 * d),
         constraint_factor: 3.0,
         motion: Motion::Prescribed,
-        shortcut: match (a.get("--fidelity"), a.get("--mobile-zone").or(a.get("--release"))) {
-            (Some("full") | None, None) => None,
-            (Some("fast") | None, _) => Some(Shortcut {
-                zone: a.number("--mobile-zone", FAST.zone, |m: &f64| *m > 0.0 && m.is_finite(), "a factor > 0 on the contact radius a_max")?,
-                release: a.number("--release", FAST.release, |e: &f64| *e > 0.0, "a fraction > 0 of consolidation_stress x d^2 (inf: never)")?,
-            }),
-            (Some("full"), Some(_)) => return Err("--mobile-zone and --release set the shortcut of --fidelity fast; --fidelity full moves every sphere".into()),
-            (Some(other), _) => return Err(format!("--fidelity = `{other}` is not allowed: give fast or full")),
-        },
+        shortcut,
     };
-    let every = a.number("--every", 1e-3, |v: &f64| *v > 0.0, "a time > 0 [s]")?;
-    let indenter = match a.get("--indenter") {
+    let every = a.every;
+    let indenter = match &a.indenter {
         None => None,
         Some(text) => {
             let overlay: serde_json::Map<String, serde_json::Value> =
@@ -412,9 +467,8 @@ fn indent_cmd(args: &[String]) -> Result<(), String> {
         }
     };
     let mut test = Indentation::new(engine, scene, setup, 0.0, indenter.as_ref()).map_err(|e| e.to_string())?;
-    if let Some(dt) = a.get("--time-step") {
-        let dt: f64 = dt.parse().map_err(|_| format!("--time-step = `{dt}` is not a number [s]"))?;
-        test.engine.set_time_step(&test.scene, dt).map_err(|e| e.to_string())?;
+    if let Some(dt) = a.time_step {
+        test.engine.set_time_step(&test.scene, dt).map_err(|e| format!("--time-step: {e}"))?;
     }
     let mut csv = String::from("time_s,depth_m,depth_over_r,force_N,hardness_Pa,hydrostatic_Pa,deviatoric_Pa,contacts,kinetic_energy_J,state\n");
     let started = Instant::now();
@@ -446,8 +500,8 @@ fn indent_cmd(args: &[String]) -> Result<(), String> {
             break;
         }
     }
-    match a.get("--out") {
-        Some(path) => std::fs::write(path, csv).map_err(|e| format!("cannot write {path}: {e}")),
+    match &a.out {
+        Some(path) => file::write_atomic(path, csv.as_bytes()).map_err(|e| format!("cannot write {}: {e}", path.display())),
         None => {
             print!("{csv}");
             Ok(())

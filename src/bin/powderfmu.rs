@@ -1,152 +1,125 @@
-//! The `powderfmu` command-line tool: the physics of the FMUs without FMI.
+//! The `powderfmu` command-line tool: the physics of the FMUs without FMI. The command line is clap's
+//! (derive): every subcommand has `--help`, errors name the option, `completions` writes shell completions.
 
+use clap::{CommandFactory, Parser, Subcommand};
 use powderfmu::analysis::{analyze, OUTPUTS};
 use powderfmu::curves::{force_overlap_csv, restitution_csv};
 use powderfmu::scene::{Scene, KEYS};
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 mod bed_cli;
+mod options;
 
-const USAGE: &str = "usage:
-  powderfmu analyze SCENE.json [--velocity V]          derived parameters and closed-form results (JSON)
-  powderfmu curve SCENE.json --path A1,A2,.. [--points N]  force along a quasi-static overlap path (CSV)
-  powderfmu restitution SCENE.json --velocities V1,V2,..   undamped impacts on the wall (CSV)
-  powderfmu analyze --help                              every scene key with its unit and default
-";
+#[derive(Parser)]
+#[command(
+    name = "powderfmu",
+    version,
+    about = "Contact mechanics of elasto-plastic adhesive spheres (Nan, Pasha, Luding, Thornton-Ning, Tomas, JKR, Hertz): the physics of the powderfmu FMUs without FMI",
+    after_help = "Scenes are JSON objects of scene keys in SI units; `powderfmu analyze --help` lists every key with its unit, default and range."
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Derived parameters and closed-form results of a scene (JSON on stdout, with a `units` object)
+    #[command(after_long_help = keys_help())]
+    Analyze {
+        /// The scene file (JSON object of scene keys, SI units)
+        scene: PathBuf,
+        /// Adds one undamped impact of the active law on the wall at this speed, by energy balance [m/s]
+        #[arg(long, value_name = "M_PER_S", allow_hyphen_values = true, value_parser = options::positive("m/s"))]
+        velocity: Option<f64>,
+    },
+    /// Force along a quasi-static overlap path (CSV on stdout: overlap_m, force_N, stiffness_N_per_m, branch, contact_state)
+    ///
+    /// The path starts apart, at --start (default -|A1|, as far apart as the first turn is deep), runs
+    /// straight to A1, then to A2, and so on, with --points states per leg.
+    Curve {
+        /// The scene file (JSON object of scene keys, SI units)
+        scene: PathBuf,
+        /// Turning overlaps A1,A2,... of the path [m] (negative: apart)
+        #[arg(long, value_name = "A1,A2,..", value_delimiter = ',', required = true, allow_hyphen_values = true, value_parser = options::finite("m"))]
+        path: Vec<f64>,
+        /// Where the path starts [m] (default -|A1|)
+        #[arg(long, value_name = "A0", allow_hyphen_values = true, value_parser = options::finite("m"))]
+        start: Option<f64>,
+        /// States per leg of the path
+        #[arg(long, default_value_t = 200, value_parser = clap::value_parser!(u32).range(2..=1_000_000))]
+        points: u32,
+    },
+    /// Undamped impacts on the wall by energy balance: restitution against impact velocity (CSV on stdout)
+    Restitution {
+        /// The scene file (JSON object of scene keys, SI units)
+        scene: PathBuf,
+        /// Impact speeds V1,V2,... [m/s]
+        #[arg(long, value_name = "V1,V2,..", value_delimiter = ',', required = true, allow_hyphen_values = true, value_parser = options::positive("m/s"))]
+        velocities: Vec<f64>,
+    },
+    /// The DEM bed: prepare, describe, look at, export, time, indent
+    Bed {
+        #[command(subcommand)]
+        command: bed_cli::BedCommand,
+    },
+    /// Shell completions on stdout, e.g. `powderfmu completions bash > /etc/bash_completion.d/powderfmu`
+    Completions {
+        /// bash, zsh, fish, elvish or powershell
+        shell: clap_complete::Shell,
+    },
+}
 
 fn main() -> ExitCode {
-    // A closed pipe (`powderfmu bed info BED | head`) ends the tool quietly, as it ends other Unix
+    // A closed pipe (`powderfmu analyze --help | head`) ends the tool quietly, as it ends other Unix
     // tools, instead of a panic on the next print. Rust sets SIGPIPE to "ignore" before main.
     #[cfg(unix)]
     // SAFETY: called once at the start of main, before any other thread exists.
     unsafe {
         libc::signal(libc::SIGPIPE, libc::SIG_DFL);
     }
-    let args: Vec<String> = std::env::args().skip(1).collect();
-    match args.first().map(String::as_str) {
-        Some("analyze") => run_analyze(&args[1..]),
-        Some("curve") => run_csv(&args[1..], "--path", force_overlap_csv),
-        Some("bed") => match bed_cli::run(&args[1..]) {
-            Ok(()) => ExitCode::SUCCESS,
-            Err(e) => fail(&e),
-        },
-        Some("restitution") => run_csv(&args[1..], "--velocities", |scene, list, _| restitution_csv(scene, list)),
-        Some("--help") | Some("-h") | Some("help") => {
-            println!("powderfmu: contact mechanics of elasto-plastic adhesive spheres\n\n{USAGE}{}", bed_cli::USAGE);
-            ExitCode::SUCCESS
+    let result = match Cli::parse().command {
+        Command::Analyze { scene, velocity } => {
+            read_scene(&scene).and_then(|s| analyze(&s, velocity).map_err(|e| format!("{}: {e}", scene.display()))).map(|value| {
+                println!("{}", serde_json::to_string_pretty(&value).expect("a JSON value always serialises"));
+            })
         }
-        Some("--version") => {
-            println!("powderfmu {}", env!("CARGO_PKG_VERSION"));
-            ExitCode::SUCCESS
+        Command::Curve { scene, path, start, points } => {
+            read_scene(&scene).and_then(|s| force_overlap_csv(&s, start, &path, points as usize).map_err(|e| format!("{}: {e}", scene.display()))).map(|csv| print!("{csv}"))
         }
-        Some(other) => fail(&format!("unknown subcommand `{other}`\n{USAGE}")),
-        None => fail(&format!("{USAGE}{}", bed_cli::USAGE)),
-    }
-}
-
-fn run_analyze(args: &[String]) -> ExitCode {
-    if args.iter().any(|a| a == "--help" || a == "-h") {
-        print_analyze_help();
-        return ExitCode::SUCCESS;
-    }
-    let mut path = None;
-    let mut velocity = None;
-    let mut i = 0;
-    while i < args.len() {
-        match args[i].as_str() {
-            "--velocity" => {
-                let Some(text) = args.get(i + 1) else { return fail("--velocity needs a value in m/s") };
-                match text.parse::<f64>() {
-                    Ok(v) if v.is_finite() && v > 0.0 => velocity = Some(v),
-                    _ => return fail(&format!("--velocity = `{text}` is not allowed: give a positive speed in m/s")),
-                }
-                i += 2;
-            }
-            a if a.starts_with('-') => return fail(&format!("unknown option `{a}`\n{USAGE}")),
-            a => {
-                if path.replace(a.to_string()).is_some() {
-                    return fail(&format!("give one scene file\n{USAGE}"));
-                }
-                i += 1;
-            }
+        Command::Restitution { scene, velocities } => {
+            read_scene(&scene).and_then(|s| restitution_csv(&s, &velocities).map_err(|e| format!("{}: {e}", scene.display()))).map(|csv| print!("{csv}"))
         }
-    }
-    let Some(path) = path else { return fail(USAGE) };
-    let text = match std::fs::read_to_string(&path) {
-        Ok(t) => t,
-        Err(e) => return fail(&format!("cannot read scene `{path}`: {e}")),
+        Command::Bed { command } => bed_cli::run(command),
+        Command::Completions { shell } => {
+            clap_complete::generate(shell, &mut Cli::command(), "powderfmu", &mut std::io::stdout());
+            Ok(())
+        }
     };
-    let result = Scene::from_json(&text).and_then(|scene| analyze(&scene, velocity));
     match result {
-        Ok(value) => {
-            println!("{}", serde_json::to_string_pretty(&value).expect("a JSON value always serialises"));
-            ExitCode::SUCCESS
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("powderfmu: error: {e}");
+            ExitCode::from(2)
         }
-        Err(e) => fail(&format!("{path}: {e}")),
     }
 }
 
-/// `curve` and `restitution`: a scene, one list option of numbers, and `--points N`.
-fn run_csv(args: &[String], list_flag: &str, make: impl Fn(&Scene, &[f64], usize) -> Result<String, powderfmu::ParamError>) -> ExitCode {
-    let mut path = None;
-    let mut list = None;
-    let mut points = 200usize;
-    let mut i = 0;
-    while i < args.len() {
-        let a = args[i].as_str();
-        if a == list_flag || a == "--points" {
-            let Some(text) = args.get(i + 1) else { return fail(&format!("{a} needs a value")) };
-            if a == "--points" {
-                match text.parse::<usize>() {
-                    Ok(n) if (2..=1_000_000).contains(&n) => points = n,
-                    _ => return fail(&format!("--points = `{text}` is not allowed: give a whole number in [2, 1000000]")),
-                }
-            } else {
-                let parsed: Result<Vec<f64>, _> = text.split(',').map(|x| x.trim().parse::<f64>()).collect();
-                match parsed {
-                    Ok(v) => list = Some(v),
-                    Err(_) => return fail(&format!("{list_flag} = `{text}` is not a comma-separated list of numbers")),
-                }
-            }
-            i += 2;
-        } else if a.starts_with('-') {
-            return fail(&format!("unknown option `{a}`\n{USAGE}"));
-        } else {
-            if path.replace(a.to_string()).is_some() {
-                return fail(&format!("give one scene file\n{USAGE}"));
-            }
-            i += 1;
-        }
-    }
-    let (Some(path), Some(list)) = (path, list) else { return fail(USAGE) };
-    let text = match std::fs::read_to_string(&path) {
-        Ok(t) => t,
-        Err(e) => return fail(&format!("cannot read scene `{path}`: {e}")),
-    };
-    match Scene::from_json(&text).and_then(|scene| make(&scene, &list, points)) {
-        Ok(csv) => {
-            print!("{csv}");
-            ExitCode::SUCCESS
-        }
-        Err(e) => fail(&format!("{path}: {e}")),
-    }
+fn read_scene(path: &Path) -> Result<Scene, String> {
+    let text = std::fs::read_to_string(path).map_err(|e| format!("cannot read scene `{}`: {e}", path.display()))?;
+    Scene::from_json(&text).map_err(|e| format!("{}: {e}", path.display()))
 }
 
-fn print_analyze_help() {
-    println!("powderfmu analyze SCENE.json [--velocity V]\n");
-    println!("Reads a scene (a JSON object of the keys below, SI units) and prints, as JSON, the derived");
-    println!("parameters and the closed-form results. With --velocity V [m/s] it adds one undamped impact of");
-    println!("the active law on the wall by energy balance.\n\nSCENE KEYS\n");
+/// The scene keys and the output keys of `analyze`, each with its unit: the long help of `analyze`.
+fn keys_help() -> String {
+    let mut s = String::from("SCENE KEYS\n\n");
     for k in KEYS.iter() {
-        println!("  {:<32} [{}] default {}, allowed {}\n      {}", k.name, k.unit, k.default_text(), k.allowed_text(), k.doc);
+        s += &format!("  {:<32} [{}] default {}, allowed {}\n      {}\n", k.name, k.unit, k.default_text(), k.allowed_text(), k.doc);
     }
-    println!("\nOUTPUT KEYS (the `units` object of the output repeats the unit of each)\n");
+    s += "\nOUTPUT KEYS (the `units` object of the output repeats the unit of each)\n\n";
     for o in OUTPUTS {
-        println!("  {:<32} [{}] {}", o.name, o.unit, o.doc);
+        s += &format!("  {:<32} [{}] {}\n", o.name, o.unit, o.doc);
     }
-}
-
-fn fail(message: &str) -> ExitCode {
-    eprintln!("powderfmu: error: {message}");
-    ExitCode::from(2)
+    s
 }

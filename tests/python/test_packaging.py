@@ -1,0 +1,56 @@
+"""The packaging tool's promises: the same inputs give byte-identical .fmu files.
+
+The suite's FMUs (built by `cargo run -p fmu_build`) are packaged a second time from the same built
+library (`--skip-build`) into a temporary folder; every archive must be identical byte for byte, so a
+user can compare a downloaded FMU with one built from the same commit by its hash.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import os
+import subprocess
+import zipfile
+
+import pytest
+
+from fmu_support import REPO, fmu_dir
+
+UNITS = ["ParticleWallImpact", "ContactElement", "BallIndentation"]
+
+
+def sha256(path) -> str:
+    return hashlib.sha256(path.read_bytes()).hexdigest()
+
+
+@pytest.fixture(scope="module")
+def second_build(tmp_path_factory):
+    out = tmp_path_factory.mktemp("fmu_again")
+    env = dict(os.environ)
+    run = subprocess.run(
+        ["cargo", "run", "--locked", "--quiet", "-p", "fmu_build", "--", "--skip-build", "--out", str(out)],
+        cwd=REPO, env=env, capture_output=True, text=True, timeout=1800,
+    )
+    assert run.returncode == 0, run.stderr
+    return out
+
+
+@pytest.mark.parametrize("unit", UNITS)
+def test_two_builds_give_byte_identical_fmus(second_build, unit):
+    first = fmu_dir() / f"{unit}.fmu"
+    again = second_build / f"{unit}.fmu"
+    assert first.is_file() and again.is_file()
+    assert sha256(first) == sha256(again), f"{unit}.fmu differs between two packagings of the same build"
+
+
+@pytest.mark.parametrize("unit", UNITS)
+def test_archives_have_fixed_times_and_sorted_entries(unit):
+    with zipfile.ZipFile(fmu_dir() / f"{unit}.fmu") as z:
+        names = z.namelist()
+        assert names == sorted(names)
+        assert "modelDescription.xml" in names
+        assert f"binaries/linux64/{unit}.so" in names
+        for info in z.infolist():
+            assert info.date_time == (1980, 1, 1, 0, 0, 0), (info.filename, info.date_time)
+            assert (info.external_attr >> 16) & 0o777 == 0o644, info.filename
+        assert z.testzip() is None
