@@ -149,6 +149,13 @@ pub fn first_outside(
     hi
 }
 
+/// The cube root, the same bits on every platform: the C libraries' `cbrt` differ in the last bit
+/// (glibc's and mingw's, measured), and a DEM bed turns one bit into another trajectory, so a win64 FMU
+/// would not repeat the linux64 one. `libm` is a pure-Rust port of musl's.
+pub fn cbrt(x: f64) -> f64 {
+    libm::cbrt(x)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -3,7 +3,9 @@
 # and the check of every FMI signature against the official headers), then builds the .fmu files and runs
 # the fmpy suite (tests/python) against them; cargo clippy with warnings as errors runs in between.
 # Installs what it needs: the project's Python virtual environment (.venv, pinned fmpy, numpy,
-# matplotlib, pytest). Ends with one line of totals.
+# matplotlib, pytest) and the Windows toolchain of the win64 binaries and their test under wine (the Rust
+# target x86_64-pc-windows-gnu, Debian's gcc-mingw-w64-x86-64 and wine; tools/windows_toolchain.sh).
+# POWDERFMU_SKIP_WINDOWS=1 builds linux64 only and skips the wine tests. Ends with one line of totals.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 if ! command -v cargo >/dev/null 2>&1; then
@@ -12,6 +14,14 @@ if ! command -v cargo >/dev/null 2>&1; then
 fi
 echo "== Python environment (.venv, pinned requirements.txt)"
 python=$(bash tools/venv.sh)
+fmu_flags=()
+if [ "${POWDERFMU_SKIP_WINDOWS:-0}" = 1 ]; then
+    echo "== Windows: skipped (POWDERFMU_SKIP_WINDOWS=1): the FMUs get linux64 binaries only"
+    fmu_flags=(--linux-only)
+else
+    echo "== Windows toolchain (Rust target, mingw-w64, wine)"
+    bash tools/windows_toolchain.sh
+fi
 headers=$("$python" -c 'import fmpy, os; print(os.path.join(os.path.dirname(fmpy.__file__), "c-code"))')
 
 log=$(mktemp)
@@ -32,7 +42,7 @@ else
 fi
 
 echo "== Building the FMUs (target/fmu)"
-cargo run --locked --quiet -p fmu_build || status=$?
+cargo run --locked --quiet -p fmu_build -- "${fmu_flags[@]}" || status=$?
 
 echo "== fmpy suite (tests/python)"
 POWDERFMU_FMU_DIR="$PWD/target/fmu" POWDERFMU_CLI="$PWD/target/debug/powderfmu" \

@@ -1,9 +1,10 @@
 //! `fmu_build`: builds the powderfmu cdylib (profile `fmu-release`: release without debug info) and writes
-//! `target/fmu/<Unit>.fmu` for every unit: `modelDescription.xml`, `binaries/linux64/<Unit>.so`,
-//! `documentation/` (the unit's page, the model equations, an index) and `resources/` (the default
-//! scene). Archives are reproducible: sorted entries, fixed timestamps.
+//! `target/fmu/<Unit>.fmu` for every unit: `modelDescription.xml`, `binaries/linux64/<Unit>.so` and,
+//! cross-compiled with mingw-w64, `binaries/win64/<Unit>.dll`, `documentation/` (the unit's page, the
+//! model equations, an index) and `resources/` (the default scene). Archives are reproducible: sorted
+//! entries, fixed timestamps.
 //!
-//! Usage: `cargo run -p fmu_build [-- --out DIR] [--skip-build] [--update-interface]`.
+//! Usage: `cargo run -p fmu_build [-- --out DIR] [--skip-build] [--linux-only] [--update-interface]`.
 //! `--update-interface` rewrites the checked-in `modelDescription/*.xml` and docs tables instead.
 
 use fmu_build::archive::{zip_bytes, Entry};
@@ -26,21 +27,30 @@ struct Options {
     out: PathBuf,
     skip_build: bool,
     update_interface: bool,
+    /// Build and ship binaries/linux64 only (no cross-build for Windows).
+    linux_only: bool,
 }
+
+/// The Windows target of the cross-build: Rust's `x86_64-pc-windows-gnu`, linked by Debian's mingw-w64.
+const WINDOWS_TARGET: &str = "x86_64-pc-windows-gnu";
 
 fn options() -> Result<Options, String> {
     let root = interface::root();
     let target = std::env::var_os("CARGO_TARGET_DIR").map(PathBuf::from).unwrap_or_else(|| root.join("target"));
-    let mut o = Options { out: target.join("fmu"), skip_build: false, update_interface: false };
+    let mut o = Options { out: target.join("fmu"), skip_build: false, update_interface: false, linux_only: false };
     let mut args = std::env::args().skip(1);
     while let Some(a) = args.next() {
         match a.as_str() {
             "--out" => o.out = PathBuf::from(args.next().ok_or("--out needs a directory")?),
             "--skip-build" => o.skip_build = true,
             "--update-interface" => o.update_interface = true,
+            "--linux-only" => o.linux_only = true,
             "-h" | "--help" => {
-                println!("usage: fmu_build [--out DIR] [--skip-build] [--update-interface]");
-                println!("  builds the cdylib (cargo profile `fmu-release`) and writes DIR/<Unit>.fmu (default target/fmu)");
+                println!("usage: fmu_build [--out DIR] [--skip-build] [--linux-only] [--update-interface]");
+                println!("  builds the cdylib (cargo profile `fmu-release`) for linux64 and, cross-compiled, win64, and writes");
+                println!("  DIR/<Unit>.fmu (default target/fmu) with binaries/linux64/<Unit>.so and binaries/win64/<Unit>.dll");
+                println!("  --linux-only  skip the Windows cross-build (which needs `rustup target add {WINDOWS_TARGET}`");
+                println!("                and the linker x86_64-w64-mingw32-gcc, Debian's gcc-mingw-w64-x86-64)");
                 println!("  --update-interface  rewrite modelDescription/<Unit>.xml and the docs variable tables");
                 std::process::exit(0);
             }
@@ -64,20 +74,18 @@ fn run() -> Result<(), String> {
     let root = interface::root();
     let target = std::env::var_os("CARGO_TARGET_DIR").map(PathBuf::from).unwrap_or_else(|| root.join("target"));
     if !o.skip_build {
-        println!("fmu_build: building the cdylib (cargo build --profile fmu-release --lib -p powderfmu)");
-        let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
-        let status = Command::new(cargo)
-            .args(["build", "--profile", "fmu-release", "--lib", "-p", "powderfmu"])
-            .current_dir(&root)
-            .status()
-            .map_err(|e| format!("cannot run cargo: {e}"))?;
-        if !status.success() {
-            return Err(format!("cargo build failed ({status})"));
+        build(&root, None)?;
+        if !o.linux_only {
+            windows_toolchain()?;
+            build(&root, Some(WINDOWS_TARGET))?;
         }
     }
-    let library = target.join("fmu-release").join("libpowderfmu.so");
-    let binary =
-        std::fs::read(&library).map_err(|e| format!("cannot read the built library {}: {e} (build without --skip-build)", library.display()))?;
+    let read_library = |path: PathBuf| {
+        std::fs::read(&path).map_err(|e| format!("cannot read the built library {}: {e} (build without --skip-build)", path.display()))
+    };
+    let linux = read_library(target.join("fmu-release").join("libpowderfmu.so"))?;
+    let windows = if o.linux_only { None } else { Some(read_library(target.join(WINDOWS_TARGET).join("fmu-release").join("powderfmu.dll"))?) };
+    let binaries = Binaries { linux: &linux, windows: windows.as_deref() };
     std::fs::create_dir_all(&o.out).map_err(|e| format!("cannot create {}: {e}", o.out.display()))?;
     for unit in units::all() {
         let checked_in = std::fs::read_to_string(interface::model_description_path(unit)).unwrap_or_default();
@@ -88,7 +96,7 @@ fn run() -> Result<(), String> {
             );
         }
         let path = o.out.join(format!("{}.fmu", unit.model_identifier));
-        let entries = entries(unit, &binary, &root, &target)?;
+        let entries = entries(unit, &binaries, &root, &target)?;
         let bytes = zip_bytes(entries).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
         interface::write_atomic(&path, &bytes)?;
         println!("fmu_build: wrote {} ({:.1} MiB, GUID {})", path.display(), bytes.len() as f64 / 1048576.0, unit.guid());
@@ -96,20 +104,55 @@ fn run() -> Result<(), String> {
     Ok(())
 }
 
+/// `cargo build --profile fmu-release --lib -p powderfmu [--target T]`.
+fn build(root: &Path, target: Option<&str>) -> Result<(), String> {
+    let mut args = vec!["build", "--profile", "fmu-release", "--lib", "-p", "powderfmu", "--no-default-features"];
+    args.extend(target.iter().flat_map(|t| ["--target", t]));
+    println!("fmu_build: building the cdylib (cargo {})", args.join(" "));
+    let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
+    let status = Command::new(cargo).args(&args).current_dir(root).status().map_err(|e| format!("cannot run cargo: {e}"))?;
+    if status.success() {
+        Ok(())
+    } else {
+        Err(format!("cargo build failed ({status})"))
+    }
+}
+
+/// Says in one line what the Windows cross-build lacks, before cargo fails with pages of linker errors.
+fn windows_toolchain() -> Result<(), String> {
+    let installed = Command::new("rustup").args(["target", "list", "--installed"]).output().map(|o| String::from_utf8_lossy(&o.stdout).contains(WINDOWS_TARGET));
+    if installed.is_ok_and(|yes| !yes) {
+        return Err(format!("the Windows cross-build needs the Rust target: `rustup target add {WINDOWS_TARGET}` (or build with --linux-only)"));
+    }
+    if Command::new("x86_64-w64-mingw32-gcc").arg("--version").output().is_err() {
+        return Err("the Windows cross-build needs the linker x86_64-w64-mingw32-gcc: `apt-get install gcc-mingw-w64-x86-64` (or build with --linux-only)".into());
+    }
+    Ok(())
+}
+
+/// The unit's binaries: the same library for every unit, one per platform.
+struct Binaries<'a> {
+    linux: &'a [u8],
+    windows: Option<&'a [u8]>,
+}
+
 fn read(root: &Path, rel: &str) -> Result<Vec<u8>, String> {
     std::fs::read(root.join(rel)).map_err(|e| format!("cannot read {rel}: {e}"))
 }
 
-fn entries(unit: &UnitInfo, binary: &[u8], root: &Path, target: &Path) -> Result<Vec<Entry>, String> {
+fn entries(unit: &UnitInfo, binaries: &Binaries, root: &Path, target: &Path) -> Result<Vec<Entry>, String> {
     let id = unit.model_identifier;
     let page = format!("docs/units/{id}.md");
     let mut entries = vec![
         Entry { name: "modelDescription.xml".into(), data: unit.model_description().into_bytes() },
-        Entry { name: format!("binaries/linux64/{id}.so"), data: binary.to_vec() },
+        Entry { name: format!("binaries/linux64/{id}.so"), data: binaries.linux.to_vec() },
         Entry { name: "documentation/index.html".into(), data: index_html(unit).into_bytes() },
         Entry { name: format!("documentation/{id}.md"), data: read(root, &page)? },
         Entry { name: "documentation/models.md".into(), data: read(root, "docs/models.md")? },
     ];
+    if let Some(dll) = binaries.windows {
+        entries.push(Entry { name: format!("binaries/win64/{id}.dll"), data: dll.to_vec() });
+    }
     if id == units::ball_indentation::MODEL_IDENTIFIER {
         let scene = units::ball_indentation::DEFAULT_BED_SCENE.as_bytes().to_vec();
         entries.push(Entry { name: format!("resources/{}", units::ball_indentation::RESOURCE_BED), data: beds::prepared(&scene, target)? });

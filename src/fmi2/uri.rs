@@ -3,8 +3,15 @@
 use std::path::PathBuf;
 
 /// The directory a `file:` URI names: `file:///a/b`, `file:/a/b` or `file://localhost/a/b`, with
-/// percent-escapes decoded. Anything else is an error that says what was expected.
+/// percent-escapes decoded; on Windows `file:///C:/a/b` is `C:/a/b`. Anything else is an error that says
+/// what was expected.
 pub fn file_uri_to_path(uri: &str) -> Result<PathBuf, String> {
+    uri_to_path(uri, cfg!(windows))
+}
+
+/// `file_uri_to_path` with the Windows reading (a drive letter after the root slash) chosen by `windows`,
+/// so that both readings are tested on any host.
+fn uri_to_path(uri: &str, windows: bool) -> Result<PathBuf, String> {
     let rest = uri
         .strip_prefix("file://localhost/")
         .map(|r| format!("/{r}"))
@@ -28,6 +35,12 @@ pub fn file_uri_to_path(uri: &str) -> Result<PathBuf, String> {
         }
     }
     let path = String::from_utf8(out).map_err(|_| format!("fmuResourceLocation \"{uri}\" does not decode to UTF-8"))?;
+    // `/C:/x` (or `/C|/x`, the old form) is the drive C: on Windows, where a leading `/` would mean the
+    // root of the current drive.
+    let b = path.as_bytes();
+    if windows && b.len() >= 3 && b[0] == b'/' && b[1].is_ascii_alphabetic() && (b[2] == b':' || b[2] == b'|') && !matches!(b.get(3), Some(c) if *c != b'/' && *c != b'\\') {
+        return Ok(PathBuf::from(format!("{}:{}", &path[1..2], &path[3..])));
+    }
     Ok(PathBuf::from(path))
 }
 
@@ -43,5 +56,16 @@ mod tests {
         assert!(file_uri_to_path("http://example.org/x").unwrap_err().contains("not a file URI"));
         assert!(file_uri_to_path("/tmp/x").is_err());
         assert!(file_uri_to_path("file:///tmp/%zz").unwrap_err().contains("percent-escape"));
+    }
+
+    #[test]
+    fn windows_drive_letters() {
+        assert_eq!(uri_to_path("file:///C:/Users/a%20b/resources/", true).unwrap(), PathBuf::from("C:/Users/a b/resources/"));
+        assert_eq!(uri_to_path("file:/Z:/tmp/x", true).unwrap(), PathBuf::from("Z:/tmp/x"));
+        assert_eq!(uri_to_path("file:///c|/x", true).unwrap(), PathBuf::from("c:/x"));
+        assert_eq!(uri_to_path("file:///C:", true).unwrap(), PathBuf::from("C:"));
+        // Not a drive: left alone; and elsewhere than Windows `/C:/x` is an ordinary path.
+        assert_eq!(uri_to_path("file:///CD:/x", true).unwrap(), PathBuf::from("/CD:/x"));
+        assert_eq!(uri_to_path("file:///C:/x", false).unwrap(), PathBuf::from("/C:/x"));
     }
 }

@@ -13,6 +13,7 @@ use super::{Branch, Evaluation, NormalLaw};
 use crate::error::ParamError;
 use crate::scene::NoOptions;
 use std::f64::consts::PI;
+use crate::numeric::cbrt;
 
 /// The JKR curve of one radius of curvature: all the geometry Thornton-Ning and the JKR laws share.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -34,8 +35,8 @@ pub struct JkrCurve {
 impl JkrCurve {
     pub fn new(radius: f64, youngs_modulus: f64, surface_energy: f64) -> JkrCurve {
         let b = (2.0 * PI * surface_energy / youngs_modulus).sqrt();
-        let w_detach = (b * radius / 4.0).cbrt();
-        let a_pull_off = (9.0 * PI * surface_energy * radius * radius / (8.0 * youngs_modulus)).cbrt();
+        let w_detach = cbrt(b * radius / 4.0);
+        let a_pull_off = cbrt(9.0 * PI * surface_energy * radius * radius / (8.0 * youngs_modulus));
         let mut c = JkrCurve { radius, youngs_modulus, surface_energy, b, w_detach, alpha_detach: 0.0, a_pull_off, alpha_pull_off: 0.0 };
         c.alpha_detach = c.overlap(w_detach * w_detach);
         c.alpha_pull_off = c.overlap(a_pull_off);
@@ -109,7 +110,7 @@ impl JkrCurve {
         let q = 0.125 * (self.b * r).powi(2);
         let disc = 0.25 * q * q + (p / 3.0).powi(3);
         let m = if disc >= 0.0 {
-            let u = (0.5 * q + disc.sqrt()).cbrt();
+            let u = cbrt(0.5 * q + disc.sqrt());
             let m = u - p / (3.0 * u);
             // m = q / (m^2 + p) is the same root without the cancellation of u - p/(3u) when p is large.
             if m * m + p > 0.0 {

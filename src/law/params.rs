@@ -5,6 +5,7 @@ use crate::error::ParamError;
 use super::nan::{AdhesiveStiffnessLaw, NanOptions, PullOffLaw, UnloadingStiffnessLaw};
 use crate::scene::{Partner, Range, Scene, YieldCorrelation};
 use std::f64::consts::PI;
+use crate::numeric::cbrt;
 
 crate::scene_options! {
     /// The stiffnesses several laws share (nan, the Pasha laws, linear, walton_braun, luding): given, or
@@ -135,7 +136,7 @@ pub fn f_y(r: f64, e: f64, p_y: f64, k_el: f64) -> f64 {
 
 /// W_JKR = 7.09 (Gamma^5 R*^4 / E*^2)^(1/3) (000 Eq. 37).
 pub fn w_jkr(gamma: f64, r: f64, e: f64) -> f64 {
-    7.09 * (gamma.powi(5) * r.powi(4) / (e * e)).cbrt()
+    7.09 * cbrt(gamma.powi(5) * r.powi(4) / (e * e))
 }
 
 /// k_el / k_cl by 000 Eq. 36 (W_0 = W_JKR). Errors when the denominator is not positive.
@@ -147,12 +148,12 @@ pub fn kel_over_kcl_exact(f_ce: f64, k_el: f64, w_jkr: f64) -> Option<f64> {
 
 /// k_el / k_cl by the approximation 000 Eq. 38.
 pub fn kel_over_kcl_approx(k_el: f64, gamma: f64, e: f64, r: f64) -> f64 {
-    0.92 * k_el / (gamma.cbrt() * (e * e * r * r).cbrt()) - 0.3
+    0.92 * k_el / (cbrt(gamma) * cbrt(e * e * r * r)) - 0.3
 }
 
 /// Stiffness of Hertz-JKR at alpha = 0: (16 pi / 27)^(1/3) (Gamma E*^2 R*^2)^(1/3) (000 Eqs. 40, B7).
 pub fn k_hjkr_at_zero(gamma: f64, e: f64, r: f64) -> f64 {
-    (16.0 * PI / 27.0).cbrt() * (gamma * e * e * r * r).cbrt()
+    cbrt(16.0 * PI / 27.0) * cbrt(gamma * e * e * r * r)
 }
 
 /// Hertz stiffness 2 E* sqrt(R* alpha) (000 Eq. 41).

@@ -14,6 +14,8 @@
 //! 004 Eqs. 4.27-4.28, 3.49, 3.75, 003 Eq. 10). When sliding, the force is scaled back onto the limit
 //! and no tangential damping acts (000 Sec. 2.2).
 
+use crate::numeric::cbrt;
+
 /// Which stiffness model a law uses (`LawInfo::TANGENTIAL`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum TangentialModel {
@@ -48,7 +50,7 @@ impl TangentialStiffness {
                 8.0 * shear_modulus * contact_radius.unwrap_or_else(|| (radius * alpha.max(0.0)).sqrt())
             }
             TangentialStiffness::Tomas { shear_modulus, radius, youngs_modulus } => {
-                let r_k = (3.0 * radius * adhesive_load.max(0.0) / (4.0 * youngs_modulus)).cbrt();
+                let r_k = cbrt(3.0 * radius * adhesive_load.max(0.0) / (4.0 * youngs_modulus));
                 4.0 * shear_modulus * r_k
             }
         }

@@ -22,6 +22,7 @@ use crate::error::ParamError;
 use crate::numeric::brent;
 use crate::scene::NoOptions;
 use std::f64::consts::PI;
+use crate::numeric::cbrt;
 
 #[derive(Debug, Clone, PartialEq)]
 pub struct ThorntonNing {
@@ -168,7 +169,7 @@ impl NormalLaw for ThorntonNing {
         }
         let flat = h.flat;
         // f = 0 where F_H = 4 f_c (000 Eq. B9): a^3 = 3 R_p f_c / E*.
-        let a0 = (3.0 * flat.radius * flat.pull_off_force() / self.curve.youngs_modulus).cbrt();
+        let a0 = cbrt(3.0 * flat.radius * flat.pull_off_force() / self.curve.youngs_modulus);
         h.alpha_p + flat.overlap(a0)
     }
 

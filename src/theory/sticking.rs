@@ -5,6 +5,7 @@ use super::work::work_terms;
 use crate::law::nan::Nan;
 use crate::numeric::brent;
 use std::f64::consts::PI;
+use crate::numeric::cbrt;
 
 /// The characteristic velocities of one particle-wall pair.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -76,7 +77,7 @@ pub fn sticking_velocities(law: &Nan, mass: f64) -> StickingVelocities {
 
 /// The closed form of Eq. 73: V_s = 1.84 (Gamma/R)^(5/6) / (rho^(1/2) E*^(1/3)).
 pub fn jkr_sticking_velocity_closed(gamma: f64, radius: f64, density: f64, youngs_modulus: f64) -> f64 {
-    1.84 * (gamma / radius).powf(5.0 / 6.0) / (density.sqrt() * youngs_modulus.cbrt())
+    1.84 * (gamma / radius).powf(5.0 / 6.0) / (density.sqrt() * cbrt(youngs_modulus))
 }
 
 /// The closed form of Eq. 74 (with k_el by Eq. 52): V_y0 = (pi / (2 E*))^2 (2 / (5 rho))^(1/2) p_y^(5/2).
@@ -87,7 +88,7 @@ pub fn yield_velocity_closed(youngs_modulus: f64, density: f64, yield_pressure: 
 /// The yield pressure below which f_y < f_0 (adhesion-induced plasticity) with k_el by Eq. 52:
 /// p_y = 2 / pi^(2/3) (5/6)^(1/6) (Gamma / (E* R*))^(1/3) E* (000 Eq. 80) [Pa].
 pub fn critical_yield_pressure(gamma: f64, youngs_modulus: f64, radius: f64) -> f64 {
-    2.0 / PI.powf(2.0 / 3.0) * (5.0f64 / 6.0).powf(1.0 / 6.0) * (gamma / (youngs_modulus * radius)).cbrt() * youngs_modulus
+    2.0 / PI.powf(2.0 / 3.0) * (5.0f64 / 6.0).powf(1.0 / 6.0) * cbrt(gamma / (youngs_modulus * radius)) * youngs_modulus
 }
 
 /// Cohesion-yield number CY = p_y^3 R* / (E*^2 Gamma) (000 Eq. 81).
