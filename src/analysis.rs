@@ -11,48 +11,116 @@ use crate::theory::sticking::{cohesion_yield_number, critical_yield_pressure, st
 use crate::theory::time_step::{critical_time_step, rayleigh_time_step};
 use serde_json::{json, Map, Value};
 
-/// One output of `analyze`: key, unit and meaning.
+/// One output of `analyze`: key, unit, the law or group it belongs to, and meaning.
 pub struct Output {
     pub name: &'static str,
     pub unit: &'static str,
+    pub group: Group,
     pub doc: &'static str,
+}
+
+/// Which law or part of the analysis a value belongs to: the text output's sections.
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub enum Group {
+    /// The pair of surfaces, whatever the law.
+    Pair,
+    /// Nan's law (000 Secs. 2-4) for these materials, whatever the active law.
+    Nan,
+    /// Thornton and Ning's yield (000 Eqs. 30-31).
+    ThorntonNing,
+    /// JKR (000 Eq. 37, 73; App. B), which needs no yield pressure.
+    Jkr,
+    /// The active law (`contact_model`).
+    Active,
+    /// Time steps.
+    TimeStep,
+    /// With --velocity: one undamped impact of the active law.
+    Impact,
+}
+
+impl Group {
+    pub fn title(self, model: &str) -> String {
+        match self {
+            Group::Pair => "the pair (000 Sec. 3, whatever the law)".into(),
+            Group::Nan => "Nan's law for these materials (000 Secs. 2-4)".into(),
+            Group::ThorntonNing => "Thornton-Ning yield (000 Eqs. 30-31)".into(),
+            Group::Jkr => "JKR (000 Eqs. 37, 73)".into(),
+            Group::Active => format!("the active law, {model}"),
+            Group::TimeStep => "time steps".into(),
+            Group::Impact => format!("one undamped impact of {model} (energy balance)"),
+        }
+    }
 }
 
 /// Every number `analyze` prints.
 pub const OUTPUTS: &[Output] = &[
-    Output { name: "reduced_radius", unit: "m", doc: "R* (R for a wall, R/2 for an identical particle)" },
-    Output { name: "effective_mass", unit: "kg", doc: "m* (m for a wall)" },
-    Output { name: "effective_modulus", unit: "Pa", doc: "E*, 1/E* = (1-nu1^2)/E1 + (1-nu2^2)/E2 (004 Eq. 3.15)" },
-    Output { name: "effective_shear_modulus", unit: "Pa", doc: "G*, 1/G* = (2-nu1)/G1 + (2-nu2)/G2" },
-    Output { name: "yield_pressure", unit: "Pa", doc: "p_y = min(p_y1, p_y2) after 000 Eqs. 32-34" },
-    Output { name: "f_ce", unit: "N", doc: "JKR pull-off force 1.5 pi Gamma R* (000 Eq. 5)" },
-    Output { name: "f_0", unit: "N", doc: "8/9 f_ce, the drop at first contact (000 Eq. 4)" },
-    Output { name: "k_el", unit: "N/m", doc: "elastic stiffness before yield (000 Eq. 52, 45 or given)" },
-    Output { name: "k_cl", unit: "N/m", doc: "adhesive stiffness before yield (000 Eq. 36 or 38)" },
-    Output { name: "k_p", unit: "N/m", doc: "plastic stiffness" },
-    Output { name: "f_y", unit: "N", doc: "yield force (000 Eq. 28)" },
-    Output { name: "alpha_y", unit: "m", doc: "yield overlap (000 Eq. 29)" },
-    Output { name: "alpha_0", unit: "m", doc: "zero-force overlap before yield f_0/k_el (000 Eq. 6)" },
-    Output { name: "f_y0", unit: "N", doc: "Thornton-Ning yield force (000 Eq. 30)" },
-    Output { name: "alpha_y0", unit: "m", doc: "Thornton-Ning yield overlap (000 Eq. 31)" },
-    Output { name: "hertz_stiffness_at_yield", unit: "N/m", doc: "2 E* sqrt(R* alpha_y) (000 Eq. 41; Table 3's k_H)" },
-    Output { name: "w_jkr", unit: "J", doc: "JKR adhesion work 7.09 (Gamma^5 R*^4/E*^2)^(1/3) (000 Eq. 37)" },
-    Output { name: "jkr_sticking_velocity", unit: "m/s", doc: "V_s = (2 W_JKR / m*)^(1/2) (000 Eq. 73); needs no yield pressure" },
-    Output { name: "yield_velocity", unit: "m/s", doc: "V_y0, yield velocity without cohesion (000 Eq. 74)" },
-    Output { name: "adhesive_yield_velocity", unit: "m/s", doc: "V_y (000 Eq. 75); null when f_y < f_0 (adhesion-induced plasticity)" },
-    Output { name: "sticking_velocity", unit: "m/s", doc: "the active law's sticking velocity, undamped: the smallest impact speed at which the sphere rebounds (nan: 000 Eqs. 77-79; other laws: bisection on the energy balance to 1e-12); 0 if it never sticks" },
-    Output { name: "nan_sticking_velocity", unit: "m/s", doc: "V_ys of the Nan law for these materials, whatever the active law (000 Eqs. 77-79)" },
-    Output { name: "critical_yield_pressure", unit: "Pa", doc: "p_y below which f_y < f_0 with k_el by Eq. 52 (000 Eq. 80)" },
-    Output { name: "cohesion_yield_number", unit: "-", doc: "CY = p_y^3 R* / (E*^2 Gamma) (000 Eq. 81)" },
-    Output { name: "rayleigh_time_step", unit: "s", doc: "Rayleigh time step of the particle (000 Eq. 71)" },
-    Output { name: "critical_time_step", unit: "s", doc: "2 sqrt(m*/k_el) (000 Eq. 68)" },
-    Output { name: "pull_off_force_fresh", unit: "N", doc: "the active law's pull-off force before any loading" },
-    Output { name: "impact_velocity", unit: "m/s", doc: "with --velocity: the impact speed asked for" },
-    Output { name: "max_overlap", unit: "m", doc: "with --velocity: largest overlap of the undamped impact (active law)" },
-    Output { name: "max_force", unit: "N", doc: "with --velocity: largest force of the undamped impact (active law)" },
-    Output { name: "rebound_velocity", unit: "m/s", doc: "with --velocity: rebound speed by energy balance (active law), 0 if it sticks" },
-    Output { name: "restitution", unit: "-", doc: "with --velocity: rebound / impact velocity (active law)" },
+    Output { name: "reduced_radius", unit: "m", group: Group::Pair, doc: "R* (R for a wall, R/2 for an identical particle)" },
+    Output { name: "effective_mass", unit: "kg", group: Group::Pair, doc: "m* (m for a wall)" },
+    Output { name: "effective_modulus", unit: "Pa", group: Group::Pair, doc: "E*, 1/E* = (1-nu1^2)/E1 + (1-nu2^2)/E2 (004 Eq. 3.15)" },
+    Output { name: "effective_shear_modulus", unit: "Pa", group: Group::Pair, doc: "G*, 1/G* = (2-nu1)/G1 + (2-nu2)/G2" },
+    Output { name: "yield_pressure", unit: "Pa", group: Group::Pair, doc: "p_y = min(p_y1, p_y2) after 000 Eqs. 32-34" },
+    Output { name: "f_ce", unit: "N", group: Group::Pair, doc: "JKR pull-off force 1.5 pi Gamma R* (000 Eq. 5)" },
+    Output { name: "f_0", unit: "N", group: Group::Pair, doc: "8/9 f_ce, the drop at first contact (000 Eq. 4)" },
+    Output { name: "k_el", unit: "N/m", group: Group::Nan, doc: "elastic stiffness before yield (000 Eq. 52, 45 or given)" },
+    Output { name: "k_cl", unit: "N/m", group: Group::Nan, doc: "adhesive stiffness before yield (000 Eq. 36 or 38)" },
+    Output { name: "k_p", unit: "N/m", group: Group::Nan, doc: "plastic stiffness" },
+    Output { name: "f_y", unit: "N", group: Group::Nan, doc: "yield force (000 Eq. 28)" },
+    Output { name: "alpha_y", unit: "m", group: Group::Nan, doc: "yield overlap (000 Eq. 29)" },
+    Output { name: "alpha_0", unit: "m", group: Group::Nan, doc: "zero-force overlap before yield f_0/k_el (000 Eq. 6)" },
+    Output { name: "f_y0", unit: "N", group: Group::ThorntonNing, doc: "Thornton-Ning yield force (000 Eq. 30)" },
+    Output { name: "alpha_y0", unit: "m", group: Group::ThorntonNing, doc: "Thornton-Ning yield overlap (000 Eq. 31)" },
+    Output { name: "hertz_stiffness_at_yield", unit: "N/m", group: Group::Nan, doc: "2 E* sqrt(R* alpha_y) (000 Eq. 41; Table 3's k_H)" },
+    Output { name: "w_jkr", unit: "J", group: Group::Jkr, doc: "JKR adhesion work 7.09 (Gamma^5 R*^4/E*^2)^(1/3) (000 Eq. 37)" },
+    Output { name: "jkr_sticking_velocity", unit: "m/s", group: Group::Jkr, doc: "V_s = (2 W_JKR / m*)^(1/2) (000 Eq. 73); needs no yield pressure" },
+    Output { name: "yield_velocity", unit: "m/s", group: Group::Nan, doc: "V_y0, yield velocity without cohesion (000 Eq. 74)" },
+    Output { name: "adhesive_yield_velocity", unit: "m/s", group: Group::Nan, doc: "V_y (000 Eq. 75); null when f_y < f_0 (adhesion-induced plasticity)" },
+    Output { name: "sticking_velocity", unit: "m/s", group: Group::Active, doc: "the active law's sticking velocity, undamped: the smallest impact speed at which the sphere rebounds (nan: 000 Eqs. 77-79; other laws: bisection on the energy balance to 1e-12); 0 if it never sticks" },
+    Output { name: "nan_sticking_velocity", unit: "m/s", group: Group::Nan, doc: "V_ys of the Nan law for these materials, whatever the active law (000 Eqs. 77-79)" },
+    Output { name: "critical_yield_pressure", unit: "Pa", group: Group::Nan, doc: "p_y below which f_y < f_0 with k_el by Eq. 52 (000 Eq. 80)" },
+    Output { name: "cohesion_yield_number", unit: "-", group: Group::Nan, doc: "CY = p_y^3 R* / (E*^2 Gamma) (000 Eq. 81)" },
+    Output { name: "rayleigh_time_step", unit: "s", group: Group::TimeStep, doc: "Rayleigh time step of the particle (000 Eq. 71)" },
+    Output { name: "critical_time_step", unit: "s", group: Group::TimeStep, doc: "2 sqrt(m*/k_el) (000 Eq. 68)" },
+    Output { name: "pull_off_force_fresh", unit: "N", group: Group::Active, doc: "the active law's pull-off force before any loading" },
+    Output { name: "adhesion_induced_plasticity", unit: "-", group: Group::Nan, doc: "f_y < f_0: the contact yields at first touch, from adhesion alone (000 Sec. 4)" },
+    Output { name: "yields_at_sticking", unit: "-", group: Group::Nan, doc: "whether an impact at the sticking velocity yields (000 Sec. 4)" },
+    Output { name: "impact_velocity", unit: "m/s", group: Group::Impact, doc: "with --velocity: the impact speed asked for" },
+    Output { name: "max_overlap", unit: "m", group: Group::Impact, doc: "with --velocity: largest overlap of the undamped impact (active law)" },
+    Output { name: "max_force", unit: "N", group: Group::Impact, doc: "with --velocity: largest force of the undamped impact (active law)" },
+    Output { name: "rebound_velocity", unit: "m/s", group: Group::Impact, doc: "with --velocity: rebound speed by energy balance (active law), 0 if it sticks" },
+    Output { name: "restitution", unit: "-", group: Group::Impact, doc: "with --velocity: rebound / impact velocity (active law)" },
+    Output { name: "sticks", unit: "-", group: Group::Impact, doc: "with --velocity: whether the sphere sticks" },
 ];
+
+/// The analysis as text for people: each value with its unit beside it, in sections by the law it
+/// belongs to (`Group`), then the notes. `analyze --json` prints the same values as JSON.
+pub fn to_text(v: &Value) -> String {
+    let model = v["contact_model"].as_str().unwrap_or("?");
+    let mut out = format!("contact_model: {model}\n");
+    for group in [Group::Pair, Group::Active, Group::Nan, Group::ThorntonNing, Group::Jkr, Group::TimeStep, Group::Impact] {
+        let rows: Vec<&Output> = OUTPUTS.iter().filter(|o| o.group == group && v.get(o.name).is_some()).collect();
+        if rows.is_empty() {
+            continue;
+        }
+        out += &format!("\n{}\n", group.title(model));
+        for o in rows {
+            let value = match &v[o.name] {
+                Value::Number(n) if o.unit == "-" => format!("{:.5e}", n.as_f64().unwrap_or(f64::NAN)),
+                Value::Number(n) => format!("{:.5e} {}", n.as_f64().unwrap_or(f64::NAN), o.unit),
+                Value::Bool(b) => (if *b { "yes" } else { "no" }).to_string(),
+                Value::Null => "none".to_string(),
+                other => other.to_string(),
+            };
+            out += &format!("  {:<28} {:<20} {}\n", o.name, value, o.doc);
+        }
+    }
+    if let Some(notes) = v["notes"].as_array() {
+        out += "\nnotes\n";
+        for n in notes {
+            out += &format!("  - {}\n", n.as_str().unwrap_or_default());
+        }
+    }
+    out
+}
 
 /// The largest impact speed searched for a sticking velocity [m/s].
 const MAX_STICKING_SEARCH: f64 = 1e4;

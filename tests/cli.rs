@@ -37,7 +37,7 @@ fn table6_through_analyze_within_1_percent() {
     for (p_y, v_ys) in [(25e6, [1.51, 2.25, 3.4, 4.76]), (30e6, [1.24, 1.86, 2.83, 3.96])] {
         for (i, r) in radii.iter().enumerate() {
             let path = write_scene(&format!("t6_{i}_{p_y}.json"), &table5(*r, p_y));
-            let (code, out, err) = run(&["analyze", path.to_str().unwrap()]);
+            let (code, out, err) = run(&["analyze", "--json", path.to_str().unwrap()]);
             assert_eq!(code, 0, "{err}");
             let v: Value = serde_json::from_str(&out).unwrap();
             let got_vs = v["jkr_sticking_velocity"].as_f64().unwrap();
@@ -52,7 +52,7 @@ fn table6_through_analyze_within_1_percent() {
 #[test]
 fn analyze_prints_every_required_key_with_its_unit() {
     let path = write_scene("keys.json", &table5(2.45e-6, 30e6));
-    let (code, out, _) = run(&["analyze", path.to_str().unwrap(), "--velocity", "3"]);
+    let (code, out, _) = run(&["analyze", "--json", path.to_str().unwrap(), "--velocity", "3"]);
     assert_eq!(code, 0);
     let v: Value = serde_json::from_str(&out).unwrap();
     for key in [
@@ -160,7 +160,7 @@ fn restitution_curve_finds_the_analyzed_sticking_velocity() {
     assert!(lines[0].starts_with("impact_velocity_m_per_s,rebound_velocity_m_per_s,restitution"));
     assert_eq!(lines.len(), 1 + 6 + 1);
     let v_energy: f64 = lines[7].split('=').nth(1).unwrap().trim().parse().unwrap();
-    let (_, json_out, _) = run(&["analyze", p]);
+    let (_, json_out, _) = run(&["analyze", "--json", p]);
     let v: Value = serde_json::from_str(&json_out).unwrap();
     let v_theory = v["sticking_velocity"].as_f64().unwrap();
     // Two independent routes: the closed form of 000 Eqs. 78-79 and the integral of the law's force.
@@ -184,7 +184,7 @@ fn curve_walks_load_unload_and_detachment() {
 
 fn analyze(name: &str, scene: &Value) -> Value {
     let path = write_scene(name, scene);
-    let (code, out, err) = run(&["analyze", path.to_str().unwrap()]);
+    let (code, out, err) = run(&["analyze", "--json", path.to_str().unwrap()]);
     assert_eq!(code, 0, "{err}");
     serde_json::from_str(&out).unwrap()
 }
@@ -306,5 +306,35 @@ fn curve_starts_where_asked() {
     let (_, out, _) = run(&["curve", scene.to_str().unwrap(), "--path", "2e-9", "--points", "2"]);
     let first: f64 = out.lines().nth(1).unwrap().split(',').next().unwrap().parse().unwrap();
     assert_eq!(first, 0.0, "by default the path starts at -2e-9 and its first state is halfway, at 0");
+}
+
+#[test]
+fn analyze_text_puts_each_unit_beside_its_value_under_its_law() {
+    let path = write_scene("text.json", &table5(2.45e-6, 30e6));
+    let (code, out, err) = run(&["analyze", path.to_str().unwrap(), "--velocity", "3"]);
+    assert_eq!(code, 0, "{err}");
+    let (_, json_out, _) = run(&["analyze", "--json", path.to_str().unwrap(), "--velocity", "3"]);
+    let v: Value = serde_json::from_str(&json_out).unwrap();
+    for o in OUTPUTS {
+        let Some(value) = v.get(o.name) else { continue };
+        let line = out.lines().find(|l| l.split_whitespace().next() == Some(o.name)).unwrap_or_else(|| panic!("no line for {}:\n{out}", o.name));
+        if let Some(x) = value.as_f64() {
+            let mut words = line.split_whitespace().skip(1);
+            let shown: f64 = words.next().unwrap().parse().unwrap();
+            assert!((shown - x).abs() <= 1e-5 * x.abs(), "{line}: {x}");
+            if o.unit != "-" {
+                assert_eq!(words.next(), Some(o.unit), "{line}");
+            }
+        }
+    }
+    // Sections by law: the Nan quantities under Nan's, V_s under JKR, the restitution under the impact.
+    let section = |key: &str| {
+        let at = out.find(&format!("  {key} ")).unwrap();
+        out[..at].lines().filter(|l| !l.starts_with(' ') && !l.is_empty()).last().unwrap().to_string()
+    };
+    assert!(section("k_el").starts_with("Nan's law"), "{}", section("k_el"));
+    assert!(section("jkr_sticking_velocity").starts_with("JKR"));
+    assert!(section("sticking_velocity").starts_with("the active law, nan"));
+    assert!(section("restitution").starts_with("one undamped impact of nan"));
 }
 

@@ -68,7 +68,7 @@ def sticking_velocity(fmu, lo=0.5, hi=5.0, rel=1e-4):
 
 
 def energy_balance(cli, v):
-    out = subprocess.run([cli, "analyze", SCENE, "--velocity", str(v)], check=True, capture_output=True, text=True).stdout
+    out = subprocess.run([cli, "analyze", "--json", SCENE, "--velocity", str(v)], check=True, capture_output=True, text=True).stdout
     return json.loads(out)
 
 

@@ -2,7 +2,7 @@
 //! (derive): every subcommand has `--help`, errors name the option, `completions` writes shell completions.
 
 use clap::{CommandFactory, Parser, Subcommand};
-use powderfmu::analysis::{analyze, OUTPUTS};
+use powderfmu::analysis::{analyze, to_text, OUTPUTS};
 use powderfmu::curves::{force_overlap_csv, restitution_csv};
 use powderfmu::scene::{Scene, KEYS};
 use std::path::{Path, PathBuf};
@@ -25,9 +25,12 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Derived parameters and closed-form results of a scene (JSON on stdout, with a `units` object)
+    /// Derived parameters and closed-form results of a scene, each with its unit, by law (--json: JSON)
     #[command(after_long_help = keys_help())]
     Analyze {
+        /// Print JSON (the values by key, and a `units` object with the unit of each) instead of text
+        #[arg(long)]
+        json: bool,
         /// The scene file (JSON object of scene keys, SI units)
         scene: PathBuf,
         /// Adds one undamped impact of the active law on the wall at this speed, by energy balance [m/s]
@@ -80,9 +83,13 @@ fn main() -> ExitCode {
         libc::signal(libc::SIGPIPE, libc::SIG_DFL);
     }
     let result = match Cli::parse().command {
-        Command::Analyze { scene, velocity } => {
+        Command::Analyze { scene, velocity, json } => {
             read_scene(&scene).and_then(|s| analyze(&s, velocity).map_err(|e| format!("{}: {e}", scene.display()))).map(|value| {
-                println!("{}", serde_json::to_string_pretty(&value).expect("a JSON value always serialises"));
+                if json {
+                    println!("{}", serde_json::to_string_pretty(&value).expect("a JSON value always serialises"));
+                } else {
+                    print!("{}", to_text(&value));
+                }
             })
         }
         Command::Curve { scene, path, start, points } => {
@@ -117,9 +124,9 @@ fn keys_help() -> String {
     for k in KEYS.iter() {
         s += &format!("  {:<32} [{}] default {}, allowed {}\n      {}\n", k.name, k.unit, k.default_text(), k.allowed_text(), k.doc);
     }
-    s += "\nOUTPUT KEYS (the `units` object of the output repeats the unit of each)\n\n";
+    s += "\nOUTPUT KEYS (in the text, each value has its unit beside it; in --json the `units` object gives them)\n\n";
     for o in OUTPUTS {
-        s += &format!("  {:<32} [{}] {}\n", o.name, o.unit, o.doc);
+        s += &format!("  {:<32} [{}] {} ({})\n", o.name, o.unit, o.doc, o.group.title("the scene's contact_model"));
     }
     s
 }

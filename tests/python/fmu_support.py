@@ -206,7 +206,7 @@ class Cli:
                 json.dump(scene, f)
                 name = f.name
             try:
-                cmd = [str(self.path), "analyze", name]
+                cmd = [str(self.path), "analyze", "--json", name]
                 if velocity is not None:
                     cmd += ["--velocity", repr(float(velocity))]
                 run = subprocess.run(cmd, capture_output=True, text=True, timeout=60)
