@@ -330,7 +330,7 @@ fn analyze_text_puts_each_unit_beside_its_value_under_its_law() {
     // Sections by law: the Nan quantities under Nan's, V_s under JKR, the restitution under the impact.
     let section = |key: &str| {
         let at = out.find(&format!("  {key} ")).unwrap();
-        out[..at].lines().filter(|l| !l.starts_with(' ') && !l.is_empty()).next_back().unwrap().to_string()
+        out[..at].lines().rfind(|l| !l.starts_with(' ') && !l.is_empty()).unwrap().to_string()
     };
     assert!(section("k_el").starts_with("Nan's law"), "{}", section("k_el"));
     assert!(section("jkr_sticking_velocity").starts_with("JKR"));
