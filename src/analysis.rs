@@ -147,6 +147,22 @@ fn active_sticking_velocity(law: &AnyLaw, mass: f64, radius: f64) -> Option<f64>
 /// Analyses a scene: derived parameters, closed-form results, and, with `velocity`, one undamped impact
 /// of the active law by energy balance.
 pub fn analyze(scene: &Scene, velocity: Option<f64>) -> Result<Value, ParamError> {
+    analyze_with(scene, velocity, true)
+}
+
+/// The derived parameters in one line, `name = value unit`, for the units' log at initialization: what
+/// every "0 = derive it" parameter became. Closed forms only (no energy-balance search).
+pub fn derived_line(scene: &Scene) -> Result<String, ParamError> {
+    let v = analyze_with(scene, None, false)?;
+    let items: Vec<String> = OUTPUTS
+        .iter()
+        .filter(|o| matches!(o.group, Group::Pair | Group::Nan | Group::ThorntonNing | Group::Jkr | Group::TimeStep))
+        .filter_map(|o| v.get(o.name).and_then(Value::as_f64).map(|x| if o.unit == "-" { format!("{} = {x:.6e}", o.name) } else { format!("{} = {x:.6e} {}", o.name, o.unit) }))
+        .collect();
+    Ok(format!("derived parameters ({}; Nan's law for these materials, 000 Sec. 3): {}", scene.contact_model.name(), items.join(", ")))
+}
+
+fn analyze_with(scene: &Scene, velocity: Option<f64>, search_active: bool) -> Result<Value, ParamError> {
     let law = AnyLaw::from_scene(scene)?;
     let eff = Effective::from_scene(scene)?;
     let mut out = Map::new();
@@ -210,8 +226,14 @@ pub fn analyze(scene: &Scene, velocity: Option<f64>) -> Result<Value, ParamError
         }
     };
     // The active law's sticking velocity: the Nan law's closed form, else the energy balance.
-    let sticking = if matches!(law, AnyLaw::Nan(_)) { nan_sticking } else { active_sticking_velocity(&law, eff.mass, eff.radius) };
-    if sticking.is_none() {
+    let sticking = if matches!(law, AnyLaw::Nan(_)) {
+        nan_sticking
+    } else if search_active {
+        active_sticking_velocity(&law, eff.mass, eff.radius)
+    } else {
+        None
+    };
+    if sticking.is_none() && search_active {
         notes.push(format!(
             "sticking_velocity of {} not found: the sphere sticks at every speed up to {MAX_STICKING_SEARCH} m/s, or 000 Eq. 78 has no root",
             scene.contact_model.name()

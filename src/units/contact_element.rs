@@ -71,6 +71,8 @@ pub struct ContactElement {
     contact: Option<Contact>,
     gap: f64,
     work: f64,
+    /// Messages for the logEvents category (the derived parameters at initialization).
+    events: Vec<String>,
 }
 
 #[derive(Serialize, Deserialize)]
@@ -86,6 +88,7 @@ impl ContactElement {
             contact: None,
             gap: 0.0,
             work: 0.0,
+            events: Vec::new(),
         }
     }
 
@@ -119,7 +122,12 @@ impl Model for ContactElement {
         contact.accept(alpha, rate);
         self.contact = Some(contact);
         self.work = 0.0;
+        self.events.extend(contact_parts::derived_event(&self.variables, values));
         Ok(())
+    }
+
+    fn take_events(&mut self) -> Vec<String> {
+        std::mem::take(&mut self.events)
     }
 
     fn compute(&mut self, values: &mut [Value], between_events: bool) {

@@ -20,6 +20,12 @@ pub fn build(variables: &[Variable], values: &[Value], rate_nominal: f64) -> Res
     Ok((Contact::new(law, damping, 1e-3 * eff.radius, rate_nominal), scene, eff))
 }
 
+/// What every "0 = derive it" parameter became, for the log (logEvents) at initialization.
+pub fn derived_event(variables: &[Variable], values: &[Value]) -> Option<String> {
+    let scene = scene_params::scene(variables, values).ok()?;
+    crate::analysis::derived_line(&scene).ok()
+}
+
 pub fn contact_state_output() -> Variable {
     Variable::output(
         "contact_state",

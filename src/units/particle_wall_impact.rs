@@ -113,6 +113,8 @@ pub struct ParticleWallImpact {
     cs_wall: Option<(f64, f64)>,
     /// ME: the wall inputs as last seen and the time they were first seen at (`SeenWall`).
     me_wall: Option<SeenWall>,
+    /// Messages for the logEvents category (the derived parameters at initialization).
+    events: Vec<String>,
 }
 
 /// Model Exchange: between two updates of its inputs the wall moves on with its velocity input, from
@@ -153,6 +155,7 @@ impl ParticleWallImpact {
             t: 0.0,
             cs_wall: None,
             me_wall: None,
+            events: Vec::new(),
         }
     }
 
@@ -266,7 +269,12 @@ impl Model for ParticleWallImpact {
         sphere.accept(&wall, t0, &self.y);
         sphere.contact.max_overlap = f64::NEG_INFINITY;
         self.sphere = Some(sphere);
+        self.events.extend(contact_parts::derived_event(&self.variables, values));
         Ok(())
+    }
+
+    fn take_events(&mut self) -> Vec<String> {
+        std::mem::take(&mut self.events)
     }
 
     fn compute(&mut self, values: &mut [Value], between_events: bool) {

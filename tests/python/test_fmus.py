@@ -318,3 +318,27 @@ def test_wrong_guid_and_missing_resources_refuse_to_instantiate(impact, tmp_path
 def test_after_all_errors_a_new_simulation_runs(impact):
     r = run_impact(impact, 3.0)
     assert r["sphere_velocity"][-1] > 0
+
+
+@pytest.mark.parametrize("which", ["impact", "contact"])
+def test_derived_parameters_are_in_the_log_at_initialization(request, cli, which):
+    """A parameter left at 0 is derived ("0 means derive it"); the value it became is logged (logEvents)
+    at initialization, the same as `powderfmu analyze` gives."""
+    from fmpy.fmi2 import FMU2Slave
+
+    unit = request.getfixturevalue(which)
+    for given in (None, 400.0):
+        log = MessageLog()
+        fmu = FMU2Slave(guid=unit.md.guid, unzipDirectory=unit.unzipdir, modelIdentifier=unit.md.coSimulation.modelIdentifier, instanceName="derived")
+        fmu.instantiate(callbacks=log.callbacks, loggingOn=True)
+        start = {} if given is None else {"elastic_stiffness": given}
+        unit.initialize(fmu, start)
+        fmu.terminate()
+        fmu.freeInstance()
+        lines = [r.message for r in log.records if r.category == "logEvents" and r.message.startswith("derived parameters")]
+        assert len(lines) == 1, [r.message for r in log.records]
+        k_el = float(lines[0].split("k_el = ")[1].split(" N/m")[0])
+        expected = cli.analyze(unit.scene(start))["k_el"]
+        assert rel(k_el, expected) < 1e-6, (lines[0], expected)
+        if given is not None:
+            assert rel(k_el, given) < 1e-12
