@@ -248,6 +248,7 @@ fn a_closed_pipe_ends_the_tool_quietly() {
     let out = child.wait_with_output().unwrap();
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(!stderr.contains("panicked"), "{stderr}");
+    assert_eq!(out.status.code(), Some(0), "the tool exits 0 when its reader has gone: {:?}", out.status);
 }
 
 #[test]

@@ -75,12 +75,18 @@ enum Command {
 }
 
 fn main() -> ExitCode {
-    // A closed pipe (`powderfmu analyze --help | head`) ends the tool quietly, as it ends other Unix
-    // tools, instead of a panic on the next print. Rust sets SIGPIPE to "ignore" before main.
+    // A closed pipe (`powderfmu analyze --help | head -1`) ends the tool quietly with exit code 0: the
+    // reader has what it wanted. Rust sets SIGPIPE to "ignore" before main, and the next print would
+    // panic on the broken pipe.
     #[cfg(unix)]
-    // SAFETY: called once at the start of main, before any other thread exists.
+    // SAFETY: called once at the start of main, before any other thread exists; the handler only calls
+    // the async-signal-safe _exit.
     unsafe {
-        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+        extern "C" fn reader_gone(_: libc::c_int) {
+            // SAFETY: _exit is async-signal-safe.
+            unsafe { libc::_exit(0) }
+        }
+        libc::signal(libc::SIGPIPE, reader_gone as extern "C" fn(libc::c_int) as libc::sighandler_t);
     }
     let result = match Cli::parse().command {
         Command::Analyze { scene, velocity, json } => {
