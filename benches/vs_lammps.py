@@ -14,7 +14,11 @@ Each measurement is repeated (--repeats, default 3), alternating the two codes, 
 compared. Also printed: the 2-thread speed-up of powderfmu and the memory per particle of both.
 Results go to docs/figures/vs_lammps.csv; docs/benchmarks.md quotes them.
 
-Usage: bash benches/vs_lammps.sh [--steps N] [--repeats K]
+--compare BIN times a second powderfmu binary (an earlier build, kept aside) in the same alternation, on
+the same bed, so a change of the engine is measured against the code it replaces and against LAMMPS in
+one run; its rates go to the CSV's `compared_particle_steps_per_s` column.
+
+Usage: bash benches/vs_lammps.sh [--steps N] [--repeats K] [--compare BIN]
 """
 
 import argparse
@@ -76,9 +80,9 @@ ADHESIVE = {"jkr", "jkr_modified", "nan"}
 CONTACTS = {}  # force-carrying particle contacts per particle at the end of the last run of each model
 
 
-def powderfmu(model, steps, threads=1):
+def powderfmu(model, steps, threads=1, binary=BIN):
     gamma = GAMMA if model in ADHESIVE else 0.0
-    out = run([str(BIN), "bed", "bench", str(BED), "--model", model, "--steps", str(steps), "--threads", str(threads),
+    out = run([str(binary), "bed", "bench", str(BED), "--model", model, "--steps", str(steps), "--threads", str(threads),
                "--stiffness", str(KN), "--surface-energy", str(gamma), "--rolling-friction", "0"]).stdout
     fields = dict(kv.split("=", 1) for kv in out.split())
     CONTACTS[model] = float(fields["contacts_per_particle"])
@@ -114,7 +118,10 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--steps", type=int, default=2000)
     ap.add_argument("--repeats", type=int, default=3)
+    ap.add_argument("--compare", type=Path, help="a second powderfmu binary, timed alongside this build")
     args = ap.parse_args()
+    if args.compare is not None and not os.access(args.compare, os.X_OK):
+        sys.exit(f"vs_lammps: --compare {args.compare}: not an executable file")
     lmp = ensure_lammps()
     ensure_bed()
     version = run([lmp, "-h"]).stdout.splitlines()[1].strip() if run([lmp, "-h"]).stdout else "?"
@@ -125,29 +132,34 @@ def main():
                                ("Hertz-Mindlin", "hertz", ["hertz"]),
                                ("JKR + Mindlin", "jkr", ["jkr"]),
                                ("Nan", "nan", [])]:
-        mine, peer = [], {t: [] for t in theirs}
+        mine, peer, other = [], {t: [] for t in theirs}, []
         for _ in range(args.repeats):
             rate, dt, bytes_ours, n = powderfmu(ours, args.steps)
             mine.append(rate)
+            if args.compare is not None:
+                other.append(powderfmu(ours, args.steps, binary=args.compare)[0])
             for t in theirs:
                 rate_l, bytes_lammps, atoms = lammps(lmp, t, args.steps, dt, 200)
                 assert atoms == n, f"LAMMPS read {atoms} atoms, the bed has {n}"
                 peer[t].append(rate_l)
         x = statistics.median(mine)
         results[ours] = x
+        compared = f"{statistics.median(other):.4e}" if other else ""
+        if other:
+            print(f"{ours}: this build {x:.3e}, --compare build {statistics.median(other):.3e} particle-steps/s, ratio {x / statistics.median(other):.3f}")
         if theirs:
             best = max(theirs, key=lambda t: statistics.median(peer[t]))
             y = statistics.median(peer[best])
             print(f"{ours}: powderfmu {x:.3e}, LAMMPS {y:.3e} particle-steps/s, ratio {x / y:.2f}"
                   f"   ({name}; {CONTACTS[ours]:.2f} contacts per particle; LAMMPS {best}"
                   f"{'; ' + ', '.join(f'{t} {statistics.median(peer[t]):.3e}' for t in theirs) if len(theirs) > 1 else ''})")
-            rows.append([ours, name, f"{x:.4e}", f"{y:.4e}", f"{x / y:.3f}", best, f"{bytes_ours:.0f}", f"{bytes_lammps:.0f}", f"{dt:.4e}", f"{CONTACTS[ours]:.3f}"])
+            rows.append([ours, name, f"{x:.4e}", f"{y:.4e}", f"{x / y:.3f}", best, f"{bytes_ours:.0f}", f"{bytes_lammps:.0f}", f"{dt:.4e}", f"{CONTACTS[ours]:.3f}", compared])
         else:
             h = results["hertz"]
             per_contact = (x * CONTACTS[ours]) / (h * CONTACTS["hertz"])
             print(f"{ours}: powderfmu {x:.3e} particle-steps/s, powderfmu Hertz-Mindlin {h:.3e}, ratio {x / h:.2f}   ({name}, no LAMMPS equivalent;"
                   f" {CONTACTS[ours]:.2f} contacts per particle against Hertz's {CONTACTS['hertz']:.2f}: contact-steps per second, ratio {per_contact:.2f})")
-            rows.append([ours, name, f"{x:.4e}", f"{h:.4e}", f"{x / h:.3f}", "powderfmu hertz", f"{bytes_ours:.0f}", "", f"{dt:.4e}", f"{CONTACTS[ours]:.3f}"])
+            rows.append([ours, name, f"{x:.4e}", f"{h:.4e}", f"{x / h:.3f}", "powderfmu hertz", f"{bytes_ours:.0f}", "", f"{dt:.4e}", f"{CONTACTS[ours]:.3f}", compared])
     for model in ["jkr_modified", "hertz"]:
         one, two = [], []
         for _ in range(args.repeats):
@@ -155,13 +167,13 @@ def main():
             two.append(powderfmu(model, args.steps, 2)[0])
         speedup = statistics.median(two) / statistics.median(one)
         print(f"2-thread speed-up ({model}): {speedup:.2f} ({statistics.median(one):.3e} -> {statistics.median(two):.3e} particle-steps/s)")
-        rows.append([f"{model}_2_threads", "2-thread speed-up", f"{statistics.median(two):.4e}", f"{statistics.median(one):.4e}", f"{speedup:.3f}", "powderfmu 1 thread", "", "", "", ""])
+        rows.append([f"{model}_2_threads", "2-thread speed-up", f"{statistics.median(two):.4e}", f"{statistics.median(one):.4e}", f"{speedup:.3f}", "powderfmu 1 thread", "", "", "", "", ""])
     print(f"memory: powderfmu {rows[1][6]} bytes per particle (engine arrays, Hertz-Mindlin, 1 thread), LAMMPS {rows[1][7]} bytes per particle (its per-rank allocation)")
     out = ROOT / "docs" / "figures" / "vs_lammps.csv"
     with open(out, "w", newline="") as f:
         w = csv.writer(f)
         w.writerow(["model", "name", "powderfmu_particle_steps_per_s", "reference_particle_steps_per_s", "ratio", "reference",
-                    "powderfmu_bytes_per_particle", "lammps_bytes_per_particle", "dt_s", "contacts_per_particle"])
+                    "powderfmu_bytes_per_particle", "lammps_bytes_per_particle", "dt_s", "contacts_per_particle", "compared_particle_steps_per_s"])
         w.writerows(rows)
     print(f"written {out.relative_to(ROOT)}")
 
