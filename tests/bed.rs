@@ -8,7 +8,7 @@ use powderfmu::bed::particles::Particles;
 use powderfmu::bed::prepare::{self, bed_height, DIE, FLOOR};
 use powderfmu::bed::stress::{bagi, Region};
 use powderfmu::bed::walls::Wall;
-use powderfmu::bed::{AnyEngine, BedScene};
+use powderfmu::bed::{AnyEngine, BedScene, Vec3};
 use powderfmu::impact::{Contact, Solver, Sphere, State, WallMotion};
 use powderfmu::law::damping::NormalDamping;
 use powderfmu::law::params::Effective;
@@ -53,10 +53,10 @@ fn engine_collision(law: &Value, radius: f64, v: f64, rayleigh_fraction: f64) ->
     .unwrap();
     let mut p = Particles::default();
     let gap = 1e-3 * radius;
-    p.push([-(radius + gap), 0.0, 0.0], radius, scene.density, 0);
-    p.push([radius + gap, 0.0, 0.0], radius, scene.density, 0);
-    p.velocity[0] = [0.5 * v, 0.0, 0.0];
-    p.velocity[1] = [-0.5 * v, 0.0, 0.0];
+    p.push(Vec3::new(-(radius + gap), 0.0, 0.0), radius, scene.density, 0);
+    p.push(Vec3::new(radius + gap, 0.0, 0.0), radius, scene.density, 0);
+    p.velocity[0] = Vec3::new(0.5 * v, 0.0, 0.0);
+    p.velocity[1] = Vec3::new(-0.5 * v, 0.0, 0.0);
     let mut e = AnyEngine::build(&scene, p, vec![]).unwrap();
     let mut touched = false;
     for _ in 0..10_000_000 {
@@ -132,10 +132,10 @@ fn cloud(walls: Vec<Wall>) -> AnyEngine {
     for i in 0..6 {
         for j in 0..6 {
             for l in 0..6 {
-                p.push([i as f64 * 1.1e-3, j as f64 * 1.1e-3, l as f64 * 1.1e-3], 0.45e-3 + 0.05e-3 * next(), scene.density, 4);
+                p.push(Vec3::new(i as f64 * 1.1e-3, j as f64 * 1.1e-3, l as f64 * 1.1e-3), 0.45e-3 + 0.05e-3 * next(), scene.density, 4);
                 let n = p.len() - 1;
-                p.velocity[n] = [next(), next(), next()];
-                p.angular_velocity[n] = [100.0 * next(), 100.0 * next(), 100.0 * next()];
+                p.velocity[n] = Vec3::new(next(), next(), next());
+                p.angular_velocity[n] = Vec3::new(100.0 * next(), 100.0 * next(), 100.0 * next());
             }
         }
     }
@@ -163,12 +163,12 @@ fn momentum_is_conserved_to_round_off_without_walls() {
 fn in_a_closed_box_momentum_changes_only_by_the_walls_impulse() {
     let (lo, hi) = (-1.0e-3, 6.5e-3);
     let walls = vec![
-        Wall::plane("x-", [lo, 0.0, 0.0], [1.0, 0.0, 0.0]),
-        Wall::plane("x+", [hi, 0.0, 0.0], [-1.0, 0.0, 0.0]),
-        Wall::plane("y-", [0.0, lo, 0.0], [0.0, 1.0, 0.0]),
-        Wall::plane("y+", [0.0, hi, 0.0], [0.0, -1.0, 0.0]),
-        Wall::plane("z-", [0.0, 0.0, lo], [0.0, 0.0, 1.0]),
-        Wall::plane("z+", [0.0, 0.0, hi], [0.0, 0.0, -1.0]),
+        Wall::plane("x-", Vec3::new(lo, 0.0, 0.0), Vec3::new(1.0, 0.0, 0.0)),
+        Wall::plane("x+", Vec3::new(hi, 0.0, 0.0), Vec3::new(-1.0, 0.0, 0.0)),
+        Wall::plane("y-", Vec3::new(0.0, lo, 0.0), Vec3::new(0.0, 1.0, 0.0)),
+        Wall::plane("y+", Vec3::new(0.0, hi, 0.0), Vec3::new(0.0, -1.0, 0.0)),
+        Wall::plane("z-", Vec3::new(0.0, 0.0, lo), Vec3::new(0.0, 0.0, 1.0)),
+        Wall::plane("z+", Vec3::new(0.0, 0.0, hi), Vec3::new(0.0, 0.0, -1.0)),
     ];
     let mut e = cloud(walls);
     let p0 = e.particles().momentum();
@@ -215,7 +215,7 @@ fn consolidation_reaches_its_target_within_5_percent_in_the_piston_and_inside_th
     assert!(rel(inside, target) < 0.05, "Bagi sigma_zz {inside} Pa vs {target} Pa");
     // After unloading and relaxation the piston is clear, the bed is at rest and keeps a residual stress
     // far below the target.
-    assert_eq!(e.walls()[prepare::PISTON].force, [0.0; 3]);
+    assert_eq!(e.walls()[prepare::PISTON].force, Vec3::zeros());
     let h = bed_height(e.particles());
     let d = scene.size_distribution.mean_diameter();
     let after = bagi(&mut e, &Region { radius: 0.5 * scene.die_diameter - 2.0 * d, z_low: 0.25 * h, z_high: 0.75 * h }).get(2, 2);
@@ -268,9 +268,9 @@ fn a_settled_column_follows_janssen_saturation() {
     };
     settle(&mut e);
     let speed = 2e-3;
-    e.walls_mut()[FLOOR].velocity = [0.0, 0.0, -speed];
+    e.walls_mut()[FLOOR].velocity = Vec3::new(0.0, 0.0, -speed);
     e.run((0.1 * d / speed / e.dt()) as u64);
-    e.walls_mut()[FLOOR].velocity = [0.0; 3];
+    e.walls_mut()[FLOOR].velocity = Vec3::zeros();
     settle(&mut e);
     let h = bed_height(e.particles());
     let floor = e.walls()[FLOOR].force[2].abs();
@@ -362,7 +362,7 @@ fn contact_memory_survives_list_rebuilds_and_bed_files() {
     let d = scene.size_distribution.mean_diameter();
     let worst = again.particles().position.iter().zip(&every.particles().position).map(|(a, b)| (0..3).map(|c| (a[c] - b[c]).abs()).fold(0.0, f64::max)).fold(0.0, f64::max);
     assert!(worst < 1e-12 * d, "rebuilding at every step moved a sphere by {worst:e} m");
-    let springs = with_engine!(&every, x => x.spring.iter().filter(|s| **s != [0.0; 3]).count());
+    let springs = with_engine!(&every, x => x.spring.iter().filter(|s| **s != Vec3::zeros()).count());
     assert!(springs > 50, "the bed must have loaded tangential springs ({springs})");
     std::fs::remove_dir_all(&dir).unwrap();
 }
@@ -454,20 +454,20 @@ fn an_indenter_added_to_a_prepared_bed_keeps_every_contact_and_feels_the_bed() {
     let d = scene.size_distribution.mean_diameter();
     let top = bed_height(with.particles());
     let radius = 1.5 * d;
-    let springs = |e: &AnyEngine| with_engine!(e, x => x.spring.iter().filter(|s| **s != [0.0; 3]).count());
+    let springs = |e: &AnyEngine| with_engine!(e, x => x.spring.iter().filter(|s| **s != Vec3::zeros()).count());
     let loaded = springs(&with);
     assert!(loaded > 50, "the prepared bed must have loaded tangential springs ({loaded})");
     // Clear of the bed, the indenter changes nothing: every contact keeps its memory.
-    with.add_wall(&scene, Wall::sphere("indenter", [0.0, 0.0, top + radius + 0.5 * d], radius), &scene.particle_wall).unwrap();
+    with.add_wall(&scene, Wall::sphere("indenter", Vec3::new(0.0, 0.0, top + radius + 0.5 * d), radius), &scene.particle_wall).unwrap();
     assert_eq!(springs(&with), loaded, "adding a wall must keep every tangential spring");
     plain.run(300);
     with.run(300);
     let worst = plain.particles().position.iter().zip(&with.particles().position).map(|(a, b)| (0..3).map(|c| (a[c] - b[c]).abs()).fold(0.0, f64::max)).fold(0.0, f64::max);
     assert!(worst < 1e-12 * d, "an indenter clear of the bed moved a sphere by {worst:e} m");
-    assert_eq!(with.walls().last().unwrap().force, [0.0; 3]);
+    assert_eq!(with.walls().last().unwrap().force, Vec3::zeros());
     // Lowered into the bed by 0.3 d, it is pushed back up.
     let v = 0.02;
-    with.walls_mut().last_mut().unwrap().velocity = [0.0, 0.0, -v];
+    with.walls_mut().last_mut().unwrap().velocity = Vec3::new(0.0, 0.0, -v);
     let steps = ((0.8 * d) / (v * with.dt())).ceil() as u64;
     with.run(steps);
     let force = with.walls().last().unwrap().force;

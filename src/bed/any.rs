@@ -119,7 +119,7 @@ fn make<L: BedLaw>(scene: &BedScene, particles: Particles, walls: Vec<Wall>) -> 
     let reach = pairs.iter().chain(wall_pairs.iter().flatten()).map(|it| it.reach).fold(0.0, f64::max);
     let skin = scene.skin.unwrap_or(0.1 * scene.size_distribution.mean_diameter()).max(2.0 * reach);
     let species = scene.species().len();
-    Ok(Engine::new(particles, walls, pairs, wall_pairs, species, [0.0, 0.0, -scene.gravity], dt, skin, scene.threads)?)
+    Ok(Engine::new(particles, walls, pairs, wall_pairs, species, Vec3::new(0.0, 0.0, -scene.gravity), dt, skin, scene.threads)?)
 }
 
 impl AnyEngine {

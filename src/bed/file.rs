@@ -11,7 +11,7 @@ use super::interaction::BedLaw;
 use super::particles::Particles;
 use super::scene::BedScene;
 use super::walls::Wall;
-use super::Vec3;
+use super::{Vec3, ZERO};
 use crate::fmi2::saved_state::fnv1a;
 use std::io::Write;
 use std::path::Path;
@@ -53,7 +53,7 @@ impl<L: BedLaw> Engine<L> {
             let si = self.particles.species[i] as usize;
             for (k, &j) in (self.list.start[i] as usize..).zip(self.list.row(i)) {
                 let init = self.pairs[si * self.species + self.particles.species[j as usize] as usize].initial;
-                if self.normal[k] != init || self.spring[k] != [0.0; 3] || self.radius[k] != 0.0 {
+                if self.normal[k] != init || self.spring[k] != ZERO || self.radius[k] != 0.0 {
                     pairs.push((i as u32, j, self.normal[k], self.spring[k], self.radius[k]));
                 }
             }
@@ -66,7 +66,7 @@ impl<L: BedLaw> Engine<L> {
                 (0..wc.particle.len())
                     .filter(|&k| {
                         wc.normal[k] != self.wall_pairs[w][self.particles.species[wc.particle[k] as usize] as usize].initial
-                            || wc.spring[k] != [0.0; 3]
+                            || wc.spring[k] != ZERO
                             || wc.radius[k] != 0.0
                     })
                     .map(|k| (wc.particle[k], wc.normal[k], wc.spring[k], wc.radius[k]))
@@ -93,7 +93,7 @@ impl<L: BedLaw> Engine<L> {
             let slots = self.list.partner.len();
             let init = self.pairs[0].initial;
             self.normal.resize(slots, init);
-            self.spring.resize(slots, [0.0; 3]);
+            self.spring.resize(slots, ZERO);
             self.radius.resize(slots, 0.0);
         }
         for (w, list) in walls.iter().enumerate() {
@@ -104,7 +104,7 @@ impl<L: BedLaw> Engine<L> {
                         if i < n {
                             wc.particle.insert(k, i);
                             wc.normal.insert(k, init);
-                            wc.spring.insert(k, [0.0; 3]);
+                            wc.spring.insert(k, ZERO);
                             wc.radius.insert(k, 0.0);
                             grown = true;
                         }
@@ -122,14 +122,14 @@ impl<L: BedLaw> Engine<L> {
             for k in self.list.start[i] as usize..self.list.start[i + 1] as usize {
                 let b = self.particles.species[self.list.partner[k] as usize] as usize;
                 self.normal[k] = self.pairs[a * self.species + b].initial;
-                self.spring[k] = [0.0; 3];
+                self.spring[k] = ZERO;
                 self.radius[k] = 0.0;
             }
         }
         for (w, wc) in self.wall_contacts.iter_mut().enumerate() {
             for k in 0..wc.particle.len() {
                 wc.normal[k] = self.wall_pairs[w][self.particles.species[wc.particle[k] as usize] as usize].initial;
-                wc.spring[k] = [0.0; 3];
+                wc.spring[k] = ZERO;
                 wc.radius[k] = 0.0;
             }
         }

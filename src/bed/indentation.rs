@@ -24,6 +24,7 @@ use super::particles::Particles;
 use super::scene::BedScene;
 use super::stress::{bagi, Cuboid, Volume};
 use super::walls::Wall;
+use super::Vec3;
 use crate::error::ParamError;
 use serde_json::{Map, Value};
 use std::f64::consts::PI;
@@ -211,7 +212,7 @@ impl Indentation {
             .ok_or_else(|| BedError::Setup("no sphere of the bed lies under the indenter: nothing to indent".into()))?;
         let bottom = touch - start_depth;
         let pair = indenter_pair.unwrap_or(&scene.particle_wall);
-        engine.add_wall(&scene, Wall::sphere("indenter", [0.0, 0.0, bottom + r_i], r_i), pair)?;
+        engine.add_wall(&scene, Wall::sphere("indenter", Vec3::new(0.0, 0.0, bottom + r_i), r_i), pair)?;
         let indenter = engine.walls().len() - 1;
         if let Some(Shortcut { zone, release }) = setup.shortcut {
             if !(zone > 0.0 && zone.is_finite()) {
@@ -237,7 +238,7 @@ impl Indentation {
 
     fn set_indenter_velocity(&mut self, vz: f64) {
         let w = self.indenter;
-        self.engine.walls_mut()[w].velocity = [0.0, 0.0, vz];
+        self.engine.walls_mut()[w].velocity = Vec3::new(0.0, 0.0, vz);
     }
 
     /// Depth of the indenter's lowest point below the first touch [m].
@@ -451,7 +452,7 @@ struct Saved {
     time_step: f64,
     /// The spheres held by the shortcut, and the force on each when it was held.
     held: Vec<bool>,
-    held_reference: Vec<super::Vec3>,
+    held_reference: Vec<Vec3>,
 }
 
 /// h_c = h_0 - F_0 / S: where the tangent to the unloading curve at its start (h_0, F_0) = `points[0]`
@@ -494,13 +495,13 @@ mod tests {
     #[test]
     fn first_touch_of_a_sphere_on_a_sphere_below_it() {
         let mut p = Particles::default();
-        p.push([0.0, 0.0, 1e-3], 0.5e-3, 2500.0, 0);
-        p.push([3e-3, 0.0, 5e-3], 0.5e-3, 2500.0, 0); // beyond the indenter's reach
+        p.push(Vec3::new(0.0, 0.0, 1e-3), 0.5e-3, 2500.0, 0);
+        p.push(Vec3::new(3e-3, 0.0, 5e-3), 0.5e-3, 2500.0, 0); // beyond the indenter's reach
         let z = first_touch_height(&p, 2e-3).unwrap();
         assert!((z - 1.5e-3).abs() < 1e-15, "{z}");
         // Off axis by rho: the lowest point is below the sphere's top.
         let mut q = Particles::default();
-        q.push([1e-3, 0.0, 1e-3], 0.5e-3, 2500.0, 0);
+        q.push(Vec3::new(1e-3, 0.0, 1e-3), 0.5e-3, 2500.0, 0);
         let z = first_touch_height(&q, 2e-3).unwrap();
         assert!((z - (1e-3 - 2e-3 + (2.5e-3f64.powi(2) - 1e-6).sqrt())).abs() < 1e-15);
     }

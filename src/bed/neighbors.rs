@@ -131,9 +131,8 @@ impl NeighborList {
                             if (j as usize) <= i {
                                 continue;
                             }
-                            let d = super::sub(position[j as usize], xi);
                             let range = ri + radius[j as usize] + skin;
-                            if super::dot(d, d) < range * range {
+                            if (position[j as usize] - xi).norm_squared() < range * range {
                                 self.partner.push(j);
                             }
                         }
@@ -212,14 +211,14 @@ mod tests {
     fn finds_exactly_the_pairs_within_range() {
         let mut rng = crate::bed::random::Random::new(3);
         let n = 400;
-        let x: Vec<Vec3> = (0..n).map(|_| [rng.uniform() * 0.01, rng.uniform() * 0.01, rng.uniform() * 0.02]).collect();
+        let x: Vec<Vec3> = (0..n).map(|_| Vec3::new(rng.uniform() * 0.01, rng.uniform() * 0.01, rng.uniform() * 0.02)).collect();
         let r: Vec<f64> = (0..n).map(|_| 3e-4 + 4e-4 * rng.uniform()).collect();
         let mut list = NeighborList::new(1e-4);
         list.build(&x, &r);
         let mut brute = Vec::new();
         for i in 0..n {
             for j in i + 1..n {
-                let d = crate::bed::norm(crate::bed::sub(x[i], x[j]));
+                let d = (x[i] - x[j]).norm();
                 if d < r[i] + r[j] + 1e-4 {
                     brute.push((i as u32, j as u32));
                 }

@@ -40,8 +40,8 @@ impl Particles {
     pub fn push(&mut self, position: Vec3, radius: f64, density: f64, species: u16) {
         let mass = 4.0 / 3.0 * PI * radius.powi(3) * density;
         self.position.push(position);
-        self.velocity.push([0.0; 3]);
-        self.angular_velocity.push([0.0; 3]);
+        self.velocity.push(super::ZERO);
+        self.angular_velocity.push(super::ZERO);
         self.radius.push(radius);
         self.mass.push(mass);
         self.inv_mass.push(1.0 / mass);
@@ -72,18 +72,16 @@ impl Particles {
         for k in 0..self.len() {
             let v = self.velocity[k];
             let w = self.angular_velocity[k];
-            e += 0.5 * self.mass[k] * super::dot(v, v) + 0.5 / self.inv_inertia[k] * super::dot(w, w);
+            e += 0.5 * self.mass[k] * v.norm_squared() + 0.5 / self.inv_inertia[k] * w.norm_squared();
         }
         e
     }
 
     /// Total momentum [kg m/s].
     pub fn momentum(&self) -> Vec3 {
-        let mut p = [0.0; 3];
+        let mut p = super::ZERO;
         for k in 0..self.len() {
-            for c in 0..3 {
-                p[c] += self.mass[k] * self.velocity[k][c];
-            }
+            p += self.velocity[k] * self.mass[k];
         }
         p
     }

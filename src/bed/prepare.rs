@@ -8,6 +8,7 @@ use super::random::Random;
 use super::scene::BedScene;
 use super::stress::{bagi, Region, Stress};
 use super::walls::Wall;
+use super::{Vec3, ZERO};
 use std::f64::consts::PI;
 
 /// Progress of a long preparation, for a progress bar.
@@ -84,10 +85,10 @@ pub fn fill(scene: &BedScene) -> Result<Particles, BedError> {
     let nx = ((2.0 * die_r) / cell).ceil() as usize + 1;
     let nz = (height / cell).ceil() as usize + 1;
     let mut grid: Vec<Vec<u32>> = vec![Vec::new(); nx * nx * nz];
-    let key = |x: [f64; 3]| -> (usize, usize, usize) {
+    let key = |x: Vec3| -> (usize, usize, usize) {
         (((x[0] + die_r) / cell) as usize, ((x[1] + die_r) / cell) as usize, (x[2] / cell) as usize)
     };
-    let mut placed: Vec<([f64; 3], f64, u16)> = Vec::with_capacity(n);
+    let mut placed: Vec<(Vec3, f64, u16)> = Vec::with_capacity(n);
     for &s in &order {
         let r = 0.5 * psd.diameters[s];
         for _ in 0..counts[s] {
@@ -95,7 +96,7 @@ pub fn fill(scene: &BedScene) -> Result<Particles, BedError> {
             for _attempt in 0..5000 {
                 let rho = (die_r - r) * rng.uniform().sqrt();
                 let th = 2.0 * PI * rng.uniform();
-                let x = [rho * th.cos(), rho * th.sin(), r + (height - 2.0 * r) * rng.uniform()];
+                let x = Vec3::new(rho * th.cos(), rho * th.sin(), r + (height - 2.0 * r) * rng.uniform());
                 let (cx, cy, cz) = key(x);
                 let mut free = true;
                 'search: for z in cz.saturating_sub(1)..(cz + 2).min(nz) {
@@ -103,8 +104,7 @@ pub fn fill(scene: &BedScene) -> Result<Particles, BedError> {
                         for xx in cx.saturating_sub(1)..(cx + 2).min(nx) {
                             for &k in &grid[(z * nx + y) * nx + xx] {
                                 let (p, rp, _) = placed[k as usize];
-                                let d = super::sub(p, x);
-                                if super::dot(d, d) < (r + rp) * (r + rp) {
+                                if (p - x).norm_squared() < (r + rp) * (r + rp) {
                                     free = false;
                                     break 'search;
                                 }
@@ -146,9 +146,9 @@ pub fn fill(scene: &BedScene) -> Result<Particles, BedError> {
 /// The die: floor at z = 0, the cylinder, and the piston parked at the top of the die.
 pub fn die(scene: &BedScene) -> Vec<Wall> {
     vec![
-        Wall::plane("floor", [0.0; 3], [0.0, 0.0, 1.0]),
-        Wall::cylinder("die", [0.0; 3], 0.5 * scene.die_diameter),
-        Wall::plane("piston", [0.0, 0.0, scene.die_height], [0.0, 0.0, -1.0]),
+        Wall::plane("floor", ZERO, Vec3::z()),
+        Wall::cylinder("die", ZERO, 0.5 * scene.die_diameter),
+        Wall::plane("piston", Vec3::new(0.0, 0.0, scene.die_height), Vec3::new(0.0, 0.0, -1.0)),
     ]
 }
 
@@ -291,7 +291,7 @@ fn run_phases(mut e: AnyEngine, scene: &BedScene, done: &str, last: &str, fill_h
             let speed = scene.strain_rate * h0;
             let piston = &mut e.walls_mut()[PISTON];
             piston.position[2] = h0 + 0.02 * scene.size_distribution.mean_diameter();
-            piston.velocity = [0.0, 0.0, -speed];
+            piston.velocity = Vec3::new(0.0, 0.0, -speed);
         }
         let t0 = e.time();
         let mut steps = 0u64;
@@ -324,7 +324,7 @@ fn run_phases(mut e: AnyEngine, scene: &BedScene, done: &str, last: &str, fill_h
         }
         // The piston turns at once: a bed saved here says by its piston that it is consolidated.
         let speed = e.walls()[PISTON].velocity[2].abs();
-        e.walls_mut()[PISTON].velocity = [0.0, 0.0, speed];
+        e.walls_mut()[PISTON].velocity = Vec3::new(0.0, 0.0, speed);
         report.phases.push(("consolidate", e.time() - t0, steps));
     }
 
@@ -342,14 +342,14 @@ fn run_phases(mut e: AnyEngine, scene: &BedScene, done: &str, last: &str, fill_h
         while free_steps < 100 {
             e.step();
             steps += 1;
-            free_steps = if e.walls()[PISTON].force == [0.0; 3] { free_steps + 1 } else { 0 };
+            free_steps = if e.walls()[PISTON].force == ZERO { free_steps + 1 } else { 0 };
             if steps % REPORT_EVERY == 0 {
                 let sigma = piston_stress(&e, scene);
                 progress(&Progress { phase: "unload", fraction: overall("unload", 1.0 - sigma / report.consolidation_stress), time: e.time(), steps, detail: format!("piston stress {sigma:.4e} Pa"), bed: &e });
             }
         }
         e.walls_mut()[PISTON].position[2] += scene.size_distribution.mean_diameter();
-        e.walls_mut()[PISTON].velocity = [0.0; 3];
+        e.walls_mut()[PISTON].velocity = ZERO;
         // The jump ends the piston's contacts now, not at the next list rebuild, so a bed saved here
         // holds no contact out of range.
         e.rebuild();

@@ -45,7 +45,7 @@ pub fn cross_section(engine: &mut AnyEngine, die_diameter: f64, width: u32) -> R
     let stress: Vec<f64> = dipoles
         .iter()
         .zip(&radii)
-        .map(|(d, r)| (-d[8] / (4.0 / 3.0 * std::f64::consts::PI * r.powi(3))).max(0.0))
+        .map(|(d, r)| (-d[(2, 2)] / (4.0 / 3.0 * std::f64::consts::PI * r.powi(3))).max(0.0))
         .collect();
     let positive: Vec<f64> = stress.iter().cloned().filter(|s| *s > 0.0).collect();
     let high = positive.iter().cloned().fold(0.0, f64::max);

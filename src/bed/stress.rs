@@ -5,11 +5,12 @@
 //! deviatoric stresses are 004 Eqs. 5.2 and 5.3.
 
 use super::any::AnyEngine;
+use super::{Tensor, Vec3};
 
 /// A measurement volume: what it holds and how big it is.
 pub trait Volume {
     fn volume(&self) -> f64;
-    fn contains(&self, x: [f64; 3]) -> bool;
+    fn contains(&self, x: Vec3) -> bool;
 }
 
 /// A vertical cylinder about the die axis between two heights.
@@ -25,8 +26,8 @@ impl Volume for Region {
         std::f64::consts::PI * self.radius * self.radius * (self.z_high - self.z_low)
     }
 
-    fn contains(&self, x: [f64; 3]) -> bool {
-        x[0] * x[0] + x[1] * x[1] <= self.radius * self.radius && x[2] >= self.z_low && x[2] < self.z_high
+    fn contains(&self, x: Vec3) -> bool {
+        x.xy().norm_squared() <= self.radius * self.radius && x.z >= self.z_low && x.z < self.z_high
     }
 }
 
@@ -46,23 +47,23 @@ impl Volume for Cuboid {
         self.width_x * self.width_y * (self.z_high - self.z_low)
     }
 
-    fn contains(&self, x: [f64; 3]) -> bool {
-        2.0 * x[0].abs() <= self.width_x && 2.0 * x[1].abs() <= self.width_y && x[2] >= self.z_low && x[2] < self.z_high
+    fn contains(&self, x: Vec3) -> bool {
+        2.0 * x.x.abs() <= self.width_x && 2.0 * x.y.abs() <= self.width_y && x.z >= self.z_low && x.z < self.z_high
     }
 }
 
-/// Stress tensor [Pa], row-major (sigma_xx, sigma_xy, ..., sigma_zz).
+/// Stress tensor [Pa]; `get(i, j)` is sigma_ij with 0, 1, 2 for x, y, z.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Stress(pub [f64; 9]);
+pub struct Stress(pub Tensor);
 
 impl Stress {
     pub fn get(&self, i: usize, j: usize) -> f64 {
-        self.0[3 * i + j]
+        self.0[(i, j)]
     }
 
     /// 004 Eq. 5.2.
     pub fn hydrostatic(&self) -> f64 {
-        (self.get(0, 0) + self.get(1, 1) + self.get(2, 2)) / 3.0
+        self.0.trace() / 3.0
     }
 
     /// 004 Eq. 5.3.
@@ -77,15 +78,12 @@ impl Stress {
 pub fn bagi(engine: &mut AnyEngine, region: &impl Volume) -> Stress {
     with_engine!(engine, e => {
         let dip = e.measure_dipoles();
-        let mut s = [0.0; 9];
+        let mut s = Tensor::zeros();
         for (k, x) in e.particles.position.iter().enumerate() {
             if region.contains(*x) {
-                for c in 0..9 {
-                    s[c] += dip[k][c];
-                }
+                s += dip[k];
             }
         }
-        let v = region.volume();
-        Stress(s.map(|c| -c / v))
+        Stress(-s / region.volume())
     })
 }

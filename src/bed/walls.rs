@@ -2,7 +2,7 @@
 //! plane that moves). Each has a prescribed velocity, set by whoever drives the bed, and measures the
 //! force the particles exert on it.
 
-use super::{dot, Vec3};
+use super::{Vec3, ZERO};
 
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum Shape {
@@ -36,16 +36,16 @@ pub struct WallTouch {
 
 impl Wall {
     pub fn plane(name: &str, point: Vec3, normal: Vec3) -> Wall {
-        let l = super::norm(normal);
-        Wall { name: name.into(), shape: Shape::Plane { normal: super::scale(normal, 1.0 / l) }, position: point, velocity: [0.0; 3], force: [0.0; 3] }
+        let l = normal.norm();
+        Wall { name: name.into(), shape: Shape::Plane { normal: normal * (1.0 / l) }, position: point, velocity: ZERO, force: ZERO }
     }
 
     pub fn cylinder(name: &str, axis_point: Vec3, radius: f64) -> Wall {
-        Wall { name: name.into(), shape: Shape::Cylinder { radius }, position: axis_point, velocity: [0.0; 3], force: [0.0; 3] }
+        Wall { name: name.into(), shape: Shape::Cylinder { radius }, position: axis_point, velocity: ZERO, force: ZERO }
     }
 
     pub fn sphere(name: &str, centre: Vec3, radius: f64) -> Wall {
-        Wall { name: name.into(), shape: Shape::Sphere { radius }, position: centre, velocity: [0.0; 3], force: [0.0; 3] }
+        Wall { name: name.into(), shape: Shape::Sphere { radius }, position: centre, velocity: ZERO, force: ZERO }
     }
 
     /// The radius of curvature the contact law sees (the sphere's), or none for flat walls.
@@ -59,17 +59,17 @@ impl Wall {
     /// Overlap and normal for a particle at `x` of radius `r`.
     #[inline(always)]
     pub fn touch(&self, x: Vec3, r: f64) -> WallTouch {
-        let d = super::sub(x, self.position);
+        let d = x - self.position;
         match self.shape {
-            Shape::Plane { normal } => WallTouch { overlap: r - dot(d, normal), normal: super::scale(normal, -1.0) },
+            Shape::Plane { normal } => WallTouch { overlap: r - d.dot(&normal), normal: -normal },
             Shape::Cylinder { radius } => {
-                let rho = (d[0] * d[0] + d[1] * d[1]).sqrt();
-                let n = if rho > 0.0 { [d[0] / rho, d[1] / rho, 0.0] } else { [1.0, 0.0, 0.0] };
+                let rho = d.xy().norm();
+                let n = if rho > 0.0 { Vec3::new(d.x / rho, d.y / rho, 0.0) } else { Vec3::x() };
                 WallTouch { overlap: r - (radius - rho), normal: n }
             }
             Shape::Sphere { radius } => {
-                let dist = super::norm(d);
-                let n = if dist > 0.0 { super::scale(d, -1.0 / dist) } else { [0.0, 0.0, -1.0] };
+                let dist = d.norm();
+                let n = if dist > 0.0 { d * (-1.0 / dist) } else { Vec3::new(0.0, 0.0, -1.0) };
                 WallTouch { overlap: r + radius - dist, normal: n }
             }
         }
@@ -82,17 +82,17 @@ mod tests {
 
     #[test]
     fn overlaps_and_normals() {
-        let floor = Wall::plane("floor", [0.0; 3], [0.0, 0.0, 1.0]);
-        let t = floor.touch([0.3, 0.0, 0.9e-3], 1e-3);
+        let floor = Wall::plane("floor", ZERO, Vec3::z());
+        let t = floor.touch(Vec3::new(0.3, 0.0, 0.9e-3), 1e-3);
         assert!((t.overlap - 0.1e-3).abs() < 1e-15);
-        assert_eq!(t.normal, [0.0, 0.0, -1.0]);
-        let die = Wall::cylinder("die", [0.0; 3], 0.02);
-        let t = die.touch([0.0, 0.0195, 0.01], 1e-3);
+        assert_eq!(t.normal, -Vec3::z());
+        let die = Wall::cylinder("die", ZERO, 0.02);
+        let t = die.touch(Vec3::new(0.0, 0.0195, 0.01), 1e-3);
         assert!((t.overlap - 0.5e-3).abs() < 1e-15);
         assert!((t.normal[1] - 1.0).abs() < 1e-15);
-        let ball = Wall::sphere("ball", [0.0, 0.0, 0.01], 5e-3);
-        let t = ball.touch([0.0, 0.0, 0.01 - 5.5e-3], 1e-3);
+        let ball = Wall::sphere("ball", Vec3::new(0.0, 0.0, 0.01), 5e-3);
+        let t = ball.touch(Vec3::new(0.0, 0.0, 0.01 - 5.5e-3), 1e-3);
         assert!((t.overlap - 0.5e-3).abs() < 1e-15);
-        assert_eq!(t.normal, [0.0, 0.0, 1.0]);
+        assert_eq!(t.normal, Vec3::z());
     }
 }

@@ -15,6 +15,7 @@
 //! and no tangential damping acts (000 Sec. 2.2).
 
 use crate::numeric::cbrt;
+use nalgebra::Vector3;
 
 /// Which stiffness model a law uses (`LawInfo::TANGENTIAL`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -61,27 +62,23 @@ impl TangentialStiffness {
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct TangentialSpring {
     /// Tangential force [N].
-    pub force: [f64; 3],
+    pub force: Vector3<f64>,
 }
 
 impl TangentialSpring {
     /// Adds a tangential displacement increment with the current stiffness (dF = -k_t d delta) and returns
     /// the force [N], projected back onto the Coulomb limit `mu max(normal, 0)`; `true` when it slides.
-    pub fn step(&mut self, increment: [f64; 3], k_t: f64, mu: f64, sliding_normal_force: f64) -> ([f64; 3], bool) {
-        for i in 0..3 {
-            self.force[i] -= k_t * increment[i];
-        }
+    pub fn step(&mut self, increment: Vector3<f64>, k_t: f64, mu: f64, sliding_normal_force: f64) -> (Vector3<f64>, bool) {
+        self.force -= increment * k_t;
         let limit = mu * sliding_normal_force.max(0.0);
         // Compared squared: a sticking contact (the common case in a bed at rest) needs no square root.
-        let norm2 = self.force[0].powi(2) + self.force[1].powi(2) + self.force[2].powi(2);
+        let norm2 = self.force.norm_squared();
         if norm2 <= limit * limit {
             return (self.force, false);
         }
         let norm = norm2.sqrt();
         let scale = if norm > 0.0 { limit / norm } else { 0.0 };
-        for f in &mut self.force {
-            *f *= scale;
-        }
+        self.force *= scale;
         (self.force, true)
     }
 }
@@ -94,14 +91,14 @@ mod tests {
     #[test]
     fn spring_sticks_then_slides_at_the_coulomb_limit() {
         let mut s = TangentialSpring::default();
-        let (f, sliding) = s.step([1e-9, 0.0, 0.0], 1000.0, 0.5, 1e-5);
+        let (f, sliding) = s.step(Vector3::new(1e-9, 0.0, 0.0), 1000.0, 0.5, 1e-5);
         assert!(!sliding);
         assert!((f[0] + 1e-6).abs() < 1e-18);
-        let (f, sliding) = s.step([1e-7, 0.0, 0.0], 1000.0, 0.5, 1e-5);
+        let (f, sliding) = s.step(Vector3::new(1e-7, 0.0, 0.0), 1000.0, 0.5, 1e-5);
         assert!(sliding);
         assert!((f[0] + 0.5e-5).abs() < 1e-18);
         // After sliding the spring holds exactly the limit: reversing unloads elastically from there.
-        let (f, sliding) = s.step([-1e-9, 0.0, 0.0], 1000.0, 0.5, 1e-5);
+        let (f, sliding) = s.step(Vector3::new(-1e-9, 0.0, 0.0), 1000.0, 0.5, 1e-5);
         assert!(!sliding);
         assert!((f[0] + 0.5e-5 - 1e-6).abs() < 1e-15);
     }
@@ -109,9 +106,9 @@ mod tests {
     #[test]
     fn no_normal_load_means_no_tangential_force() {
         let mut s = TangentialSpring::default();
-        let (f, sliding) = s.step([1e-9, 1e-9, 0.0], 1000.0, 0.5, -1.0);
+        let (f, sliding) = s.step(Vector3::new(1e-9, 1e-9, 0.0), 1000.0, 0.5, -1.0);
         assert!(sliding);
-        assert_eq!(f, [0.0, 0.0, 0.0]);
+        assert_eq!(f, Vector3::zeros());
     }
 
     #[test]
@@ -123,11 +120,11 @@ mod tests {
     #[test]
     fn a_change_of_stiffness_changes_the_slope_not_the_force() {
         let mut s = TangentialSpring::default();
-        let (f1, _) = s.step([1e-9, 0.0, 0.0], 1000.0, 0.5, 1.0);
+        let (f1, _) = s.step(Vector3::new(1e-9, 0.0, 0.0), 1000.0, 0.5, 1.0);
         // The normal branch changes and k_t drops to a tenth: no jump, the next increment is softer.
-        let (f2, _) = s.step([0.0, 0.0, 0.0], 100.0, 0.5, 1.0);
+        let (f2, _) = s.step(Vector3::new(0.0, 0.0, 0.0), 100.0, 0.5, 1.0);
         assert_eq!(f1, f2);
-        let (f3, _) = s.step([1e-9, 0.0, 0.0], 100.0, 0.5, 1.0);
+        let (f3, _) = s.step(Vector3::new(1e-9, 0.0, 0.0), 100.0, 0.5, 1.0);
         assert!((f3[0] - f2[0] + 1e-7).abs() < 1e-20);
     }
 

@@ -1,12 +1,13 @@
 //! The force loop: each part of the partition over its rows of the Verlet list (particle pairs) and its
-//! wall contacts, one `kernel::contact` per pair, accumulating into its `Sink`.
+//! wall contacts, one `kernel::contact` per pair, accumulating into its `Sink`. The pair loop's vector
+//! arithmetic is hand-written (`dot`, `sub`), as in the kernel, for speed (measured in `bed/mod.rs`).
 
 use super::super::interaction::{BedLaw, Interaction};
 use super::super::kernel::{contact, surface_velocity};
 use super::super::neighbors::NeighborList;
 use super::super::particles::Particles;
 use super::super::walls::Wall;
-use super::super::{dot, sub, Vec3};
+use super::super::{dot, sub, Tensor, Vec3, ZERO};
 use super::partition::Sink;
 use super::Engine;
 use rayon::prelude::*;
@@ -65,7 +66,7 @@ impl<L: BedLaw> Engine<L> {
         let mut own_f: &mut [Vec3] = &mut self.total.force;
         let mut own_t: &mut [Vec3] = &mut self.total.torque;
         let mut own_r: &mut [f64] = &mut self.total.rolling;
-        let mut own_d: &mut [[f64; 9]] = &mut self.total.dipole;
+        let mut own_d: &mut [Tensor] = &mut self.total.dipole;
         for (k, spill) in self.spill.iter_mut().enumerate() {
             let (a, b) = (self.parts[k], self.parts[k + 1]);
             let take = self.list.start[b] as usize - consumed;
@@ -115,10 +116,10 @@ impl<L: BedLaw> Engine<L> {
 /// The force loop of one part.
 fn run_part<L: BedLaw>(s: &Shared<L>, part: Part<L::History>) {
     let Part { rows, slot0, normal, spring, radius, walls, mut sink } = part;
-    sink.force.fill([0.0; 3]);
-    sink.torque.fill([0.0; 3]);
+    sink.force.fill(ZERO);
+    sink.torque.fill(ZERO);
     sink.rolling.fill(0.0);
-    sink.dipole.fill([0.0; 9]);
+    sink.dipole.fill(Tensor::zeros());
     sink.spill.clear();
     let p = s.p;
     let dipoles = !sink.dipole.is_empty();
@@ -141,7 +142,7 @@ fn run_part<L: BedLaw>(s: &Shared<L>, part: Part<L::History>) {
             let it = &table[p.species[j] as usize];
             let slot = k - slot0;
             let range = ri + rj + it.reach;
-            if dist2 >= range * range && spring[slot] == [0.0; 3] && normal[slot] == it.initial {
+            if dist2 >= range * range && spring[slot] == ZERO && normal[slot] == it.initial {
                 continue; // apart, beyond any neck, and nothing to forget
             }
             let dist = dist2.sqrt();
@@ -164,11 +165,11 @@ fn run_part<L: BedLaw>(s: &Shared<L>, part: Part<L::History>) {
             let ri = p.radius[i];
             let t = wall.touch(p.position[i], ri);
             let it = &table[p.species[i] as usize];
-            if t.overlap < -it.reach && spring[slot] == [0.0; 3] && normal[slot] == it.initial {
+            if t.overlap < -it.reach && spring[slot] == ZERO && normal[slot] == it.initial {
                 continue;
             }
             let li = ri - 0.5 * t.overlap;
-            let v = surface_velocity(p.velocity[i], p.angular_velocity[i], li, wall.velocity, [0.0; 3], 0.0, t.normal);
+            let v = surface_velocity(p.velocity[i], p.angular_velocity[i], li, wall.velocity, ZERO, 0.0, t.normal);
             if let Some(c) = contact(it, t.overlap, t.normal, v, &mut normal[slot], &mut spring[slot], &mut radius[slot], s.dt) {
                 sink.add_contact(i, t.normal, c.force, c.tangential, li, c.rolling_load, dipoles);
                 for q in 0..3 {
@@ -180,5 +181,5 @@ fn run_part<L: BedLaw>(s: &Shared<L>, part: Part<L::History>) {
 }
 
 fn neg(a: Vec3) -> Vec3 {
-    [-a[0], -a[1], -a[2]]
+    Vec3::new(-a[0], -a[1], -a[2])
 }

@@ -4,7 +4,7 @@
 
 use super::super::interaction::BedLaw;
 use super::super::neighbors::carry;
-use super::super::Vec3;
+use super::super::{Vec3, ZERO};
 use super::Engine;
 
 /// Contacts of one wall: the particles within range (ascending) and their memory.
@@ -37,7 +37,7 @@ impl<L: BedLaw> Engine<L> {
                 if from[k] == u32::MAX {
                     let b = self.particles.species[self.list.partner[k] as usize] as usize;
                     normal.push(self.pairs[a * s + b].initial);
-                    spring.push([0.0; 3]);
+                    spring.push(ZERO);
                     radius.push(0.0);
                 } else {
                     normal.push(self.normal[from[k] as usize]);
@@ -68,7 +68,7 @@ impl<L: BedLaw> Engine<L> {
                         new.radius.push(old.radius[k_old]);
                     } else {
                         new.normal.push(self.wall_pairs[w][self.particles.species[i] as usize].initial);
-                        new.spring.push([0.0; 3]);
+                        new.spring.push(ZERO);
                         new.radius.push(0.0);
                     }
                 }

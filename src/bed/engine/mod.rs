@@ -21,7 +21,7 @@ use super::neighbors::NeighborList;
 use super::particles::Particles;
 use super::pool::Pool;
 use super::walls::Wall;
-use super::{dot, sub, Vec3};
+use super::{Tensor, Vec3, ZERO};
 use crate::law;
 use rayon::prelude::*;
 
@@ -172,7 +172,7 @@ impl<L: BedLaw> Engine<L> {
     /// Per particle sum of |x_c - x_p| n_i F_j over its contacts (Bagi, 004 Eq. 5.1) for the current
     /// state. The force loop runs once more with a zero spring increment, which reproduces the last
     /// step's forces and leaves every history as it was.
-    pub fn measure_dipoles(&mut self) -> Vec<[f64; 9]> {
+    pub fn measure_dipoles(&mut self) -> Vec<Tensor> {
         // The forces of the last step are kept as they were: the next half kick needs them (the pass
         // here sees the velocities after the step, not the ones the step's damping saw).
         let total = self.total.clone();
@@ -237,8 +237,8 @@ impl<L: BedLaw> Engine<L> {
         assert_eq!(held.len(), self.particles.len(), "one flag per sphere");
         for (i, &h) in held.iter().enumerate() {
             if h {
-                self.particles.velocity[i] = [0.0; 3];
-                self.particles.angular_velocity[i] = [0.0; 3];
+                self.particles.velocity[i] = ZERO;
+                self.particles.angular_velocity[i] = ZERO;
             }
         }
         self.particles.held = held.to_vec();
@@ -260,12 +260,9 @@ impl<L: BedLaw> Engine<L> {
     pub fn release_disturbed(&mut self, threshold: f64) -> usize {
         let mut released = 0;
         for i in 0..self.particles.len() {
-            if self.particles.held[i] {
-                let d = sub(self.total.force[i], self.held_reference[i]);
-                if dot(d, d) > threshold * threshold {
-                    self.particles.held[i] = false;
-                    released += 1;
-                }
+            if self.particles.held[i] && (self.total.force[i] - self.held_reference[i]).norm_squared() > threshold * threshold {
+                self.particles.held[i] = false;
+                released += 1;
             }
         }
         if released > 0 {
@@ -303,10 +300,7 @@ impl<L: BedLaw> Engine<L> {
         let limit = 0.5 * (self.list.skin - self.reach);
         let moved = self.kick(h, true);
         self.move_walls();
-        let wall_moved = self.walls.iter().zip(&self.wall_reference).any(|(w, r)| {
-            let d = sub(w.position, *r);
-            dot(d, d) > limit * limit
-        });
+        let wall_moved = self.walls.iter().zip(&self.wall_reference).any(|(w, r)| (w.position - r).norm_squared() > limit * limit);
         if wall_moved || moved > limit * limit || self.list.rows() != self.particles.len() {
             self.rebuild();
         }
@@ -345,9 +339,7 @@ impl<L: BedLaw> Engine<L> {
 
     fn move_walls(&mut self) {
         for w in &mut self.walls {
-            for c in 0..3 {
-                w.position[c] += w.velocity[c] * self.dt;
-            }
+            w.position += w.velocity * self.dt;
         }
     }
 
@@ -358,7 +350,7 @@ impl<L: BedLaw> Engine<L> {
         let acc = |a: &Accum| {
             (a.force.capacity() + a.torque.capacity() + a.wall_force.capacity()) * v
                 + a.rolling.capacity() * f
-                + a.dipole.capacity() * size_of::<[f64; 9]>()
+                + a.dipole.capacity() * size_of::<Tensor>()
         };
         self.particles.memory_bytes()
             + self.list.memory_bytes()
@@ -376,7 +368,7 @@ impl<L: BedLaw> Engine<L> {
         (0..self.list.rows()).flat_map(move |i| {
             (self.list.start[i] as usize..).zip(self.list.row(i)).filter_map(move |(k, &j)| {
                 let j = j as usize;
-                let alpha = p.radius[i] + p.radius[j] - super::norm(sub(p.position[j], p.position[i]));
+                let alpha = p.radius[i] + p.radius[j] - (p.position[j] - p.position[i]).norm();
                 let it = &self.pairs[p.species[i] as usize * self.species + p.species[j] as usize];
                 law::NormalLaw::evaluate(&it.law, alpha, &self.normal[k]).branch.in_contact().then_some((i, j, alpha))
             })
@@ -429,27 +421,21 @@ fn kick_range(
         if held[q] {
             continue;
         }
-        let (f, t) = (force[q], torque[q]);
-        for c in 0..3 {
-            v[q][c] += (f[c] * im[q] + g[c]) * h;
-            w[q][c] += t[c] * ii[q] * h;
-        }
+        v[q] += (force[q] * im[q] + g) * h;
+        w[q] += torque[q] * ii[q] * h;
         // Constant directional rolling torque mu_r |f_n| R against the spin, limited so that it stops the
         // spin but never reverses it within a step.
         let load = rolling[q];
         if load > 0.0 {
-            let spin = super::norm(w[q]);
+            let spin = w[q].norm();
             let brake = load * r[q] * ii[q] * h;
             let keep = if spin > brake { 1.0 - brake / spin } else { 0.0 };
-            w[q] = super::scale(w[q], keep);
+            w[q] *= keep;
         }
         if dt != 0.0 {
-            for c in 0..3 {
-                x[q][c] += v[q][c] * dt;
-            }
+            x[q] += v[q] * dt;
             if let Some(x0) = reference.get(base + q) {
-                let d = sub(x[q], *x0);
-                moved = moved.max(dot(d, d));
+                moved = moved.max((x[q] - x0).norm_squared());
             } else {
                 moved = f64::INFINITY;
             }

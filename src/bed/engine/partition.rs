@@ -4,7 +4,7 @@
 //! thread count.
 
 use super::super::interaction::BedLaw;
-use super::super::Vec3;
+use super::super::{Tensor, Vec3, ZERO};
 use super::Engine;
 
 /// Forces accumulated by one part of the force loop.
@@ -14,25 +14,25 @@ pub struct Accum {
     pub torque: Vec<Vec3>,
     pub rolling: Vec<f64>,
     /// Per particle sum of |x_c - x_p| n_i F_j over its contacts (Bagi, 004 Eq. 5.1), when recorded.
-    pub dipole: Vec<[f64; 9]>,
+    pub dipole: Vec<Tensor>,
     pub wall_force: Vec<Vec3>,
 }
 
 impl Accum {
     pub(super) fn resize(&mut self, n: usize, walls: usize, dipole: bool) {
-        self.force.resize(n, [0.0; 3]);
-        self.torque.resize(n, [0.0; 3]);
+        self.force.resize(n, ZERO);
+        self.torque.resize(n, ZERO);
         self.rolling.resize(n, 0.0);
-        self.dipole.resize(if dipole { n } else { 0 }, [0.0; 9]);
-        self.wall_force.resize(walls, [0.0; 3]);
+        self.dipole.resize(if dipole { n } else { 0 }, Tensor::zeros());
+        self.wall_force.resize(walls, ZERO);
     }
 
     pub(super) fn clear(&mut self) {
-        self.force.fill([0.0; 3]);
-        self.torque.fill([0.0; 3]);
+        self.force.fill(ZERO);
+        self.torque.fill(ZERO);
         self.rolling.fill(0.0);
-        self.dipole.fill([0.0; 9]);
-        self.wall_force.fill([0.0; 3]);
+        self.dipole.fill(Tensor::zeros());
+        self.wall_force.fill(ZERO);
     }
 }
 
@@ -45,7 +45,7 @@ pub(super) struct Sink<'a> {
     pub(super) force: &'a mut [Vec3],
     pub(super) torque: &'a mut [Vec3],
     pub(super) rolling: &'a mut [f64],
-    pub(super) dipole: &'a mut [[f64; 9]],
+    pub(super) dipole: &'a mut [Tensor],
     pub(super) spill: &'a mut Accum,
 }
 
@@ -53,27 +53,15 @@ impl Sink<'_> {
     /// Adds one contact's share to particle `i`, seen from `i`: `n` the unit normal toward the partner,
     /// `force` and `tangential` the total and tangential force on `i`, `lever` the distance from its
     /// centre to the contact point. Torque lever n x F_t; rolling load; and, when recorded, the dipole
-    /// lever n_a F_b of 004 Eq. 5.1. The one accumulation of particle pairs and wall contacts alike.
+    /// |x_c - x_p| n F^T of 004 Eq. 5.1. The one accumulation of particle pairs and wall contacts alike.
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
     pub(super) fn add_contact(&mut self, i: usize, n: Vec3, force: Vec3, tangential: Vec3, lever: f64, rolling_load: f64, dipoles: bool) {
-        let f = self.force(i);
-        for q in 0..3 {
-            f[q] += force[q];
-        }
-        let tq = super::super::cross(n, tangential);
-        let t = self.torque(i);
-        for q in 0..3 {
-            t[q] += lever * tq[q];
-        }
+        *self.force(i) += force;
+        *self.torque(i) += n.cross(&tangential) * lever;
         *self.rolling(i) += rolling_load;
         if dipoles {
-            let d = self.dipole(i);
-            for a in 0..3 {
-                for b in 0..3 {
-                    d[3 * a + b] += lever * n[a] * force[b];
-                }
-            }
+            *self.dipole(i) += (n * lever) * force.transpose();
         }
     }
 
@@ -105,7 +93,7 @@ impl Sink<'_> {
     }
 
     #[inline(always)]
-    pub(super) fn dipole(&mut self, i: usize) -> &mut [f64; 9] {
+    pub(super) fn dipole(&mut self, i: usize) -> &mut Tensor {
         if i < self.split {
             &mut self.dipole[i - self.base]
         } else {
@@ -155,25 +143,19 @@ impl<L: BedLaw> Engine<L> {
     /// Adds each part's spill to the totals, in part order, and sums the wall reactions.
     pub(super) fn add_spills(&mut self) {
         let total = &mut self.total;
-        total.wall_force.fill([0.0; 3]);
+        total.wall_force.fill(ZERO);
         for (k, spill) in self.spill.iter().enumerate() {
             let b = self.parts[k + 1];
             for q in 0..spill.force.len() {
-                for c in 0..3 {
-                    total.force[b + q][c] += spill.force[q][c];
-                    total.torque[b + q][c] += spill.torque[q][c];
-                }
+                total.force[b + q] += spill.force[q];
+                total.torque[b + q] += spill.torque[q];
                 total.rolling[b + q] += spill.rolling[q];
             }
             for q in 0..spill.dipole.len() {
-                for c in 0..9 {
-                    total.dipole[b + q][c] += spill.dipole[q][c];
-                }
+                total.dipole[b + q] += spill.dipole[q];
             }
             for (w, f) in spill.wall_force.iter().enumerate() {
-                for c in 0..3 {
-                    total.wall_force[w][c] += f[c];
-                }
+                total.wall_force[w] += f;
             }
         }
     }
