@@ -89,21 +89,15 @@ fn main() -> ExitCode {
         libc::signal(libc::SIGPIPE, reader_gone as extern "C" fn(libc::c_int) as libc::sighandler_t);
     }
     let result = match Cli::parse().command {
-        Command::Analyze { scene, velocity, json } => {
-            read_scene(&scene).and_then(|s| analyze(&s, velocity).map_err(|e| format!("{}: {e}", scene.display()))).map(|value| {
-                if json {
-                    println!("{}", serde_json::to_string_pretty(&value).expect("a JSON value always serialises"));
-                } else {
-                    print!("{}", to_text(&value));
-                }
-            })
-        }
-        Command::Curve { scene, path, start, points } => {
-            read_scene(&scene).and_then(|s| force_overlap_csv(&s, start, &path, points as usize).map_err(|e| format!("{}: {e}", scene.display()))).map(|csv| print!("{csv}"))
-        }
-        Command::Restitution { scene, velocities } => {
-            read_scene(&scene).and_then(|s| restitution_csv(&s, &velocities).map_err(|e| format!("{}: {e}", scene.display()))).map(|csv| print!("{csv}"))
-        }
+        Command::Analyze { scene, velocity, json } => with_scene(&scene, |s| analyze(s, velocity)).map(|value| {
+            if json {
+                println!("{}", serde_json::to_string_pretty(&value).expect("a JSON value always serialises"));
+            } else {
+                print!("{}", to_text(&value));
+            }
+        }),
+        Command::Curve { scene, path, start, points } => with_scene(&scene, |s| force_overlap_csv(s, start, &path, points as usize)).map(|csv| print!("{csv}")),
+        Command::Restitution { scene, velocities } => with_scene(&scene, |s| restitution_csv(s, &velocities)).map(|csv| print!("{csv}")),
         Command::Bed { command } => bed_cli::run(command),
         Command::Completions { shell } => {
             clap_complete::generate(shell, &mut Cli::command(), "powderfmu", &mut std::io::stdout());
@@ -119,9 +113,11 @@ fn main() -> ExitCode {
     }
 }
 
-fn read_scene(path: &Path) -> Result<Scene, String> {
+/// Reads the scene at `path` and runs `work` on it; any error names the file.
+fn with_scene<T, E: std::fmt::Display>(path: &Path, work: impl FnOnce(&Scene) -> Result<T, E>) -> Result<T, String> {
     let text = std::fs::read_to_string(path).map_err(|e| format!("cannot read scene `{}`: {e}", path.display()))?;
-    Scene::from_json(&text).map_err(|e| format!("{}: {e}", path.display()))
+    let scene = Scene::from_json(&text).map_err(|e| format!("{}: {e}", path.display()))?;
+    work(&scene).map_err(|e| format!("{}: {e}", path.display()))
 }
 
 /// The scene keys and the output keys of `analyze`, each with its unit: the long help of `analyze`.
