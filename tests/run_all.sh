@@ -46,7 +46,7 @@ cargo run --locked --quiet -p fmu_build -- "${fmu_flags[@]}" || status=$?
 
 echo "== fmpy suite (tests/python)"
 POWDERFMU_FMU_DIR="$PWD/target/fmu" POWDERFMU_CLI="$PWD/target/debug/powderfmu" \
-    "$python" -m pytest tests/python -q -p no:cacheprovider 2>&1 | tee "$pylog" || status=$?
+    "$python" -m pytest tests/python -q -p no:cacheprovider --durations=12 2>&1 | tee "$pylog" || status=$?
 py_passed=$( (grep -Eo '[0-9]+ passed' "$pylog" || true) | tail -1 | grep -Eo '[0-9]+' || true)
 py_failed=$( (grep -Eo '[0-9]+ (failed|error)' "$pylog" || true) | awk '{s += $1} END {print s + 0}')
 
