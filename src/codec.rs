@@ -40,6 +40,17 @@ mod tests {
     }
 
     #[test]
+    fn a_bed_vector_is_written_as_three_plain_f64() {
+        // Bed files of format 3 were written while the bed's vectors were [f64; 3]; nalgebra's Vector3
+        // must keep their bytes, signs of zero included.
+        let x = [1.5e-3, -0.0, f64::MIN_POSITIVE];
+        let v = crate::bed::Vec3::new(x[0], x[1], x[2]);
+        assert_eq!(to_bytes(&v).unwrap(), to_bytes(&x).unwrap());
+        let back: crate::bed::Vec3 = from_bytes(&to_bytes(&x).unwrap()).unwrap();
+        assert_eq!(back.map(f64::to_bits), v.map(f64::to_bits));
+    }
+
+    #[test]
     fn a_huge_length_prefix_fails_without_allocating_it() {
         // A varint length of 2^62 elements followed by nothing.
         let bytes = [0xff, 0xff, 0xff, 0xff, 0xff, 0xff, 0xff, 0xff, 0x3f];

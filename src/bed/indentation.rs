@@ -89,7 +89,7 @@ pub fn held_outside(p: &Particles, setup: &Setup, touch: f64, mean_diameter: f64
     let a_max = (d * h - h * h).max(0.0).sqrt();
     let reach = (m * a_max).max((0.5 * BIN[0].max(BIN[1]) + 2.0) * mean_diameter).max((BIN[2] + 2.0) * mean_diameter);
     let floor = touch - h - reach;
-    p.position.iter().map(|x| (x[0] * x[0] + x[1] * x[1]).sqrt() > reach || x[2] < floor).collect()
+    p.position.iter().map(|x| x.xy().norm() > reach || x.z < floor).collect()
 }
 
 /// Where the test is.
@@ -163,7 +163,7 @@ pub fn projected_area(d: f64, h: f64) -> f64 {
 pub fn first_touch_height(p: &Particles, r_i: f64) -> Option<f64> {
     let mut top: Option<f64> = None;
     for (x, &r) in p.position.iter().zip(&p.radius) {
-        let rho2 = x[0] * x[0] + x[1] * x[1];
+        let rho2 = x.xy().norm_squared();
         let reach2 = (r_i + r) * (r_i + r);
         if rho2 < reach2 {
             let z = x[2] - r_i + (reach2 - rho2).sqrt();

@@ -7,9 +7,9 @@
 //! - rolling: the load mu_r |f_n| of EDEM's constant directional torque model (004 Table 5.3), summed
 //!   per particle and applied against its spin by the integrator.
 //!
-//! The vector arithmetic here is the hand-written `dot`, `sub`, `scale`, `cross` of `bed/mod.rs`, not
-//! nalgebra's operators: this is the hot path, and there they cost 4 % more instructions (measured in
-//! `bed/mod.rs`).
+//! The vector arithmetic of `contact` is the hand-written `dot`, `sub`, `scale`, `cross` of `bed/mod.rs`,
+//! not nalgebra's operators: this is the hot path, and there they cost 4 % more instructions (measured
+//! in `bed/mod.rs`; the tangential spring's own update keeps nalgebra at no cost).
 
 use super::interaction::{BedLaw, Interaction};
 use super::{cross, dot, scale, sub, Vec3, ZERO};

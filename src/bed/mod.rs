@@ -54,12 +54,14 @@ pub const ZERO: Vec3 = Vec3::new(0.0, 0.0, 0.0);
 /// A 3x3 tensor: a particle's sum of contact dipoles |x_c - x_p| n F^T (004 Eq. 5.1), a stress [Pa].
 pub type Tensor = nalgebra::Matrix3<f64>;
 
-// Component-wise operations for the per-contact hot path (`kernel::contact`, the pair loop of
-// `engine/force_loop.rs`), kept by hand for speed: with nalgebra's operators there, 300 Hertz steps of
+// Component-wise operations for the body of `kernel::contact` and the pair loop of
+// `engine/force_loop.rs`, kept by hand for speed: with nalgebra's operators there, 300 Hertz steps of
 // the 10^4-sphere bench bed executed 6.84e9 instructions (valgrind callgrind), against 6.54e9 with these
 // (6.57e9 before nalgebra), and one side-by-side timing ran 8.5 % slower (median of 7; a second, noisier
-// one showed no difference). They round as nalgebra's do, ((a0 b0 + a1 b1) + a2 b2): either way a bed
-// steps to the same bits.
+// one showed no difference). What those two call keeps nalgebra, as measured in the 6.54e9:
+// `TangentialSpring::step`, `Sink::add_contact` (the accumulation and Bagi's outer product) and
+// `Wall::touch`. The helpers round as nalgebra does, ((a0 b0 + a1 b1) + a2 b2): either way a bed steps
+// to the same bits.
 
 #[inline(always)]
 pub(crate) fn dot(a: Vec3, b: Vec3) -> f64 {

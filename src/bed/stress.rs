@@ -63,7 +63,8 @@ impl Stress {
 
     /// 004 Eq. 5.2.
     pub fn hydrostatic(&self) -> f64 {
-        self.0.trace() / 3.0
+        // Summed as before nalgebra (its trace starts from +0 and would turn an empty bin's -0 into +0).
+        (self.get(0, 0) + self.get(1, 1) + self.get(2, 2)) / 3.0
     }
 
     /// 004 Eq. 5.3.
