@@ -62,6 +62,11 @@ fn a_prescribed_test_loads_unloads_and_gives_the_tangent_hardness() {
     assert_eq!(last.hardness, rec.f_max / projected_area(s.indenter_diameter, hc));
     assert_eq!(last.unconfined_yield_strength, last.hardness / 3.0);
     assert_eq!(last.contacts, 0, "done means the indenter has left the bed");
+    // Once done, the prescribed test no longer steps the bed: a host's later steps change nothing.
+    let (steps, done) = (test.record.steps, test.reading());
+    test.advance(5e-3, None).unwrap();
+    assert_eq!(test.record.steps, steps);
+    assert_eq!(test.reading(), done);
     // During loading hardness is F / A(h) and the bin under the indenter is in compression.
     let mid = &readings[first_unloading / 2];
     assert!((mid.hardness - mid.force / mid.projected_area).abs() <= 1e-12 * mid.hardness.abs());
@@ -246,6 +251,12 @@ fn hardness_falls_to_a_plateau_beyond_a_tenth_of_the_radius() {
     let (first, second) = (mean(0.1, 0.15), mean(0.15, 0.2));
     assert!(early > 1.3 * plateau, "early {early} Pa, plateau {plateau} Pa");
     assert!((first - second).abs() < 0.25 * plateau, "halves of the plateau {first} and {second} Pa");
+    // The test's own plateau (sampled every 100 engine steps, the readings here every 2e-5 s) is the
+    // same mean of the same curve.
+    let own = test.record.plateau_hardness();
+    assert!(test.record.plateau_samples > 10, "{} samples", test.record.plateau_samples);
+    assert!((own - plateau).abs() < 0.05 * plateau, "the test's plateau {own} Pa against the readings' {plateau} Pa");
+    assert_eq!(readings.last().unwrap().plateau_hardness, own);
 }
 
 #[test]

@@ -3,7 +3,8 @@ fluorescein sphere of radius 2.45 um on silicon, Nan's law, undamped), run throu
 
 Prints the rebound of one impact against the energy balance, the sticking velocity found by bisection on
 the FMU against 000 Table 6, and a restitution curve; then runs the BallIndentation FMU's default test
-(004 Sec. 2.3.5 on the FMU's bed) with no arguments and prints its hardness; writes the plots to
+(004 Sec. 2.3.5 on the seed's bed of 004 Ch. 6) with no arguments and prints its hardness against the
+full-fidelity run at the seed's own speed; writes the plots to
 out/demo/ (PNG).
 
 Usage: python tools/demo.py [--fmu-dir target/fmu] [--cli target/release/powderfmu] [--out out/demo]
@@ -135,35 +136,51 @@ def main():
     return 0
 
 
+REFERENCE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "docs", "data", "ch6_indentation", "gamma0.01_full.csv")
+
+
 def indentation(fmu, out):
-    """The BallIndentation FMU's default test through fmpy with no arguments; prints and plots it."""
+    """The BallIndentation FMU's default test through fmpy with no arguments; prints and plots it against
+    the full-fidelity run at the seed's speed (gamma* = 0.01, docs/indentation.md)."""
     from fmpy import read_model_description
 
     md = read_model_description(fmu)
     start = {v.name: v.start for v in md.modelVariables if v.causality == "parameter"}
-    d, h_max = float(start["indenter_diameter"]), float(start["max_penetration"])
+    d, h_max, v = float(start["indenter_diameter"]), float(start["max_penetration"]), float(start["indentation_speed"])
     print(f"\nball indentation: {fmu}")
-    print(f"  the FMU's bed (resources/bed.pfbed), indenter d = {d * 1e3:.1f} mm to h = {h_max * 1e3:.2f} mm at {float(start['indentation_speed'])} m/s, "
-          f"fidelity {start['fidelity']}")
+    print(f"  the seed's bed (resources/bed.pfbed: 29000 spheres, 004 Ch. 6), indenter d = {d * 1e3:.1f} mm to h = {h_max * 1e3:.2f} mm "
+          f"(h/r = {2 * h_max / d:.2f}) at {v} m/s, time step {float(start['time_step']):.2e} s, fidelity {start['fidelity']}, "
+          f"{start['threads']} threads; running (about a minute and a half on two cores)")
     t0 = time.perf_counter()
     r = simulate_fmu(fmu)
     wall = time.perf_counter() - t0
-    loading = r[(r["test_state"] == 0) & (r["dimensionless_penetration"] >= 0.1)]
-    plateau = float(np.mean(loading["hardness"])) if len(loading) else float("nan")
     last = r[-1]
     print(f"  wall time {wall:.1f} s, {len(r)} output points; test_state at the end {last['test_state']} (2 = done)")
-    print(f"  F_max {r['indenter_force'].max() * 1e3:.3f} mN at h/r {r['dimensionless_penetration'].max():.3f}")
-    print(f"  hardness while loading, mean over h/r >= 0.1: {plateau:.4g} Pa")
-    print(f"  after unloading: h_c {last['contact_depth'] * 1e3:.4f} mm, hardness F_max/A(h_c) {last['hardness']:.4g} Pa, "
-          f"unconfined yield strength {last['unconfined_yield_strength']:.4g} Pa (C = {start['constraint_factor']})")
+    print(f"  F_max {r['indenter_force'].max():.4f} N at h/r {r['dimensionless_penetration'].max():.3f}")
+    print(f"  plateau hardness (mean F/A(h) while loading at 0.1 <= h/r <= 0.2, 004 Figs. 5.2-5.3): {last['plateau_hardness']:.4g} Pa, "
+          f"unconfined yield strength {last['plateau_hardness'] / float(start['constraint_factor']):.4g} Pa (C = {start['constraint_factor']})")
+    print(f"  after unloading: h_c {last['contact_depth'] * 1e3:.4f} mm, hardness F_max/A(h_c) {last['hardness']:.4g} Pa"
+          + (" (h_c = 0: the bed did not follow the indenter back, so A(h_max))" if last["contact_depth"] == 0 else ""))
+    reference = None
+    if os.path.isfile(REFERENCE):
+        reference = np.genfromtxt(REFERENCE, delimiter=",", names=True)
+        plateau = reference[(reference["state"] == 0) & (reference["depth_over_r"] >= 0.1) & (reference["depth_over_r"] <= 0.2)]
+        ref = float(np.mean(plateau["hardness_Pa"]))
+        print(f"  full fidelity at the seed's speed gamma* = 0.01 (docs/indentation.md): plateau {ref:.4g} Pa; the default is "
+              f"{100 * (last['plateau_hardness'] - ref) / ref:+.1f} % off")
     fig, ax = plt.subplots(1, 2, figsize=(10, 4.2))
-    inside = r["penetration_depth"] >= 0  # after the test the indenter rises on, clear of the bed
-    ax[0].plot(r["penetration_depth"][inside] * 1e3, r["indenter_force"][inside] * 1e3, lw=1.2)
-    ax[0].set(xlabel="penetration depth h [mm]", ylabel="indenter force [mN]", title="force-depth cycle")
+    inside = r["penetration_depth"] >= 0
+    ax[0].plot(r["penetration_depth"][inside] * 1e3, r["indenter_force"][inside], lw=1.2, label="the FMU's default test")
     ok = (r["test_state"] == 0) & (r["dimensionless_penetration"] > 0.02)
-    ax[1].plot(r["dimensionless_penetration"][ok], r["hardness"][ok] / 1e3, lw=1.2, label="F / A(h), loading")
+    ax[1].plot(r["dimensionless_penetration"][ok], r["hardness"][ok] / 1e3, lw=1.2, label="F / A(h), the FMU's default test")
+    if reference is not None:
+        ax[0].plot(reference["depth_m"] * 1e3, reference["force_N"], lw=0.8, color="0.5", label="full fidelity, gamma* = 0.01")
+        slow = (reference["state"] == 0) & (reference["depth_over_r"] > 0.02)
+        ax[1].plot(reference["depth_over_r"][slow], reference["hardness_Pa"][slow] / 1e3, lw=0.8, color="0.5", label="F / A(h), full fidelity, gamma* = 0.01")
+    ax[0].set(xlabel="penetration depth h [mm]", ylabel="indenter force [N]", title="force-depth curve")
+    ax[0].legend(fontsize=8)
     ax[1].plot(r["dimensionless_penetration"][ok], r["hydrostatic_stress"][ok] / 1e3, lw=0.8, label="hydrostatic stress, dynamic bin")
-    ax[1].axhline(last["hardness"] / 1e3, color="C3", ls="--", lw=1, label="F_max / A(h_c)")
+    ax[1].hlines(last["plateau_hardness"] / 1e3, 0.1, 0.2, color="C3", lw=2, label="plateau hardness")
     ax[1].set(xlabel="h / r [-]", ylabel="[kPa]", title="hardness against dimensionless penetration")
     ax[1].legend(fontsize=8)
     fig.tight_layout()

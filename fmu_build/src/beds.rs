@@ -1,35 +1,85 @@
-//! The prepared beds the FMUs ship: prepared once from their scene with the bed engine and kept under
-//! `target/beds/`, named by a hash of the scene text, so that a changed scene prepares a new bed and
-//! an unchanged one is not prepared again.
+//! The bed BallIndentation ships: the seed's bed, prepared once (`beds/README.md` says how and how long)
+//! and kept in the repository, since preparing it takes hours. Packaging reads it, checks its checksum
+//! and that it was made with the scene the unit's parameters start from, and refuses it otherwise.
 
-use powderfmu::bed::{file, prepare, BedScene};
+use powderfmu::bed::{file, BedScene};
+use powderfmu::units::ball_indentation::{DEFAULT_BED_SCENE, SHIPPED_BED};
+use serde_json::Value;
 use std::path::Path;
-use std::time::Instant;
 
-/// The bytes of the bed file of `scene` (JSON text), prepared now if not already under `target/beds`.
-pub fn prepared(scene: &[u8], target: &Path) -> Result<Vec<u8>, String> {
-    let hash = powderfmu::units::fnv1a64(scene, 0xcbf2_9ce4_8422_2325);
-    let path = target.join("beds").join(format!("{hash:016x}.pfbed"));
-    if let Ok(bytes) = std::fs::read(&path) {
-        if file::decode(&bytes).is_ok() {
-            return Ok(bytes);
-        }
+/// The bytes of the shipped bed file, refused if unreadable or made with a scene other than
+/// `DEFAULT_BED_SCENE` (the first differing key is named).
+pub fn shipped(root: &Path) -> Result<Vec<u8>, String> {
+    let path = root.join(SHIPPED_BED);
+    let bytes = std::fs::read(&path).map_err(|e| format!("cannot read the shipped bed {}: {e} (beds/README.md says how to prepare it)", path.display()))?;
+    let bed = file::decode(&bytes).map_err(|e| format!("the shipped bed {}: {e}", path.display()))?;
+    let theirs = BedScene::from_json(&bed.scene).map_err(|e| format!("the shipped bed {}: its scene: {e}", path.display()))?;
+    let ours = BedScene::from_json(DEFAULT_BED_SCENE).map_err(|e| format!("the unit's bed scene: {e}"))?;
+    if let Some(key) = first_difference("", &ours.to_json(), &theirs.to_json()) {
+        return Err(format!(
+            "the shipped bed {} was not made with the unit's bed scene: `{key}` differs; prepare it again from that scene (beds/README.md)",
+            path.display()
+        ));
     }
-    let text = std::str::from_utf8(scene).map_err(|_| "the bed scene is not UTF-8".to_string())?;
-    let bed_scene = BedScene::from_json(text).map_err(|e| format!("bed scene: {e}"))?;
-    println!("fmu_build: preparing the bed of BallIndentation ({} spheres; once, kept in {})", bed_scene.particle_count, path.display());
-    let started = Instant::now();
-    let mut last = "";
-    let (engine, _) = prepare::prepare(&bed_scene, &mut |p| {
-        if p.phase != last {
-            println!("fmu_build:   {} (t = {:.3e} s, {:.0} s elapsed)", p.phase, p.time, started.elapsed().as_secs_f64());
-            last = p.phase;
-        }
-    })
-    .map_err(|e| format!("preparing the bed: {e}"))?;
-    let bytes = file::encode(&engine.to_file(&bed_scene));
-    std::fs::create_dir_all(path.parent().expect("a parent")).map_err(|e| format!("cannot create {}: {e}", path.display()))?;
-    file::write_atomic(&path, &bytes).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
-    println!("fmu_build: bed prepared in {:.0} s ({} bytes)", started.elapsed().as_secs_f64(), bytes.len());
     Ok(bytes)
+}
+
+/// The path of the first key whose values differ, ignoring what does not change the bed (`threads`:
+/// results differ by round-off only; `comment`).
+fn first_difference(at: &str, a: &Value, b: &Value) -> Option<String> {
+    match (a, b) {
+        (Value::Object(x), Value::Object(y)) => {
+            let mut keys: Vec<&String> = x.keys().chain(y.keys()).filter(|k| !["threads", "comment"].contains(&k.as_str())).collect();
+            keys.sort();
+            keys.dedup();
+            keys.into_iter().find_map(|k| {
+                let path = if at.is_empty() { k.clone() } else { format!("{at}.{k}") };
+                match (x.get(k), y.get(k)) {
+                    (Some(u), Some(v)) => first_difference(&path, u, v),
+                    _ => Some(path),
+                }
+            })
+        }
+        _ if a == b => None,
+        (Value::Number(x), Value::Number(y)) if x.as_f64() == y.as_f64() => None,
+        _ => Some(at.to_string()),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_first_difference_is_named_by_its_path() {
+        let a = serde_json::json!({"threads": 1, "particle_particle": {"surface_energy": 2.0, "friction_coefficient": 0.15}});
+        let b = serde_json::json!({"threads": 2, "particle_particle": {"surface_energy": 2, "friction_coefficient": 0.3}});
+        assert_eq!(first_difference("", &a, &b).as_deref(), Some("particle_particle.friction_coefficient"));
+        assert_eq!(first_difference("", &a, &a), None);
+        let c = serde_json::json!({"particle_particle": {"surface_energy": 2.0, "friction_coefficient": 0.15}, "particle_count": 5});
+        assert_eq!(first_difference("", &a, &c).as_deref(), Some("particle_count"));
+    }
+
+    #[test]
+    fn the_shipped_bed_is_the_units_bed() {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR")).parent().expect("the workspace root");
+        let bytes = shipped(root).expect("the shipped bed is accepted");
+        assert!(bytes.len() > 1_000_000, "the seed's bed of 29000 spheres");
+    }
+
+    #[test]
+    fn a_bed_of_another_scene_or_a_damaged_one_is_refused() {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR")).parent().expect("the workspace root");
+        let mut bed = file::decode(&std::fs::read(root.join(SHIPPED_BED)).unwrap()).unwrap();
+        let other = std::env::temp_dir().join(format!("powderfmu-beds-{}", std::process::id()));
+        std::fs::create_dir_all(other.join("beds")).unwrap();
+        bed.scene = bed.scene.replace("\"friction_coefficient\":0.15", "\"friction_coefficient\":0.3");
+        std::fs::write(other.join(SHIPPED_BED), file::encode(&bed)).unwrap();
+        let e = shipped(&other).unwrap_err();
+        assert!(e.contains("`particle_particle.friction_coefficient` differs"), "{e}");
+        let bytes = std::fs::read(root.join(SHIPPED_BED)).unwrap();
+        std::fs::write(other.join(SHIPPED_BED), &bytes[..bytes.len() / 2]).unwrap();
+        assert!(shipped(&other).is_err());
+        std::fs::remove_dir_all(&other).unwrap();
+    }
 }

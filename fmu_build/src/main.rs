@@ -96,7 +96,7 @@ fn run() -> Result<(), String> {
             );
         }
         let path = o.out.join(format!("{}.fmu", unit.model_identifier));
-        let entries = entries(unit, &binaries, &root, &target)?;
+        let entries = entries(unit, &binaries, &root)?;
         let bytes = zip_bytes(entries).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
         interface::write_atomic(&path, &bytes)?;
         println!("fmu_build: wrote {} ({:.1} MiB, GUID {})", path.display(), bytes.len() as f64 / 1048576.0, unit.guid());
@@ -140,7 +140,7 @@ fn read(root: &Path, rel: &str) -> Result<Vec<u8>, String> {
     std::fs::read(root.join(rel)).map_err(|e| format!("cannot read {rel}: {e}"))
 }
 
-fn entries(unit: &UnitInfo, binaries: &Binaries, root: &Path, target: &Path) -> Result<Vec<Entry>, String> {
+fn entries(unit: &UnitInfo, binaries: &Binaries, root: &Path) -> Result<Vec<Entry>, String> {
     let id = unit.model_identifier;
     let page = format!("docs/units/{id}.md");
     let mut entries = vec![
@@ -155,7 +155,7 @@ fn entries(unit: &UnitInfo, binaries: &Binaries, root: &Path, target: &Path) -> 
     }
     if id == units::ball_indentation::MODEL_IDENTIFIER {
         let scene = units::ball_indentation::DEFAULT_BED_SCENE.as_bytes().to_vec();
-        entries.push(Entry { name: format!("resources/{}", units::ball_indentation::RESOURCE_BED), data: beds::prepared(&scene, target)? });
+        entries.push(Entry { name: format!("resources/{}", units::ball_indentation::RESOURCE_BED), data: beds::shipped(root)? });
         entries.push(Entry { name: "resources/bed_scene.json".into(), data: scene });
         entries.push(Entry { name: "documentation/bed.md".into(), data: read(root, "docs/bed.md")? });
     } else {

@@ -37,6 +37,9 @@ const CHECK_EVERY: u64 = 100;
 const TANGENT_FRACTION: f64 = 0.75;
 /// The dynamic bin in mean diameters (004 Sec. 5.2: 5.2 x 5.2 x 4.2 mm for 1 mm spheres).
 const BIN: [f64; 3] = [5.2, 5.2, 4.2];
+/// The depths h/r of the plateau hardness: F/A(h) levels off above about 0.1 (004 Figs. 5.2-5.3), and
+/// the default test turns at 0.2.
+pub const PLATEAU: (f64, f64) = (0.1, 0.2);
 
 /// How the indenter moves.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
@@ -117,6 +120,21 @@ pub struct Record {
     pub time_debt: f64,
     /// Engine steps since the indenter was put in (the checks fall on multiples of `CHECK_EVERY`).
     pub steps: u64,
+    /// Sum and number of the samples of F/A(h) taken at the checks while loading within `PLATEAU`.
+    pub plateau_sum: f64,
+    pub plateau_samples: u64,
+}
+
+impl Record {
+    /// The plateau hardness: the mean of F/A(h) while loading at h/r within `PLATEAU` (004 Figs.
+    /// 5.2-5.3); 0 before the first sample [Pa].
+    pub fn plateau_hardness(&self) -> f64 {
+        if self.plateau_samples == 0 {
+            0.0
+        } else {
+            self.plateau_sum / self.plateau_samples as f64
+        }
+    }
 }
 
 /// The outputs of the test at the current state.
@@ -140,6 +158,8 @@ pub struct Reading {
     pub state: TestState,
     /// h_c, 0 until known [m].
     pub contact_depth: f64,
+    /// Mean F/A(h) while loading within `PLATEAU` [Pa].
+    pub plateau_hardness: f64,
 }
 
 /// A prepared bed with the indenter in it.
@@ -224,7 +244,7 @@ impl Indentation {
             let held = held_outside(engine.particles(), &setup, touch, scene.size_distribution.mean_diameter());
             engine.hold(&held);
         }
-        let record = Record { state: TestState::Loading, f_max: 0.0, h_max: 0.0, unloading: vec![], contact_depth: None, touch, time_debt: 0.0, steps: 0 };
+        let record = Record { state: TestState::Loading, f_max: 0.0, h_max: 0.0, unloading: vec![], contact_depth: None, touch, time_debt: 0.0, steps: 0, plateau_sum: 0.0, plateau_samples: 0 };
         let mut test = Indentation { engine, scene, setup, record, indenter };
         if setup.motion == Motion::Prescribed {
             test.set_indenter_velocity(-setup.indentation_speed);
@@ -277,6 +297,11 @@ impl Indentation {
             }
             _ => None,
         };
+        if self.setup.motion == Motion::Prescribed && self.record.state == TestState::Done {
+            // The prescribed test is over: the bed is not stepped any more (it would cost as much as the
+            // test itself, for a bed nobody reads), so a host's stop time past the end is free.
+            return Ok(());
+        }
         self.record.time_debt += h;
         let n = (self.record.time_debt / dt).floor().max(0.0) as u64;
         self.record.time_debt -= n as f64 * dt;
@@ -333,6 +358,11 @@ impl Indentation {
             self.record.h_max = self.record.h_max.max(h);
             self.record.unloading.clear();
             self.record.contact_depth = None;
+            let (area, r) = (projected_area(self.setup.indenter_diameter, h), 0.5 * self.setup.indenter_diameter);
+            if area > 0.0 && (PLATEAU.0..=PLATEAU.1).contains(&(h / r)) {
+                self.record.plateau_sum += f / area;
+                self.record.plateau_samples += 1;
+            }
             if self.setup.motion == Motion::Prescribed && h >= self.setup.max_penetration * (1.0 - 1e-9) {
                 self.record.state = TestState::Unloading;
                 self.set_indenter_velocity(self.setup.indentation_speed);
@@ -400,6 +430,7 @@ impl Indentation {
             kinetic_energy: self.engine.particles().kinetic_energy(),
             state: self.record.state,
             contact_depth: self.record.contact_depth.unwrap_or(0.0),
+            plateau_hardness: self.record.plateau_hardness(),
         }
     }
 

@@ -1,7 +1,7 @@
 //! `powderfmu bed ...`: prepare a bed, describe it, look at it, export it, time it.
 
 use powderfmu::bed::file::{self, BedFile};
-use powderfmu::bed::indentation::{Indentation, Motion, Setup, Shortcut, TestState, FAST};
+use powderfmu::bed::indentation::{Indentation, Motion, Setup, Shortcut, TestState, FAST, PLATEAU};
 use powderfmu::bed::prepare::{self, Progress};
 use powderfmu::bed::stress::{bagi, Region};
 use powderfmu::bed::{export, render, AnyEngine, BedScene};
@@ -42,6 +42,11 @@ pub enum BedCommand {
     },
     /// Count, height, solid fraction, coordination, overlap, stress of a bed file
     Info {
+        /// The bed file
+        bed: PathBuf,
+    },
+    /// The BallIndentation start values that load this bed (bed_file and its contact parameters), as JSON
+    Params {
         /// The bed file
         bed: PathBuf,
     },
@@ -157,6 +162,7 @@ pub fn run(command: BedCommand) -> Result<(), String> {
             prepare_cmd(scene, output, threads.map(usize::from), &until, resume, checkpoint)
         }
         BedCommand::Info { bed } => info_cmd(&bed),
+        BedCommand::Params { bed } => params_cmd(&bed),
         BedCommand::Snapshot { bed, out } => snapshot_cmd(&bed, &out),
         BedCommand::Render { bed, out, width } => render_cmd(&bed, &out, width),
         BedCommand::ExportLammps { bed, out } => export_cmd(&bed, &out),
@@ -342,6 +348,19 @@ fn info_cmd(path: &Path) -> Result<(), String> {
     Ok(())
 }
 
+/// Reads only the bed's scene (not its spheres' engine), so that it is quick on a large bed.
+fn params_cmd(path: &Path) -> Result<(), String> {
+    let bytes = std::fs::read(path).map_err(|e| format!("cannot read `{}`: {e}", path.display()))?;
+    let bed = file::decode(&bytes).map_err(|e| format!("`{}`: {e}", path.display()))?;
+    let scene = BedScene::from_json(&bed.scene).map_err(|e| format!("`{}`: its scene: {e}", path.display()))?;
+    let absolute = std::fs::canonicalize(path).map_err(|e| format!("`{}`: {e}", path.display()))?;
+    let mut params = serde_json::Map::new();
+    params.insert("bed_file".into(), absolute.display().to_string().into());
+    params.extend(powderfmu::units::ball_indentation::parameters_of_bed(&scene));
+    println!("{}", serde_json::to_string_pretty(&params).expect("JSON"));
+    Ok(())
+}
+
 fn snapshot_cmd(path: &Path, out: &Path) -> Result<(), String> {
     let format = out.extension().and_then(|e| e.to_str()).filter(|e| *e == "vtk" || *e == "csv");
     let Some(format) = format else { return Err(format!("output `{}`: give a file ending in .vtk or .csv", out.display())) };
@@ -487,12 +506,15 @@ fn indent_cmd(a: IndentArgs) -> Result<(), String> {
             let particle_steps = test.engine.particles().len() as f64 * test.record.steps as f64;
             let moving = test.engine.particles().held.iter().filter(|&&h| !h).count();
             eprintln!(
-                "indentation: h_max {:.4e} m (h/r {:.3}), F_max {:.4e} N, h_c {:.4e} m, hardness {:.4e} Pa, {:.1} s wall time, {} steps, {:.3e} particle-steps/s, {moving} spheres moving",
+                "indentation: h_max {:.4e} m (h/r {:.3}), F_max {:.4e} N, h_c {:.4e} m, hardness {:.4e} Pa, plateau hardness {:.4e} Pa (h/r {}-{}), {:.1} s wall time, {} steps, {:.3e} particle-steps/s, {moving} spheres moving",
                 test.record.h_max,
                 test.record.h_max / (0.5 * d),
                 test.record.f_max,
                 r.contact_depth,
                 r.hardness,
+                r.plateau_hardness,
+                PLATEAU.0,
+                PLATEAU.1,
                 wall,
                 test.record.steps,
                 particle_steps / wall

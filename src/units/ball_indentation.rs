@@ -23,8 +23,22 @@ pub const MODEL_IDENTIFIER: &str = "BallIndentation";
 /// The bed in the FMU's resources folder.
 pub const RESOURCE_BED: &str = "bed.pfbed";
 
-/// The scene of the bed the FMU ships (`fmu_build` prepares it); the contact parameters start at its values.
-pub const DEFAULT_BED_SCENE: &str = include_str!("../../scenes/bed_indentation_quick.json");
+/// The scene of the bed the FMU ships; the contact parameters start at its values.
+pub const DEFAULT_BED_SCENE: &str = include_str!("../../scenes/bed_004_ch6.json");
+
+/// The bed the FMU ships, prepared once from `DEFAULT_BED_SCENE` (repository path; `fmu_build` refuses
+/// it if made with another scene).
+pub const SHIPPED_BED: &str = "beds/bed_004_ch6.pfbed";
+
+/// The default speed [m/s]: an inertial number I = (v/H) d (H_qs/rho)^(-1/2) of 0.005 on the shipped
+/// bed (H = 18.0 mm, d = 1.0 mm, plateau hardness H_qs ~ 6 kPa, rho = 2500 kg/m^3), gamma* = 0.08
+/// (`004` Eq. 7.1); chosen from the rate study in docs/indentation.md.
+pub const DEFAULT_SPEED: f64 = 0.1429;
+
+/// The default time step [s]: half the shipped bed's stability limit 2 sqrt(m*/k) = 5.0e-7 s (its
+/// smallest sphere on the 8 MN/m die wall, 000 Eq. 68), 2.5 times its own step (docs/indentation.md
+/// measures what that changes).
+pub const DEFAULT_TIME_STEP: f64 = 2.5e-7;
 
 /// The three contacts whose scene keys are parameters `{contact}.{key}`: the bed's two, which must agree
 /// with the bed file, and the indenter's, free.
@@ -63,6 +77,20 @@ fn resolved(key: &Key, map: &Map<String, Json>) -> Option<Json> {
     }
 }
 
+/// The contact parameters that make the unit accept a bed made with `bed`, as start values for an
+/// importer (`powderfmu bed params`): its two contacts, and the particle-indenter contact at the bed's
+/// walls' (as `powderfmu bed indent` takes it); a derived key left to derive is 0.
+pub fn parameters_of_bed(bed: &BedScene) -> Map<String, Json> {
+    let mut out = Map::new();
+    for contact in CONTACTS {
+        let map = if contact == "particle_particle" { &bed.particle_particle } else { &bed.particle_wall };
+        for key in KEYS.iter().filter(|k| contact_key(contact, k)) {
+            out.insert(format!("{contact}.{}", key.name), resolved(key, map).unwrap_or_else(|| Json::from(0.0)));
+        }
+    }
+    out
+}
+
 variable_table! {
     indenter_displacement: Variable::input("indenter_displacement", "m", "with indenter_motion = input: depth of the indenter's lowest point below its first touch of the bed surface, positive into the bed"),
     indenter_velocity: Variable::input("indenter_velocity", "m/s", "with indenter_motion = input: rate of indenter_displacement, positive into the bed"),
@@ -78,18 +106,19 @@ variable_table! {
     kinetic_energy: Variable::output("kinetic_energy", VarType::Real, "J", "kinetic energy of the bed's spheres, translation and rotation"),
     test_state: Variable::output("test_state", VarType::Integer, "", "0 loading, 1 unloading, 2 done (the indenter has left the bed)"),
     contact_depth: Variable::output("contact_depth", VarType::Real, "m", "h_c, where the tangent to the initial unloading curve meets zero force; 0 until known"),
+    plateau_hardness: Variable::output("plateau_hardness", VarType::Real, "Pa", "mean of F/A(h) while loading at 0.1 <= h/r <= 0.2, where it levels off (004 Figs. 5.2-5.3); 0 until the indenter passes h/r = 0.1"),
     indenter_motion: Variable::parameter("indenter_motion", Value::String("prescribed".into()), "", "prescribed (load at indentation_speed to max_penetration, unload at the same speed until the indenter leaves the bed) or input (follow indenter_displacement and indenter_velocity)"),
-    indenter_diameter: Variable::parameter("indenter_diameter", Value::Real(0.004), "m", "d, diameter of the spherical indenter, narrower than the die")
+    indenter_diameter: Variable::parameter("indenter_diameter", Value::Real(0.016), "m", "d, diameter of the spherical indenter, narrower than the die (default 16 mm, 16 mean diameters of the shipped bed: 004 Ch. 5's smallest reliable size)")
         .with_range(Some(0.0), None),
-    indentation_speed: Variable::parameter("indentation_speed", Value::Real(0.05), "m/s", "speed of the prescribed loading and unloading")
+    indentation_speed: Variable::parameter("indentation_speed", Value::Real(DEFAULT_SPEED), "m/s", "speed of the prescribed loading and unloading (default: inertial number 0.005 on the shipped bed, gamma* = 0.08; its error is in docs/indentation.md)")
         .with_range(Some(0.0), None),
-    max_penetration: Variable::parameter("max_penetration", Value::Real(0.0004), "m", "depth at which the prescribed indenter turns (default 0.2 r)")
+    max_penetration: Variable::parameter("max_penetration", Value::Real(0.0016), "m", "depth at which the prescribed indenter turns (default h/r = 0.2)")
         .with_range(Some(0.0), None),
     constraint_factor: Variable::parameter("constraint_factor", Value::Real(3.0), "", "C = hardness / yield strength (004 Eq. 2.10)")
         .with_range(Some(0.0), None),
     bed_file: Variable::parameter("bed_file", Value::String(String::new()), "", "a bed file of `powderfmu bed prepare`; empty: the bed in the FMU's resources"),
-    threads: Variable::parameter("threads", Value::Integer(1), "", "threads of the bed engine's force loop, in [1, 256]"),
-    time_step: Variable::parameter("time_step", Value::Real(0.0), "s", "the bed engine's time step; 0 = the bed's own (its scene's time_step or rayleigh_fraction of its stability limit)")
+    threads: Variable::parameter("threads", Value::Integer(2), "", "threads of the bed engine's force loop, in [1, 256] (results differ from one thread's by round-off, which the bed's dynamics then grow)"),
+    time_step: Variable::parameter("time_step", Value::Real(DEFAULT_TIME_STEP), "s", "the bed engine's time step, refused above the bed's stability limit; the default is half the shipped bed's limit (its error is in docs/indentation.md); 0 = the bed's own (its scene's time_step or rayleigh_fraction of its stability limit)")
         .with_range(Some(0.0), None),
     fidelity: Variable::parameter("fidelity", Value::String("fast".into()), "", "fast (the spheres farther than 3 contact radii a_max from the deepest indentation are held where the bed left them until the force on one changes by 0.1 consolidation_stress x d^2; its error is measured in docs/indentation.md) or full (every sphere moves)"),
 }
@@ -102,8 +131,10 @@ pub fn info() -> UnitInfo {
         n_states: 0,
         n_event_indicators: 0,
         model_exchange: false,
-        stop_time: 0.03,
-        step_size: 2e-4,
+        // The default test: 11.2 ms of loading, the unloading no longer (the bed is not stepped once
+        // the indenter has left it).
+        stop_time: 0.025,
+        step_size: 1e-4,
         new_model: |u, resources| {
             Box::new(BallIndentation { variables: u.variables.clone(), resources: resources.map(Path::to_path_buf), test: None, reported: None, events: vec![], fresh: false })
         },
@@ -293,6 +324,7 @@ impl Model for BallIndentation {
             (REFS.deviatoric_stress, r.deviatoric_stress),
             (REFS.kinetic_energy, r.kinetic_energy),
             (REFS.contact_depth, r.contact_depth),
+            (REFS.plateau_hardness, r.plateau_hardness),
         ] {
             values[vr] = Value::Real(x);
         }
@@ -368,3 +400,33 @@ impl Model for BallIndentation {
 }
 
 
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_parameters_of_the_shipped_bed_are_the_start_values() {
+        let bed = BedScene::from_json(DEFAULT_BED_SCENE).unwrap();
+        let params = parameters_of_bed(&bed);
+        let vars = variables();
+        assert!(params.len() > 20, "every contact key of the three contacts");
+        for (name, value) in &params {
+            let v = vars.iter().find(|v| &v.name == name).unwrap_or_else(|| panic!("`{name}` is a parameter"));
+            let start = match v.start.as_ref().expect("a parameter has a start value") {
+                Value::Real(x) => Json::from(*x),
+                Value::String(s) => Json::from(s.as_str()),
+                other => panic!("`{name}`: unexpected start {other:?}"),
+            };
+            assert_eq!(&start, value, "`{name}`");
+        }
+    }
+
+    #[test]
+    fn the_parameters_of_another_bed_name_its_materials() {
+        let quick = BedScene::from_json(include_str!("../../scenes/bed_indentation_quick.json")).unwrap();
+        let params = parameters_of_bed(&quick);
+        assert_eq!(params["particle_particle.particle_youngs_modulus"], Json::from(55e6));
+        assert_eq!(params["particle_indenter.friction_coefficient"], params["particle_wall.friction_coefficient"]);
+    }
+}

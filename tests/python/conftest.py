@@ -8,7 +8,9 @@ saying how to build it.
 
 from __future__ import annotations
 
+import json
 import shutil
+import subprocess
 import sys
 import tempfile
 from pathlib import Path
@@ -19,7 +21,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from fmpy import extract, read_model_description  # noqa: E402
 
-from fmu_support import Cli, Unit, cli_path, fmu_dir  # noqa: E402
+from fmu_support import REPO, Cli, Unit, cli_path, fmu_dir  # noqa: E402
 
 
 def _fmu_path(name: str) -> Path:
@@ -75,9 +77,40 @@ def contact(contact_fmu_path, _unzip_root) -> Unit:
     return _unit("ContactElement", contact_fmu_path, _unzip_root)
 
 
+# The indentation tests run on a stand-in bed: the shipped bed (29000 spheres) takes about a minute per
+# test, so only `test_default_bed.py` runs it. These are the unit's defaults of the stand-in's test, scaled
+# to its 7 mm die (a 4 mm indenter to h/r = 0.2), one thread, and the bed's own time step.
+QUICK_TEST = {"indenter_diameter": 0.004, "max_penetration": 0.0004, "indentation_speed": 0.05, "threads": 1, "time_step": 0.0}
+QUICK_EXPERIMENT = {"stop_time": 0.03, "output_interval": 2e-4}
+
+
 @pytest.fixture(scope="session")
-def indentation(indentation_fmu_path, _unzip_root) -> Unit:
-    """BallIndentation, extracted once."""
+def quick_bed(cli, tmp_path_factory) -> dict:
+    """The stand-in bed `scenes/bed_indentation_quick.json` (800 soft spheres in a 7 mm die), prepared
+    once per session with `powderfmu bed prepare`, as the start values that load it (`powderfmu bed
+    params`: bed_file and its contact parameters)."""
+    bed = tmp_path_factory.mktemp("beds") / "quick.pfbed"
+    for cmd in (
+        [str(cli.path), "bed", "prepare", str(REPO / "scenes" / "bed_indentation_quick.json"), "-o", str(bed)],
+        [str(cli.path), "bed", "params", str(bed)],
+    ):
+        run = subprocess.run(cmd, capture_output=True, text=True, timeout=600)
+        assert run.returncode == 0, f"{' '.join(cmd)} failed ({run.returncode}): {run.stderr}"
+    return json.loads(run.stdout)
+
+
+@pytest.fixture(scope="session")
+def indentation(indentation_fmu_path, _unzip_root, quick_bed) -> Unit:
+    """BallIndentation, extracted once, its start values and experiment those of the stand-in bed."""
+    unit = _unit("BallIndentation", indentation_fmu_path, _unzip_root)
+    unit.defaults = {**quick_bed, **QUICK_TEST}
+    unit.experiment = dict(QUICK_EXPERIMENT)
+    return unit
+
+
+@pytest.fixture(scope="session")
+def shipped_indentation(indentation_fmu_path, _unzip_root) -> Unit:
+    """BallIndentation as shipped: the seed's bed and the unit's own defaults."""
     return _unit("BallIndentation", indentation_fmu_path, _unzip_root)
 
 

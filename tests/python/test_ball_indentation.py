@@ -109,7 +109,7 @@ def _refused(indentation, start_values, name, inputs=None):
     log = MessageLog()
     fmu = indentation.slave("bad", log)
     fmu.setupExperiment(startTime=0.0)
-    indentation.set_start_values(fmu, start_values)
+    indentation.set_start_values(fmu, {**indentation.defaults, **start_values})
     for k, v in (inputs or {}).items():
         fmu.setReal([indentation.vr[k]], [v])
     fmu.enterInitializationMode()
@@ -133,9 +133,12 @@ def test_bad_input_is_refused_at_initialization_and_the_host_survives(indentatio
     _refused(indentation, {"indenter_motion": "sideways"}, "indenter_motion")
     _refused(indentation, {"fidelity": "medium"}, "fidelity")
     _refused(indentation, {"time_step": 1e-3}, "time_step")
-    # A bed prepared with other materials is another powder: the difference is named.
+    # A bed prepared with other materials is another powder: the difference is named, for a changed
+    # parameter and for another bed (the shipped one, under the stand-in's parameters).
     messages = _refused(indentation, {"particle_particle.surface_energy": 2.0}, "bed_file")
     assert any("particle_particle.surface_energy" in m for m in messages), messages
+    messages = _refused(indentation, {"bed_file": str(bed)}, "bed_file")
+    assert any("was prepared with particle_particle." in m for m in messages), messages
     # After all that, a good instance still runs.
     fmu = indentation.slave("good")
     indentation.initialize(fmu)
