@@ -1,0 +1,73 @@
+"""The shipped BallIndentation as a user meets it: fmpy's simulate_fmu with no arguments runs the
+default test on the seed's bed (29000 spheres, `beds/bed_004_ch6.pfbed`; about a minute and a half on
+two cores). The runs it is compared with are `powderfmu bed indent` records in docs/data/ch6_indentation
+(docs/indentation.md, "The default test on the seed's bed")."""
+
+import csv
+
+import pytest
+from fmpy import simulate_fmu
+
+from fmu_support import REPO, rel
+
+DONE = 2
+DATA = REPO / "docs" / "data" / "ch6_indentation"
+# The default's own settings through the command-line tool (gamma* = 0.08, 2.5e-7 s, fast, two threads).
+SAME_SETTINGS = DATA / "gamma0.08_fast_dt2.5e-7.csv"
+# Full fidelity at the seed's own speed, gamma* = 0.01, the bed's own time step.
+REFERENCE = DATA / "gamma0.01_full.csv"
+
+
+def rows(path):
+    with open(path) as f:
+        return [{k: float(v) for k, v in r.items()} for r in csv.DictReader(f)]
+
+
+def plateau_of(path):
+    """Mean F/A(h) while loading at 0.1 <= h/r <= 0.2 of a `powderfmu bed indent` CSV."""
+    h = [r["hardness_Pa"] for r in rows(path) if r["state"] == 0 and 0.1 <= r["depth_over_r"] <= 0.2]
+    assert len(h) > 20, f"{path}: {len(h)} rows on the plateau"
+    return sum(h) / len(h)
+
+
+@pytest.fixture(scope="module")
+def default_run(shipped_indentation):
+    r = simulate_fmu(str(shipped_indentation.path))
+    print(
+        f"\ndefault test: plateau hardness {r[-1]['plateau_hardness']:.0f} Pa, F_max/A(h_c) {r[-1]['hardness']:.0f} Pa "
+        f"(h_c = {r[-1]['contact_depth']:.3e} m); gamma* = 0.01 full fidelity: plateau {plateau_of(REFERENCE):.0f} Pa"
+    )
+    return r
+
+
+def test_simulate_fmu_with_no_arguments_runs_the_whole_default_test(shipped_indentation, default_run):
+    last = default_run[-1]
+    assert last["test_state"] == DONE, "the indenter has left the bed by the default stop time"
+    # Turned at max_penetration: the deepest output is within one output interval's travel of it.
+    step = float(shipped_indentation.md.defaultExperiment.stepSize) * shipped_indentation.start("indentation_speed")
+    assert max(default_run["penetration_depth"]) >= shipped_indentation.start("max_penetration") - step
+    assert last["indenter_contacts"] == 0
+    assert last["plateau_hardness"] > 0 and last["hardness"] > 0
+
+
+def test_the_default_test_is_the_command_line_run_of_the_same_settings(default_run):
+    """The FMU and `powderfmu bed indent` step the same engine: their force records agree to the CSV's
+    seven digits at every loading row, and so does the final hardness."""
+    cli = [r for r in rows(SAME_SETTINGS)]
+    by_time = {round(t / 1e-4): k for k, t in enumerate(default_run["time"])}
+    loading = [r for r in cli if r["state"] == 0]
+    assert len(loading) > 100
+    for r in loading:
+        k = by_time[round(r["time_s"] / 1e-4)]
+        assert default_run["indenter_force"][k] == pytest.approx(r["force_N"], rel=1e-6, abs=1e-9), r["time_s"]
+    assert default_run[-1]["hardness"] == pytest.approx(cli[-1]["hardness_Pa"], rel=1e-6)
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="not met: the default (gamma* = 0.08, within 2 minutes) reads the plateau about 22 % below the full run at "
+    "the seed's gamma* = 0.01; docs/indentation.md shows the curve and what 5 % would take",
+)
+def test_the_default_plateau_is_within_5_percent_of_the_seeds_speed(default_run):
+    assert rel(default_run[-1]["plateau_hardness"], plateau_of(REFERENCE)) < 0.05
+
