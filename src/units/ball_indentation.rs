@@ -111,7 +111,7 @@ variable_table! {
     indenter_motion: Variable::parameter("indenter_motion", Value::String("prescribed".into()), "", "prescribed (load at indentation_speed to max_penetration, unload at the same speed until the indenter leaves the bed) or input (follow indenter_displacement and indenter_velocity)"),
     indenter_diameter: Variable::parameter("indenter_diameter", Value::Real(0.016), "m", "d, diameter of the spherical indenter, narrower than the die (default 16 mm, 16 mean diameters of the shipped bed: 004 Ch. 5's smallest reliable size)")
         .with_range(Some(0.0), None),
-    indentation_speed: Variable::parameter("indentation_speed", Value::Real(DEFAULT_SPEED), "m/s", "speed of the prescribed loading and unloading (default gamma* = 0.08 on the shipped bed, about 85 s on two cores; it reads the plateau hardness about 22 % below the seed's speed gamma* = 0.01 (0.01786 m/s, about 12 minutes): docs/indentation.md)")
+    indentation_speed: Variable::parameter("indentation_speed", Value::Real(DEFAULT_SPEED), "m/s", "speed of the prescribed loading and unloading (default gamma* = 0.08 on the shipped bed, about 85 s on two cores; it reads the plateau hardness about 22 % below the seed's speed gamma* = 0.01 (0.01786 m/s with time_step 0, about 30 minutes): docs/indentation.md)")
         .with_range(Some(0.0), None),
     max_penetration: Variable::parameter("max_penetration", Value::Real(0.0016), "m", "depth at which the prescribed indenter turns (default h/r = 0.2)")
         .with_range(Some(0.0), None),
