@@ -3,6 +3,8 @@
 # demonstration on the default scene, printing results and writing plots to out/demo/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+# No input is read; a stdin left open by the caller must not reach rustc's probes (`rustc -`).
+exec </dev/null
 python=$(bash tools/venv.sh)
 echo "== Building the FMUs (target/fmu) and the command-line tool"
 cargo run --locked --quiet -p fmu_build

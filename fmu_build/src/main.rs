@@ -11,7 +11,7 @@ use fmu_build::archive::{zip_bytes, Entry};
 use fmu_build::{beds, interface};
 use powderfmu::units::{self, model_description, UnitInfo};
 use std::path::{Path, PathBuf};
-use std::process::{Command, ExitCode};
+use std::process::{Command, ExitCode, Stdio};
 
 fn main() -> ExitCode {
     match run() {
@@ -110,7 +110,11 @@ fn build(root: &Path, target: Option<&str>) -> Result<(), String> {
     args.extend(target.iter().flat_map(|t| ["--target", t]));
     println!("fmu_build: building the cdylib (cargo {})", args.join(" "));
     let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
-    let status = Command::new(cargo).args(&args).current_dir(root).status().map_err(|e| format!("cannot run cargo: {e}"))?;
+    // No input: rustc's target probe (`rustc - ...`) reads its source from stdin, and a stdin left open by
+    // the caller (a CI runner, a background job) once fed it stray text, which cargo then cached as the
+    // target's failed probe in target/.rustc_info.json.
+    let status =
+        Command::new(cargo).args(&args).current_dir(root).stdin(Stdio::null()).status().map_err(|e| format!("cannot run cargo: {e}"))?;
     if status.success() {
         Ok(())
     } else {
