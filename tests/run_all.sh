@@ -22,7 +22,7 @@ if [ "${POWDERFMU_SKIP_WINDOWS:-0}" = 1 ]; then
     fmu_flags=(--linux-only)
 else
     echo "== Windows toolchain (Rust target, mingw-w64, wine)"
-    bash tools/windows_toolchain.sh
+    bash tools/windows_toolchain.sh --build
 fi
 headers=$("$python" -c 'import fmpy, os; print(os.path.join(os.path.dirname(fmpy.__file__), "c-code"))')
 

@@ -6,6 +6,8 @@ cd "$(dirname "$0")/.."
 # No input is read; a stdin left open by the caller must not reach rustc's probes (`rustc -`).
 exec </dev/null
 python=$(bash tools/venv.sh)
+echo "== Windows toolchain (Rust target, mingw-w64, wine) and the win64 library"
+bash tools/windows_toolchain.sh --build
 echo "== Building the FMUs (target/fmu) and the command-line tool"
 cargo run --locked --quiet -p fmu_build
 cargo build --locked --quiet --release --bin powderfmu

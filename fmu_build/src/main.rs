@@ -110,11 +110,22 @@ fn build(root: &Path, target: Option<&str>) -> Result<(), String> {
     args.extend(target.iter().flat_map(|t| ["--target", t]));
     println!("fmu_build: building the cdylib (cargo {})", args.join(" "));
     let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
-    // No input: rustc's target probe (`rustc - ...`) reads its source from stdin, and a stdin left open by
-    // the caller (a CI runner, a background job) once fed it stray text, which cargo then cached as the
-    // target's failed probe in target/.rustc_info.json.
-    let status =
-        Command::new(cargo).args(&args).current_dir(root).stdin(Stdio::null()).status().map_err(|e| format!("cannot run cargo: {e}"))?;
+    // cargo's first probe of the Windows target (`rustc - --print=cfg ...`) failed on clean clones of
+    // 2026-12-01 whenever it came within a run that had just built something, with stray compiler output
+    // (E0554) as rustc's source, and cargo cached the failure in target/.rustc_info.json for every later
+    // build; run first on a clean target directory it passed. Cause not found. The two README commands
+    // therefore build the Windows library before anything else (tools/windows_toolchain.sh --build);
+    // here cargo gets no stdin and a failed build is tried twice more.
+    let run = || Command::new(&cargo).args(&args).current_dir(root).stdin(Stdio::null()).status();
+    let mut status = run().map_err(|e| format!("cannot run cargo: {e}"))?;
+    for _ in 0..2 {
+        if status.success() {
+            break;
+        }
+        println!("fmu_build: cargo build failed ({status}); trying again in 5 s");
+        std::thread::sleep(std::time::Duration::from_secs(5));
+        status = run().map_err(|e| format!("cannot run cargo: {e}"))?;
+    }
     if status.success() {
         Ok(())
     } else {
