@@ -8,8 +8,6 @@
 # POWDERFMU_SKIP_WINDOWS=1 builds linux64 only and skips the wine tests. Ends with one line of totals.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-# The tests take no input; a stdin left open by the caller must not reach rustc's probes (`rustc -`).
-exec </dev/null
 if ! command -v cargo >/dev/null 2>&1; then
     echo "run_all.sh: cargo is not on PATH; install a Rust toolchain (https://rustup.rs) and rerun" >&2
     exit 1
@@ -22,7 +20,7 @@ if [ "${POWDERFMU_SKIP_WINDOWS:-0}" = 1 ]; then
     fmu_flags=(--linux-only)
 else
     echo "== Windows toolchain (Rust target, mingw-w64, wine)"
-    bash tools/windows_toolchain.sh --build
+    bash tools/windows_toolchain.sh
 fi
 headers=$("$python" -c 'import fmpy, os; print(os.path.join(os.path.dirname(fmpy.__file__), "c-code"))')
 

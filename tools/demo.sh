@@ -3,11 +3,9 @@
 # demonstration on the default scene, printing results and writing plots to out/demo/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-# No input is read; a stdin left open by the caller must not reach rustc's probes (`rustc -`).
-exec </dev/null
 python=$(bash tools/venv.sh)
-echo "== Windows toolchain (Rust target, mingw-w64, wine) and the win64 library"
-bash tools/windows_toolchain.sh --build
+echo "== Windows toolchain (Rust target, mingw-w64, wine): the FMUs carry win64 binaries"
+bash tools/windows_toolchain.sh
 echo "== Building the FMUs (target/fmu) and the command-line tool"
 cargo run --locked --quiet -p fmu_build
 cargo build --locked --quiet --release --bin powderfmu

@@ -22,9 +22,3 @@ if [ ${#missing[@]} -gt 0 ]; then
         exit 1
     fi
 fi
-# --build: build the win64 library now, before anything else in the run is built. cargo's first probe of
-# the Windows target failed on clean clones when it followed a fresh build in the same run, and cargo
-# cached the failure (fmu_build/src/main.rs, `build`); done first, it passed and is cached for fmu_build.
-if [ "${1:-}" = --build ]; then
-    cargo build --locked --quiet --profile fmu-release --lib -p powderfmu --no-default-features --target "$target" </dev/null >&2
-fi

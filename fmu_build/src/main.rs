@@ -11,7 +11,7 @@ use fmu_build::archive::{zip_bytes, Entry};
 use fmu_build::{beds, interface};
 use powderfmu::units::{self, model_description, UnitInfo};
 use std::path::{Path, PathBuf};
-use std::process::{Command, ExitCode, Stdio};
+use std::process::{Command, ExitCode};
 
 fn main() -> ExitCode {
     match run() {
@@ -110,22 +110,7 @@ fn build(root: &Path, target: Option<&str>) -> Result<(), String> {
     args.extend(target.iter().flat_map(|t| ["--target", t]));
     println!("fmu_build: building the cdylib (cargo {})", args.join(" "));
     let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
-    // cargo's first probe of the Windows target (`rustc - --print=cfg ...`) failed on clean clones of
-    // 2026-12-01 whenever it came within a run that had just built something, with stray compiler output
-    // (E0554) as rustc's source, and cargo cached the failure in target/.rustc_info.json for every later
-    // build; run first on a clean target directory it passed. Cause not found. The two README commands
-    // therefore build the Windows library before anything else (tools/windows_toolchain.sh --build);
-    // here cargo gets no stdin and a failed build is tried twice more.
-    let run = || Command::new(&cargo).args(&args).current_dir(root).stdin(Stdio::null()).status();
-    let mut status = run().map_err(|e| format!("cannot run cargo: {e}"))?;
-    for _ in 0..2 {
-        if status.success() {
-            break;
-        }
-        println!("fmu_build: cargo build failed ({status}); trying again in 5 s");
-        std::thread::sleep(std::time::Duration::from_secs(5));
-        status = run().map_err(|e| format!("cannot run cargo: {e}"))?;
-    }
+    let status = Command::new(cargo).args(&args).current_dir(root).status().map_err(|e| format!("cannot run cargo: {e}"))?;
     if status.success() {
         Ok(())
     } else {

@@ -258,6 +258,12 @@ pub fn decode(bytes: &[u8]) -> Result<BedFile, BedError> {
 
 /// Writes `bytes` to `path` atomically: a temporary file in the same folder, synced, then renamed.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    // Only a regular file (or none) is replaced by renaming: renaming onto /dev/null, a FIFO or a
+    // terminal would put a regular file in its place (as root, /dev/null itself, which then fed stale
+    // output to every program reading it). Those are written to directly.
+    if std::fs::metadata(path).is_ok_and(|m| !m.is_file()) {
+        return std::fs::OpenOptions::new().write(true).open(path)?.write_all(bytes);
+    }
     let dir = path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
     let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_else(|| "bed".into());
     let tmp = dir.join(format!(".{name}.tmp-{}", std::process::id()));
@@ -280,4 +286,26 @@ pub fn save(path: &Path, engine: &AnyEngine, scene: &BedScene) -> std::io::Resul
 pub fn load(path: &Path, threads: Option<usize>) -> Result<(AnyEngine, BedScene), BedError> {
     let bytes = std::fs::read(path).map_err(|e| BedError::Setup(format!("cannot read bed file `{}`: {e}", path.display())))?;
     AnyEngine::from_file(&decode(&bytes)?, threads)
+}
+
+#[cfg(all(test, unix))]
+mod tests {
+    use std::os::unix::fs::FileTypeExt;
+
+    #[test]
+    fn writing_to_dev_null_leaves_it_the_null_device() {
+        let null = std::path::Path::new("/dev/null");
+        assert!(std::fs::metadata(null).unwrap().file_type().is_char_device(), "/dev/null is broken before the test");
+        super::write_atomic(null, b"output nobody wants").unwrap();
+        assert!(std::fs::metadata(null).unwrap().file_type().is_char_device(), "write_atomic replaced /dev/null");
+    }
+
+    #[test]
+    fn a_regular_file_is_replaced_whole() {
+        let path = std::env::temp_dir().join(format!("powderfmu-atomic-{}", std::process::id()));
+        std::fs::write(&path, b"a longer old content").unwrap();
+        super::write_atomic(&path, b"new").unwrap();
+        assert_eq!(std::fs::read(&path).unwrap(), b"new");
+        std::fs::remove_file(&path).unwrap();
+    }
 }
