@@ -8,6 +8,7 @@ saying how to build it.
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import shutil
 import subprocess
@@ -100,18 +101,16 @@ def quick_bed(cli, tmp_path_factory) -> dict:
 
 
 @pytest.fixture(scope="session")
-def indentation(indentation_fmu_path, _unzip_root, quick_bed) -> Unit:
-    """BallIndentation, extracted once, its start values and experiment those of the stand-in bed."""
-    unit = _unit("BallIndentation", indentation_fmu_path, _unzip_root)
-    unit.defaults = {**quick_bed, **QUICK_TEST}
-    unit.experiment = dict(QUICK_EXPERIMENT)
-    return unit
+def shipped_indentation(indentation_fmu_path, _unzip_root) -> Unit:
+    """BallIndentation as shipped, extracted once: the seed's bed and the unit's own defaults."""
+    return _unit("BallIndentation", indentation_fmu_path, _unzip_root)
 
 
 @pytest.fixture(scope="session")
-def shipped_indentation(indentation_fmu_path, _unzip_root) -> Unit:
-    """BallIndentation as shipped: the seed's bed and the unit's own defaults."""
-    return _unit("BallIndentation", indentation_fmu_path, _unzip_root)
+def indentation(shipped_indentation, quick_bed) -> Unit:
+    """BallIndentation with the start values and experiment of the stand-in bed. The same extraction as
+    `shipped_indentation`: extracting again would overwrite the loaded library in place (a crash later)."""
+    return dataclasses.replace(shipped_indentation, defaults={**quick_bed, **QUICK_TEST}, experiment=dict(QUICK_EXPERIMENT))
 
 
 @pytest.fixture(scope="session")
