@@ -115,7 +115,7 @@ const FUNCTIONS: &[Function] = &[
     f("fmi2GetEventIndicators", Me, Full, &[Initialization, Event, ContinuousTime, Terminated, Error]),
     f("fmi2GetContinuousStates", Me, Full, &[Initialization, Event, ContinuousTime, Terminated, Error]),
     f("fmi2GetNominalsOfContinuousStates", Me, Full, &[Instantiated, Initialization, Event, ContinuousTime, Terminated, Error]),
-    f("fmi2SetRealInputDerivatives", Cs, Unsupported, &[Instantiated, Initialization, StepComplete]),
+    f("fmi2SetRealInputDerivatives", Cs, Full, &[Instantiated, Initialization, StepComplete]),
     f("fmi2GetRealOutputDerivatives", Cs, Unsupported, &[StepComplete, Terminated, Error]),
     f("fmi2DoStep", Cs, Full, &[StepComplete]),
     f("fmi2CancelStep", Cs, Unsupported, &[]),

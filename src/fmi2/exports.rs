@@ -703,13 +703,18 @@ fn cs(c: fmi2Component, function: &'static str, modes: u32, f: impl FnOnce(&mut 
 #[no_mangle]
 pub unsafe extern "C" fn fmi2SetRealInputDerivatives(
     c: fmi2Component,
-    _vr: *const fmi2ValueReference,
-    _nvr: usize,
-    _order: *const fmi2Integer,
-    _value: *const fmi2Real,
+    vr: *const fmi2ValueReference,
+    nvr: usize,
+    order: *const fmi2Integer,
+    value: *const fmi2Real,
 ) -> fmi2Status {
-    cs(c, "fmi2SetRealInputDerivatives", allowed::ANY_LIVE, |_| {
-        error("fmi2SetRealInputDerivatives is not supported (canInterpolateInputs is false; the wall moves with wall_velocity within a step)")
+    const F: &str = "fmi2SetRealInputDerivatives";
+    cs(c, F, allowed::SET_INPUT_DERIVATIVES, |inst| {
+        // SAFETY: the host passes arrays of nvr elements (FMI 2.0 Sec. 4.2.1); NULL and impossible lengths are refused inside.
+        let vrs = unsafe { slice(vr, nvr, F, "vr") }?;
+        let orders = unsafe { slice(order, nvr, F, "order") }?;
+        let values = unsafe { slice(value, nvr, F, "value") }?;
+        inst.set_input_derivatives(vrs, orders, values)
     })
 }
 

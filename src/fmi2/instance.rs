@@ -81,6 +81,7 @@ pub mod allowed {
     pub const GET_DERIVATIVES: u32 = m(&[InitializationMode, EventMode, ContinuousTimeMode, Terminated, Error]);
     pub const GET_NOMINALS: u32 = m(&[Instantiated, InitializationMode, EventMode, ContinuousTimeMode, Terminated, Error]);
     pub const DO_STEP: u32 = m(&[StepComplete]);
+    pub const SET_INPUT_DERIVATIVES: u32 = m(&[Instantiated, InitializationMode, StepComplete]);
     pub const CS_STATUS: u32 = m(&[StepComplete, Terminated]);
 }
 
@@ -444,6 +445,28 @@ impl Instance {
         }
     }
 
+    /// fmi2SetRealInputDerivatives: every (vr, order, value) is checked before any is taken, so a refusal
+    /// changes nothing.
+    pub fn set_input_derivatives(&mut self, vrs: &[fmi2ValueReference], orders: &[fmi2Integer], values: &[f64]) -> Call {
+        const F: &str = "fmi2SetRealInputDerivatives";
+        if !self.unit.can_interpolate_inputs {
+            return error(format!("{F}: {} takes no input derivatives (canInterpolateInputs is false)", self.unit.model_identifier));
+        }
+        self.check_refs(F, vrs, VarType::Real)?;
+        for (&vr, &order) in vrs.iter().zip(orders) {
+            let v = &self.unit.variables[vr as usize];
+            if v.causality != Causality::Input {
+                return error(format!("{F}: `{}` is not an input; only inputs have derivatives to set", v.name));
+            }
+            if order < 1 {
+                return error(format!("{F}: order {order} of `{}` is out of range: allowed >= 1", v.name));
+            }
+        }
+        let derivatives: Vec<(usize, i32, f64)> =
+            vrs.iter().zip(orders).zip(values).map(|((&vr, &order), &value)| (vr as usize, order, value)).collect();
+        self.model.set_input_derivatives(&derivatives).or_else(|e| error(format!("{F}: {e}")))
+    }
+
     /// The saved state; a model that cannot serialize itself is an error the host sees (fmi2Error), never
     /// an empty state that would restore as "not initialized".
     pub fn save(&self) -> Call<Vec<u8>> {
@@ -529,6 +552,7 @@ mod tests {
             stop_time: 1.0,
             step_size: 0.1,
             model_exchange: true,
+            can_interpolate_inputs: false,
             new_model: |_, _| Box::new(Unserializable),
             guid_cache: std::sync::OnceLock::new(),
         }));

@@ -132,6 +132,7 @@ pub fn info() -> UnitInfo {
         n_states: 0,
         n_event_indicators: 0,
         model_exchange: false,
+        can_interpolate_inputs: false,
         // The default test: 11.2 ms of loading, the unloading no longer (the bed is not stepped once
         // the indenter has left it).
         stop_time: 0.025,

@@ -61,6 +61,7 @@ pub fn info() -> UnitInfo {
         stop_time: 1.0,
         step_size: 1e-3,
         model_exchange: true,
+        can_interpolate_inputs: false,
         new_model: |u, _| Box::new(ContactElement::new(u)),
         guid_cache: std::sync::OnceLock::new(),
     }

@@ -18,6 +18,9 @@ pub enum UnitError {
     /// A saved state that cannot be read, or that no contact of these parameters can be in.
     #[error("{0}")]
     SavedState(String),
+    /// A call this unit does not offer (the message says which and why).
+    #[error("{0}")]
+    Unsupported(String),
     /// A call that needs an initialized unit.
     #[error("the unit is not initialized")]
     NotInitialized,

@@ -50,6 +50,12 @@ pub trait Model: Send {
     fn accept(&mut self, values: &[Value]) -> Option<String>;
     /// CS: advance from `t` by `h` with the current inputs.
     fn do_step(&mut self, values: &[Value], t: f64, h: f64) -> Result<(), UnitError>;
+    /// CS, fmi2SetRealInputDerivatives: (value reference, order, value) of time derivatives of inputs at
+    /// the start of the next step. Only units with `can_interpolate_inputs` take any; a refusal of one
+    /// changes nothing.
+    fn set_input_derivatives(&mut self, _derivatives: &[(usize, i32, f64)]) -> Result<(), UnitError> {
+        Err(UnitError::Unsupported("this unit takes no input derivatives (canInterpolateInputs is false)".into()))
+    }
     /// The dynamic state (not the parameters) as bytes (empty: not initialized); `restore` reads it back.
     fn save(&self) -> Result<Vec<u8>, UnitError>;
     /// What happened since the last call worth telling the user (progress of a long test), for the
@@ -69,6 +75,8 @@ pub struct UnitInfo {
     pub n_event_indicators: usize,
     /// Whether the unit offers Model Exchange (every unit offers Co-Simulation).
     pub model_exchange: bool,
+    /// CS: whether the unit takes input derivatives (fmi2SetRealInputDerivatives, canInterpolateInputs).
+    pub can_interpolate_inputs: bool,
     /// DefaultExperiment of the XML [s].
     pub stop_time: f64,
     pub step_size: f64,

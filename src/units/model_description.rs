@@ -37,9 +37,10 @@ pub fn xml(unit: &UnitInfo, guid: &str) -> String {
     if unit.model_exchange {
         let _ = writeln!(x, "  <ModelExchange modelIdentifier=\"{id}\" canGetAndSetFMUstate=\"true\" canSerializeFMUstate=\"true\" completedIntegratorStepNotNeeded=\"true\"/>");
     }
+    let interpolate = if unit.can_interpolate_inputs { " canInterpolateInputs=\"true\"" } else { "" };
     let _ = writeln!(
         x,
-        "  <CoSimulation modelIdentifier=\"{id}\" canHandleVariableCommunicationStepSize=\"true\" canGetAndSetFMUstate=\"true\" canSerializeFMUstate=\"true\"/>"
+        "  <CoSimulation modelIdentifier=\"{id}\" canHandleVariableCommunicationStepSize=\"true\"{interpolate} canGetAndSetFMUstate=\"true\" canSerializeFMUstate=\"true\"/>"
     );
     x.push_str("  <UnitDefinitions>\n");
     for u in UNITS.iter().filter(|u| unit.variables.iter().any(|v| v.unit == u.name)) {
