@@ -496,3 +496,26 @@ def _extracted(fmu: Path) -> str:
     if key not in _EXTRACTED:
         _EXTRACTED[key] = extract(key)
     return _EXTRACTED[key]
+
+
+def detachment_threshold(spec: Mapping[str, Any], rel_tol: float = 1e-3, fmu: Path | None = None) -> float:
+    """The smallest peak plate acceleration [m/s2] that detaches the (first) particle of a one-particle
+    spec, by bisection on `acceleration` between a quarter and four times the quasi-static threshold."""
+    spec = {**spec, "particles": 1}
+    spec.pop("amplitude", None)
+
+    def detaches(a: float) -> bool:
+        return bool(run({**spec, "acceleration": a}, fmu).detached[0])
+
+    quasi_static = float(run({**spec, "acceleration": 1.0}, fmu).quasi_static_threshold[0])
+    lo, hi = quasi_static / 4, quasi_static
+    while not detaches(hi):
+        lo, hi = hi, 2 * hi
+        if hi > 1e3 * quasi_static:
+            raise RuntimeError(f"no detachment up to {hi:.3e} m/s2 (quasi-static threshold {quasi_static:.3e})")
+    if detaches(lo):
+        raise RuntimeError(f"detached at {lo:.3e} m/s2, a quarter of the quasi-static threshold {quasi_static:.3e}")
+    while hi / lo - 1 > rel_tol:
+        mid = math.sqrt(lo * hi)
+        lo, hi = (lo, mid) if detaches(mid) else (mid, hi)
+    return math.sqrt(lo * hi)
