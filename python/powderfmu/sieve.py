@@ -519,3 +519,81 @@ def detachment_threshold(spec: Mapping[str, Any], rel_tol: float = 1e-3, fmu: Pa
         mid = math.sqrt(lo * hi)
         lo, hi = (lo, mid) if detaches(mid) else (mid, hi)
     return math.sqrt(lo * hi)
+
+
+def main(argv=None) -> int:
+    """python -m powderfmu.sieve [SPEC.json] [--set KEY=VALUE ...] [--check-step] [--plot FILE]"""
+    import argparse
+    import json
+    import sys
+
+    ap = argparse.ArgumentParser(prog="python -m powderfmu.sieve", description="Runs the ultrasonic sieve system once and prints which particles detach, when, and the plate's motion.")
+    ap.add_argument("spec", nargs="?", help="JSON object of system keys and ParticleWallImpact parameters (default: the defaults)")
+    ap.add_argument("--set", action="append", default=[], metavar="KEY=VALUE", help="one key (a number or a string), after the spec's")
+    ap.add_argument("--check-step", action="store_true", help="run again at half the communication step and report the differences")
+    ap.add_argument("--plot", help="write the plate's motion and the detachments to this image")
+    args = ap.parse_args(argv)
+    spec: dict[str, Any] = {}
+    try:
+        if args.spec:
+            spec = scene_mod.load(args.spec)
+        for item in args.set:
+            key, sep, value = item.partition("=")
+            if not sep:
+                raise SpecError(f"--set {item!r}: give KEY=VALUE")
+            try:
+                spec[key] = json.loads(value)
+            except json.JSONDecodeError:
+                spec[key] = value
+        r = run(spec)
+    except (SpecError, ValueError) as e:
+        print(f"powderfmu.sieve: {e}", file=sys.stderr)
+        return 2
+    s = r.system
+    print(
+        f"plate: {s['plate_mass']:g} kg, natural frequency {s['plate_natural_frequency']:g} Hz, damping ratio {s['plate_damping_ratio']:g}; "
+        f"drive {s['frequency']:g} Hz, amplitude {s['amplitude']:.4e} m, peak acceleration {s['acceleration']:.4e} m/s2"
+    )
+    print(f"{s['particles']} particles (median radius {s['particle_radius']:g} m, spread {s['radius_spread']:g}); {s['periods']:g} periods of {s['steps_per_period']} steps; {r.wall_time:.2f} s")
+    print(f"{'radius [m]':>12} {'mass [kg]':>11} {'pull-off [N]':>12} {'q-s threshold [m/s2]':>21} {'detached at [s]':>16}")
+    for i in range(len(r.radius)):
+        t = "stayed" if math.isnan(r.detach_time[i]) else f"{r.detach_time[i]:.6e}"
+        print(f"{r.radius[i]:12.4e} {r.mass[i]:11.4e} {r.pull_off_force[i]:12.4e} {r.quasi_static_threshold[i]:21.4e} {t:>16}")
+    print(
+        f"detached: {r.detached.sum()} of {len(r.radius)} particles, mass fraction {r.detached_mass_fraction:.4f} "
+        f"(quasi-statically expected: {(r.quasi_static_threshold < s['acceleration']).sum()}); plate amplitude {np.abs(r.plate_position).max():.4e} m; "
+        f"momentum defect {r.momentum_defect:.3e} N s"
+    )
+    if args.check_step:
+        fine = run({**spec, "steps_per_period": 2 * s["steps_per_period"]})
+        both = ~np.isnan(r.detach_time) & ~np.isnan(fine.detach_time)
+        dt = float(np.abs(r.detach_time[both] - fine.detach_time[both]).max()) if both.any() else 0.0
+        print(
+            f"half the step ({2 * s['steps_per_period']} per period): {int((r.detached != fine.detached).sum())} particle(s) change side, "
+            f"detachment times move by at most {dt:.3e} s (one step: {1 / s['frequency'] / s['steps_per_period']:.3e} s), "
+            f"plate amplitude by {abs(np.abs(fine.plate_position).max() / np.abs(r.plate_position).max() - 1):.2e} relative"
+        )
+    if args.plot:
+        import matplotlib
+
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+
+        fig, (a1, a2) = plt.subplots(2, 1, figsize=(7, 5.5), sharex=True)
+        a1.plot(r.time * 1e3, r.plate_position * 1e6)
+        a1.set_ylabel("plate position [um]")
+        a1.set_title(f"sieve at {s['frequency']:g} Hz, {s['acceleration']:.3g} m/s2: detached mass fraction {r.detached_mass_fraction:.2f}")
+        d = r.detached
+        a2.semilogy(r.detach_time[d] * 1e3, r.radius[d] * 1e6, "v", color="C3", label="detached (time, radius)")
+        a2.semilogy(np.full((~d).sum(), r.time[-1] * 1e3), r.radius[~d] * 1e6, "o", color="C2", mfc="none", label="stayed")
+        a2.set_xlabel("time after the drive started [ms]")
+        a2.set_ylabel("particle radius [um]")
+        a2.legend(fontsize=8)
+        fig.tight_layout()
+        fig.savefig(args.plot, dpi=120)
+        print(f"wrote {args.plot}")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
