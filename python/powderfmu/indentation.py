@@ -14,6 +14,7 @@ from fmpy import read_model_description, simulate_fmu
 
 from . import scene as scene_mod
 from .fmus import fmu_path
+from .instance import cosimulation
 
 OWN_KEYS = ("stop_time", "output_interval")
 SUMMARY_KEYS = ("plateau_hardness", "hardness", "unconfined_yield_strength", "max_force", "max_depth", "test_state", "wall_time")
@@ -32,7 +33,13 @@ def resolve(inputs: Mapping[str, Any], fmu: Path | None = None) -> tuple[dict[st
             settings[key] = float(value)
         else:
             params[key] = value
-    return settings, scene_mod.start_values(fmu, params)
+    start = scene_mod.start_values(fmu, params)
+    # The unit checks its parameters (ranges, the bed file and its scene) at initialization: ask it now,
+    # so that a bad value stops a sweep before any task.
+    p, _ = cosimulation(fmu, "check", start)
+    p.terminate()
+    p.freeInstance()
+    return settings, start
 
 
 def run(inputs: Mapping[str, Any], fmu: Path | None = None) -> dict[str, Any]:

@@ -16,7 +16,7 @@ from fmpy.fmi2 import FMU2Model
 from fmpy.sundials import CVodeSolver
 
 from . import sieve
-from .fmi_log import Messages
+from .instance import Messages, description, extracted, set_values
 from .fmus import fmu_path
 
 
@@ -45,20 +45,16 @@ def run_particle(spec: Mapping[str, Any], relative_tolerance: float = 1e-8, fmu:
     fmu = Path(fmu or fmu_path("ParticleWallImpact"))
     system, powder = sieve.resolve({**spec, "particles": 1}, fmu)
     radius = float(sieve.radii(system)[0])
-    md = sieve._description(fmu)
+    md = description(fmu)
     v = {x.name: x for x in md.modelVariables}
     vr_x, vr_v = v["wall_displacement"].valueReference, v["wall_velocity"].valueReference
     started = time.perf_counter()
     log = Messages()
-    p = FMU2Model(guid=md.guid, unzipDirectory=sieve._extracted(fmu), modelIdentifier=md.modelExchange.modelIdentifier, instanceName="me")
+    p = FMU2Model(guid=md.guid, unzipDirectory=extracted(fmu), modelIdentifier=md.modelExchange.modelIdentifier, instanceName="me")
     p.instantiate(callbacks=log.callbacks)
     try:
         p.setupExperiment(startTime=0.0)
-        for key, value in {**powder, "particle_radius": radius, "initial_gap": 0.0, "initial_velocity": 0.0, "gravity": system["gravity"]}.items():
-            if v[key].type == "String":
-                p.setString([v[key].valueReference], [value])
-            else:
-                p.setReal([v[key].valueReference], [float(value)])
+        set_values(p, v, {**powder, "particle_radius": radius, "initial_gap": 0.0, "initial_velocity": 0.0, "gravity": system["gravity"]})
         p.enterInitializationMode()
         p.exitInitializationMode()
         _event_iteration(p)

@@ -34,11 +34,11 @@ from pathlib import Path
 from typing import Any, Mapping
 
 import numpy as np
-from fmpy import extract, read_model_description
+from fmpy import read_model_description
 from fmpy.fmi2 import FMU2Slave
 
 from . import scene as scene_mod
-from .fmi_log import Messages
+from .instance import RefusedStart, cosimulation, description
 from .fmus import fmu_path
 
 # The system's own keys, their defaults and allowed ranges (units in the comments and `KEYS_HELP`).
@@ -188,7 +188,10 @@ def resolve(spec: Mapping[str, Any], fmu: Path | None = None) -> tuple[dict[str,
     # The unit checks its own parameters (ranges, combinations) at initialization: ask it now, for the
     # smallest and the largest particle, so that a bad value stops a sweep before any task.
     for radius in {float(r[0]), float(r[-1])}:
-        p, _ = _instance(fmu, "check", {**powder, "particle_radius": radius, "initial_gap": 0.0, "initial_velocity": 0.0, "gravity": system["gravity"]})
+        try:
+            p, _ = cosimulation(fmu, "check", {**powder, "particle_radius": radius, "initial_gap": 0.0, "initial_velocity": 0.0, "gravity": system["gravity"]})
+        except RefusedStart as e:
+            raise SpecError(str(e)) from None
         p.terminate()
         p.freeInstance()
     return system, powder
@@ -335,46 +338,11 @@ SUMMARY_KEYS = (
 )
 
 
-def _instance(fmu: Path, name: str, start: Mapping[str, Any]) -> tuple[FMU2Slave, Messages]:
-    """An initialized Co-Simulation instance with these start values; a refusal raises SpecError with the
-    unit's own message."""
-    md = _description(fmu)
-    variables = {v.name: v for v in md.modelVariables}
-    log = Messages()
-    p = FMU2Slave(guid=md.guid, unzipDirectory=_extracted(fmu), modelIdentifier=md.coSimulation.modelIdentifier, instanceName=name)
-    p.instantiate(callbacks=log.callbacks)
-    p._powderfmu_log = log  # the callbacks live as long as the instance
-    try:
-        p.setupExperiment(startTime=0.0)
-        for key, value in start.items():
-            v = variables[key]
-            if v.type == "String":
-                p.setString([v.valueReference], [value])
-            else:
-                p.setReal([v.valueReference], [float(value)])
-        p.enterInitializationMode()
-        p.exitInitializationMode()
-    except Exception as e:  # noqa: BLE001 - the unit's message says what was wrong
-        p.freeInstance()
-        raise SpecError(log.errors() or str(e)) from None
-    return p, log
-
-
 def _step(p: FMU2Slave, t: float, h: float) -> None:
     try:
         p.doStep(currentCommunicationPoint=t, communicationStepSize=h)
     except Exception as e:  # noqa: BLE001 - re-raised with the unit's message
         raise RuntimeError(f"{p.instanceName}: fmi2DoStep at t = {t:.6e} s failed: {p._powderfmu_log.errors() or e}") from None
-
-
-_DESCRIPTIONS: dict[str, Any] = {}
-
-
-def _description(fmu: Path):
-    key = str(Path(fmu).resolve())
-    if key not in _DESCRIPTIONS:
-        _DESCRIPTIONS[key] = read_model_description(key)
-    return _DESCRIPTIONS[key]
 
 
 def run(spec: Mapping[str, Any] | None = None, fmu: Path | None = None, record: bool = True, progress: bool = False) -> Result:
@@ -384,7 +352,7 @@ def run(spec: Mapping[str, Any] | None = None, fmu: Path | None = None, record: 
     fmu = Path(fmu or fmu_path("ParticleWallImpact"))
     system, powder = resolve(spec or {}, fmu)
     started = time.perf_counter()
-    variables = {v.name: v for v in _description(fmu).modelVariables}
+    variables = {v.name: v for v in description(fmu).modelVariables}
     vr = {n: variables[n].valueReference for n in ("wall_displacement", "wall_velocity", "sphere_velocity", "contact_state", "pull_off_force", "particle_density")}
 
     r = radii(system)
@@ -392,7 +360,7 @@ def run(spec: Mapping[str, Any] | None = None, fmu: Path | None = None, record: 
     instances: list[FMU2Slave] = []
     try:
         for i, radius in enumerate(r):
-            p, _ = _instance(fmu, f"particle{i}", {**powder, "particle_radius": float(radius), "initial_gap": 0.0, "initial_velocity": 0.0, "gravity": g})
+            p, _ = cosimulation(fmu, f"particle{i}", {**powder, "particle_radius": float(radius), "initial_gap": 0.0, "initial_velocity": 0.0, "gravity": g})
             instances.append(p)
         density = instances[0].getReal([vr["particle_density"]])[0]
         mass = 4.0 / 3.0 * math.pi * r**3 * density
@@ -485,17 +453,6 @@ def run(spec: Mapping[str, Any] | None = None, fmu: Path | None = None, record: 
         wall_time=time.perf_counter() - started,
         particle_steps=steps,
     )
-
-
-_EXTRACTED: dict[str, str] = {}
-
-
-def _extracted(fmu: Path) -> str:
-    """The FMU unzipped once per process (every instance loads the same library)."""
-    key = str(fmu.resolve())
-    if key not in _EXTRACTED:
-        _EXTRACTED[key] = extract(key)
-    return _EXTRACTED[key]
 
 
 def detachment_threshold(spec: Mapping[str, Any], rel_tol: float = 1e-3, fmu: Path | None = None) -> float:

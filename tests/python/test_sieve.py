@@ -200,3 +200,25 @@ def test_model_exchange_and_co_simulation_agree_on_the_threshold_and_the_detachm
     h = 1.0 / frequency / 100
     assert t_cs == pytest.approx(m.detach_time, rel=1e-12)
     assert t_cs - h < m.detach_event_time <= t_cs, "CS reports the detachment at the end of the step it happened in"
+
+
+def test_the_sweep_runs_the_indentation_units_parameter_studies(tmp_path, quick_bed):
+    """The indentation task: one BallIndentation run per task on the suite's stand-in bed, here the
+    indenter's friction and surface energy against the powder, loading to h/r = 0.1."""
+    from conftest import QUICK_TEST
+
+    spec = {
+        "task": "indentation",
+        "base": {**quick_bed, **QUICK_TEST, "max_penetration": 0.0002, "stop_time": 0.01, "output_interval": 5e-4},
+        "grid": {"particle_indenter.friction_coefficient": [0.0, 0.5], "particle_indenter.surface_energy": [0.0, 0.5]},
+    }
+    counts = sweep.run(spec, tmp_path / "ind.csv", serial=True, progress=False)
+    assert counts["ran"] == 4 and counts["failed"] == 0
+    _, rows = sweep.read(tmp_path / "ind.csv")
+    force = {(r["particle_indenter.friction_coefficient"], r["particle_indenter.surface_energy"]): float(r["max_force"]) for r in rows}
+    assert all(f > 0 for f in force.values())
+    assert len(set(force.values())) == 4, "each parameter changes the test"
+    assert all(float(r["plateau_hardness"]) > 0 and int(r["test_state"]) == 2 for r in rows), rows
+    bad = {**spec, "grid": {"particle_indenter.friction_coefficient": [-1.0]}}
+    with pytest.raises(sweep.SweepError, match="friction"):
+        sweep.check(bad)
