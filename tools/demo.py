@@ -4,7 +4,8 @@ fluorescein sphere of radius 2.45 um on silicon, Nan's law, undamped), run throu
 Prints the rebound of one impact against the energy balance, the sticking velocity found by bisection on
 the FMU against 000 Table 6, and a restitution curve; then runs the BallIndentation FMU's default test
 (004 Sec. 2.3.5 on the seed's bed of 004 Ch. 6) with no arguments and prints its hardness against the
-full-fidelity run at the seed's own speed; writes the plots to
+full-fidelity run at the seed's own speed; runs the units inside a system model (the ultrasonic sieve
+of docs/system.md); writes the plots to
 out/demo/ (PNG).
 
 Usage: python tools/demo.py [--fmu-dir target/fmu] [--cli target/release/powderfmu] [--out out/demo]
@@ -131,9 +132,42 @@ def main():
     fig.tight_layout()
     path = os.path.join(a.out, "impact.png")
     fig.savefig(path, dpi=110)
-    paths = [path, indentation(os.path.join(a.fmu_dir, "BallIndentation.fmu"), a.out)]
+    paths = [path, sieve_demo(a.fmu_dir, a.out), indentation(os.path.join(a.fmu_dir, "BallIndentation.fmu"), a.out)]
     print("\nplots: " + ", ".join(paths))
     return 0
+
+
+def sieve_demo(fmu_dir, out):
+    """The units in a system model: the ultrasonic sieve of powderfmu.sieve (docs/system.md) at 35 kHz and
+    1.5e6 m/s2, 40 particles of the default powder, and the same at half the step."""
+    os.environ.setdefault("POWDERFMU_FMU_DIR", fmu_dir)
+    from powderfmu import sieve
+
+    r = sieve.run({"acceleration": 1.5e6})
+    fine = sieve.run({"acceleration": 1.5e6, "steps_per_period": 200})
+    s = r.system
+    print(f"\nultrasonic sieve (python -m powderfmu.sieve): plate {s['plate_mass']:g} kg at {s['frequency']:g} Hz, peak acceleration {s['acceleration']:.3g} m/s2, "
+          f"{s['particles']} particles (median R {s['particle_radius'] * 1e6:g} um), {r.wall_time:.2f} s")
+    print(f"  detached {int(r.detached.sum())} of {len(r.radius)} (mass fraction {r.detached_mass_fraction:.3f}; quasi-statically expected "
+          f"{int((r.quasi_static_threshold < s['acceleration']).sum())}), first at {np.nanmin(r.detach_time) * 1e6:.2f} us; "
+          f"smallest detached radius {r.radius[r.detached].min() * 1e6:.2f} um")
+    both = r.detached & fine.detached
+    print(f"  half the step: {int((r.detached != fine.detached).sum())} particles change side, detachment times move by at most "
+          f"{np.abs(r.detach_time[both] - fine.detach_time[both]).max() * 1e9:.0f} ns (one step {1e9 / s['frequency'] / s['steps_per_period']:.0f} ns)")
+    fig, (a1, a2) = plt.subplots(1, 2, figsize=(12, 4.2))
+    a1.plot(r.time * 1e6, r.plate_position * 1e6)
+    a1.set(xlabel="time after the drive started [us]", ylabel="plate position [um]", title="the plate (ramped drive, 35 kHz)")
+    for t in r.detach_time[r.detached]:
+        a1.axvline(t * 1e6, color="C3", lw=0.5, alpha=0.6)
+    a2.semilogx(r.radius * 1e6, r.quasi_static_threshold, "o", mfc="none", label="quasi-static threshold F_po/m + g of each particle")
+    a2.semilogx(r.radius[r.detached] * 1e6, r.quasi_static_threshold[r.detached], "v", color="C3", label="detached")
+    a2.axhline(s["acceleration"], color="k", lw=0.8, label="the drive's peak acceleration")
+    a2.set(xlabel="particle radius [um]", ylabel="acceleration [m/s2]", yscale="log", title="who leaves")
+    a2.legend(fontsize=8)
+    fig.tight_layout()
+    path = os.path.join(out, "sieve.png")
+    fig.savefig(path, dpi=110)
+    return path
 
 
 REFERENCE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "docs", "data", "ch6_indentation", "gamma0.01_full.csv")
