@@ -106,6 +106,16 @@ def test_a_sweep_on_a_two_worker_local_cluster_gives_the_serial_numbers_bit_for_
     assert header[3].startswith("# fmu: ParticleWallImpact.fmu guid {")
 
 
+def test_a_sweep_on_an_existing_scheduler_gives_the_serial_numbers(tmp_path):
+    from distributed import LocalCluster
+
+    with LocalCluster(n_workers=1, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
+        counts = sweep.run(GRID, tmp_path / "remote.csv", scheduler=cluster.scheduler_address, progress=False)
+    assert counts["ran"] == 4
+    sweep.run(GRID, tmp_path / "serial.csv", serial=True, progress=False)
+    assert rows_by_task(tmp_path / "remote.csv") == rows_by_task(tmp_path / "serial.csv")
+
+
 def test_an_interrupted_sweep_resumes_without_redoing_finished_tasks(tmp_path):
     out = tmp_path / "sweep.csv"
     calls = []
@@ -222,3 +232,21 @@ def test_the_sweep_runs_the_indentation_units_parameter_studies(tmp_path, quick_
     bad = {**spec, "grid": {"particle_indenter.friction_coefficient": [-1.0]}}
     with pytest.raises(sweep.SweepError, match="friction"):
         sweep.check(bad)
+
+
+def test_a_scene_file_becomes_start_values_and_a_misspelt_key_is_named(tmp_path):
+    from powderfmu import fmu_path, start_values
+
+    fmu = fmu_path("ParticleWallImpact")
+    values = start_values(fmu, REPO / "scenes" / "ammonium_fluorescein_on_silicon.json")
+    assert values["contact_model"] == "nan" and values["particle_radius"] == 2.45e-6 and values["surface_energy"] == 0.24
+    r = sieve.run({"particles": 1, "periods": 0.5, "ramp_periods": 0.5, **{k: v for k, v in values.items() if k != "particle_radius"}})
+    assert r.powder["surface_energy"] == 0.24
+    bad = tmp_path / "bad.json"
+    bad.write_text(json.dumps({"surface_enrgy": 0.3}))
+    with pytest.raises(ValueError, match="'surface_enrgy' is not a parameter of ParticleWallImpact.*did you mean 'surface_energy'"):
+        start_values(fmu, bad)
+    with pytest.raises(ValueError, match="surface_energy.*must be a number"):
+        start_values(fmu, {"surface_energy": "much"})
+    with pytest.raises(ValueError, match="does not exist"):
+        start_values(fmu, tmp_path / "missing.json")
