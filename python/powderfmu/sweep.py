@@ -256,6 +256,10 @@ def run(
     if restart and output.exists():
         output.unlink()
     done, columns = _read_done(output, spec_text)
+    if output.exists() and not output.read_bytes().endswith(b"\n"):
+        # A run killed in the middle of a row: end the torn line (it is not `ok`, so its task runs again).
+        with output.open("a") as f:
+            f.write("\n")
     todo = [p for p in pts if task_id(p) not in done]
     counts = {"tasks": len(pts), "skipped": len(pts) - len(todo), "ran": 0, "failed": 0, "output": str(output)}
     output.parent.mkdir(parents=True, exist_ok=True)
@@ -348,6 +352,7 @@ def main(argv: Iterable[str] | None = None) -> int:
     args = ap.parse_args(list(argv) if argv is not None else None)
     if args.workers < 1:
         ap.error(f"--workers {args.workers}: allowed >= 1")
+    output = args.output or "the output file"
     try:
         spec = load_spec(args.spec)
         output = args.output or spec.get("output") or str(Path(args.spec).with_suffix(".csv"))
@@ -355,6 +360,9 @@ def main(argv: Iterable[str] | None = None) -> int:
     except SweepError as e:
         print(f"powderfmu.sweep: {e}", file=sys.stderr)
         return 2
+    except KeyboardInterrupt:
+        print(f"\npowderfmu.sweep: interrupted; the finished tasks are in {output}: run the same command again to resume", file=sys.stderr)
+        return 130
     print(
         f"{counts['tasks']} tasks: {counts['ran']} ran, {counts['skipped']} already done, {counts['failed']} failed; "
         f"{counts['wall_time']:.1f} s; results in {counts['output']}"

@@ -141,6 +141,33 @@ def test_an_interrupted_sweep_resumes_without_redoing_finished_tasks(tmp_path):
         sweep.run({**GRID, "base": {"particles": 7}}, out, serial=True, progress=False)
 
 
+def test_a_sweep_command_stopped_with_ctrl_c_resumes_where_it_was(tmp_path):
+    """The command on a LocalCluster, interrupted (SIGINT) once some rows are in the file, run again."""
+    import signal
+    import time
+
+    spec = {**GRID, "base": {"particles": 40, "periods": 10}, "grid": {"frequency": [2e4, 3e4, 4e4, 5e4], "acceleration": [1e6, 2e6, 3e6, 4e6]}}
+    path = tmp_path / "spec.json"
+    path.write_text(json.dumps(spec))
+    out = tmp_path / "spec.csv"
+    cmd = [sys.executable, "-m", "powderfmu.sweep", str(path), "--workers", "2", "--quiet"]
+    first = subprocess.Popen(cmd, cwd=tmp_path, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    deadline = time.monotonic() + 120
+    while time.monotonic() < deadline and first.poll() is None:
+        if out.exists() and sum(1 for line in out.read_text().splitlines() if line.endswith(",ok,")) >= 3:
+            break
+        time.sleep(0.05)
+    first.send_signal(signal.SIGINT)
+    first.communicate(timeout=60)
+    done_before = sum(1 for line in out.read_text().splitlines() if line.endswith(",ok,"))
+    assert 3 <= done_before < 16, f"interrupted after {done_before} tasks"
+    again = subprocess.run(cmd, cwd=tmp_path, capture_output=True, text=True, timeout=300)
+    assert again.returncode == 0, again.stderr
+    assert f"{16 - done_before} ran, {done_before} already done, 0 failed" in again.stdout, again.stdout
+    rows = rows_by_task(out)
+    assert len(rows) == 16 and {r["status"] for r in rows.values()} == {"ok"}
+
+
 def test_a_failed_task_is_retried_once_then_reported_with_its_inputs(tmp_path, capsys):
     attempts = []
 
@@ -158,6 +185,23 @@ def test_a_failed_task_is_retried_once_then_reported_with_its_inputs(tmp_path, c
     assert '"frequency": 50000.0' in capsys.readouterr().err
     # A resume runs the failed task again (and only it).
     assert sweep.run(GRID, tmp_path / "s.csv", serial=True, progress=False)["ran"] == 1
+
+
+def test_on_the_cluster_too_a_failed_task_is_retried_once_and_reported(tmp_path):
+    attempts = tmp_path / "attempts.txt"
+
+    def flaky(task, inputs):
+        if inputs["acceleration"] == 2e6 and inputs["frequency"] == 5e4:
+            with open(attempts, "a") as f:
+                f.write("x\n")
+            raise RuntimeError("the plate broke")
+        return sweep.run_task(task, inputs)
+
+    counts = sweep.run(GRID, tmp_path / "s.csv", workers=2, progress=False, task_runner=flaky)
+    assert counts["failed"] == 1 and counts["ran"] == 3
+    assert attempts.read_text().count("x") == 2, "one run and one retry"
+    failed = [r for r in rows_by_task(tmp_path / "s.csv").values() if r["status"] == "failed"]
+    assert len(failed) == 1 and "the plate broke" in failed[0]["error"]
 
 
 @pytest.mark.parametrize(
