@@ -345,10 +345,9 @@ def _step(p: FMU2Slave, t: float, h: float) -> None:
         raise RuntimeError(f"{p.instanceName}: fmi2DoStep at t = {t:.6e} s failed: {p._powderfmu_log.errors() or e}") from None
 
 
-def run(spec: Mapping[str, Any] | None = None, fmu: Path | None = None, record: bool = True, progress: bool = False) -> Result:
+def run(spec: Mapping[str, Any] | None = None, fmu: Path | None = None, progress: bool = False) -> Result:
     """Runs the system of `spec` (system keys and ParticleWallImpact parameters; missing keys take their
-    defaults) and returns its Result. `record=False` keeps only every step's plate state needed for the
-    summary (the arrays stay, they are small)."""
+    defaults) and returns its Result; `progress` prints a line every 5 % of the steps."""
     fmu = Path(fmu or fmu_path("ParticleWallImpact"))
     system, powder = resolve(spec or {}, fmu)
     started = time.perf_counter()
