@@ -5,15 +5,37 @@
 //!   alpha(a) = a^2/R* - sqrt(2 pi Gamma a / E*),   f(a) = 4 E* a^3 / (3 R*) - sqrt(8 pi Gamma E* a^3).
 //! Under displacement control the contact forms at alpha = 0 with f = -8/9 f_c (000 Eq. B5-B6), passes the
 //! pull-off force -f_c at a_c (004 Eq. 3.57) and breaks where d alpha / d a = 0, at -5/9 f_c.
+//!
+//! `jkr_detachment` chooses where the contact ends: `displacement` (the default, above: 000 Eq. 73's
+//! W_JKR and Thornton & Ning) or `force`, at the force minimum -f_c, the reading of a force-controlled
+//! pull-off and of LAMMPS's `granular jkr` (docs/porting.md). The adhesion work the contact keeps,
+//! closed form in `JkrCurve::work`, is then 0.494 of W_JKR, the sticking velocity 0.703 of 000 Eq. 73's.
 
 use super::params::Effective;
 use super::tangential::TangentialModel;
 use super::{LawInfo, LawOptions};
 use super::{Branch, Evaluation, NormalLaw};
 use crate::error::ParamError;
-use crate::scene::NoOptions;
+use crate::scene::Range;
 use std::f64::consts::PI;
 use crate::numeric::cbrt;
+
+crate::choice_enum! {
+    /// Where a JKR contact ends on unloading.
+    pub enum JkrDetachment {
+        /// Where d alpha / d a = 0, at -5/9 f_c (displacement control; 000 Eq. 73, App. B).
+        Displacement = "displacement",
+        /// At the force minimum -f_c (force control; LAMMPS `granular jkr`).
+        Force = "force",
+    }
+}
+
+crate::scene_options! {
+    /// The JKR law's own scene keys.
+    pub struct JkrOptions {
+        jkr_detachment: choice(JkrDetachment::Displacement), "-", Range::Names, "where a jkr contact ends on unloading: displacement (d alpha/d a = 0, at -5/9 f_c; 000 Eq. 73) or force (at the force minimum -f_c, as LAMMPS granular jkr)";
+    }
+}
 
 /// The JKR curve of one radius of curvature: all the geometry Thornton-Ning and the JKR laws share.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -78,6 +100,20 @@ impl JkrCurve {
     /// Overlap at the pull-off force.
     pub fn pull_off_overlap(&self) -> f64 {
         self.alpha_pull_off
+    }
+
+    /// Work of the force along the curve from contact radius a1 to a2, the integral of f d alpha [J]:
+    /// with f = 4E a^3/(3R) - 2E b a^(3/2) and d alpha = (2a/R - b/(2 sqrt a)) da the integrand is a
+    /// polynomial in sqrt(a), whose antiderivative is 8E a^5/(15 R^2) - 4E b a^(7/2)/(3R) + E b^2 a^2 / 2.
+    pub fn work(&self, a1: f64, a2: f64) -> f64 {
+        let (e, r, b) = (self.youngs_modulus, self.radius, self.b);
+        let antiderivative = |a: f64| 8.0 * e * a.powi(5) / (15.0 * r * r) - 4.0 * e * b * a.powf(3.5) / (3.0 * r) + 0.5 * e * b * b * a * a;
+        antiderivative(a2) - antiderivative(a1)
+    }
+
+    /// Contact radius where the overlap is 0 on the stable branch, (b R)^(2/3) [m].
+    pub fn zero_overlap_radius(&self) -> f64 {
+        cbrt(self.b * self.radius).powi(2)
     }
 
     /// Contact radius at detachment (the minimum of alpha(a)).
@@ -168,10 +204,14 @@ impl JkrCurve {
     }
 }
 
-/// The full JKR law: forms at alpha = 0, breaks at alpha_f (hysteresis between the two).
+/// The full JKR law: forms at alpha = 0, breaks at alpha_f, or at the pull-off overlap alpha_c with
+/// `JkrDetachment::Force` (hysteresis between the two).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Jkr {
     pub curve: JkrCurve,
+    pub detachment: JkrDetachment,
+    /// The overlap at which an established contact ends [m].
+    detach_at: f64,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -181,7 +221,52 @@ pub struct JkrHistory {
 
 impl Jkr {
     pub fn new(radius: f64, youngs_modulus: f64, surface_energy: f64) -> Jkr {
-        Jkr { curve: JkrCurve::new(radius, youngs_modulus, surface_energy) }
+        Jkr::with_detachment(radius, youngs_modulus, surface_energy, JkrDetachment::Displacement)
+    }
+
+    pub fn with_detachment(radius: f64, youngs_modulus: f64, surface_energy: f64, detachment: JkrDetachment) -> Jkr {
+        let curve = JkrCurve::new(radius, youngs_modulus, surface_energy);
+        let detach_at = match detachment {
+            JkrDetachment::Displacement => curve.detach_overlap(),
+            // Without adhesion the force minimum is at alpha = 0, where the curve also ends.
+            JkrDetachment::Force if surface_energy > 0.0 => curve.pull_off_overlap(),
+            JkrDetachment::Force => curve.detach_overlap(),
+        };
+        Jkr { curve, detachment, detach_at }
+    }
+
+    /// The overlap at which an established contact ends [m].
+    pub fn detach_overlap(&self) -> f64 {
+        self.detach_at
+    }
+
+    /// The contact radius at which an established contact ends [m].
+    pub fn detach_radius(&self) -> f64 {
+        match self.detachment {
+            JkrDetachment::Force if self.curve.surface_energy > 0.0 => self.curve.pull_off_radius(),
+            _ => self.curve.detach_radius(),
+        }
+    }
+
+    /// The energy an impact loses to adhesion, undamped: the work of the tensile part of the curve from
+    /// where the contact ends to alpha = 0, -(integral of f d alpha) [J] (000 Eq. 37's W_JKR for the
+    /// displacement reading).
+    pub fn adhesion_work(&self) -> f64 {
+        -self.curve.work(self.detach_radius(), self.curve.zero_overlap_radius())
+    }
+
+    /// Whether an established contact has ended at this overlap.
+    fn separated(&self, alpha: f64, h: &JkrHistory) -> bool {
+        (!h.established && alpha < 0.0) || alpha < self.detach_at
+    }
+
+    /// On the curve; with force detachment the contact's lower bound is the pull-off overlap.
+    fn on_curve_at(&self, a: f64) -> Evaluation<JkrHistory> {
+        let mut ev = on_curve_at(&self.curve, 0.0, a, JkrHistory { established: true });
+        if ev.branch == Branch::Elastic && self.detachment == JkrDetachment::Force {
+            ev.lower = self.detach_at;
+        }
+        ev
     }
 }
 
@@ -213,10 +298,10 @@ impl NormalLaw for Jkr {
     }
 
     fn evaluate(&self, alpha: f64, h: &JkrHistory) -> Evaluation<JkrHistory> {
-        if (!h.established && alpha < 0.0) || alpha < self.curve.detach_overlap() {
+        if self.separated(alpha, h) {
             return Evaluation::separated(0.0, JkrHistory { established: false });
         }
-        on_curve(&self.curve, 0.0, alpha, JkrHistory { established: true })
+        self.on_curve_at(self.curve.contact_radius(alpha))
     }
 
     fn has_yielded(&self, _h: &JkrHistory) -> bool {
@@ -237,7 +322,7 @@ impl NormalLaw for Jkr {
     }
 
     fn contact_radius(&self, alpha: f64, h: &JkrHistory) -> Option<f64> {
-        (h.established && alpha >= self.curve.detach_overlap() || alpha >= 0.0).then(|| self.curve.contact_radius(alpha))
+        (h.established && alpha >= self.detach_at || alpha >= 0.0).then(|| self.curve.contact_radius(alpha))
     }
 
     /// 2 E* a: the Hertz stiffness at the JKR contact radius (the JKR slope is infinite at detachment).
@@ -248,28 +333,95 @@ impl NormalLaw for Jkr {
     /// One contact-radius solve for force, stiffness, damping and Mindlin (same numbers as the three
     /// separate calls).
     fn evaluate_with_radius(&self, alpha: f64, h: &JkrHistory) -> (Evaluation<JkrHistory>, f64, Option<f64>) {
-        if (!h.established && alpha < 0.0) || alpha < self.curve.detach_overlap() {
+        if self.separated(alpha, h) {
             return (Evaluation::separated(0.0, JkrHistory { established: false }), 0.0, None);
         }
         let a = self.curve.contact_radius(alpha);
-        let ev = on_curve_at(&self.curve, 0.0, a, JkrHistory { established: true });
+        let ev = self.on_curve_at(a);
         (ev, 2.0 * self.curve.youngs_modulus * a, Some(a))
     }
 
     fn evaluate_near(&self, alpha: f64, h: &JkrHistory, guess: f64) -> (Evaluation<JkrHistory>, f64, Option<f64>) {
-        if (!h.established && alpha < 0.0) || alpha < self.curve.detach_overlap() {
+        if self.separated(alpha, h) {
             return (Evaluation::separated(0.0, JkrHistory { established: false }), 0.0, None);
         }
         let a = self.curve.contact_radius_from(alpha, guess);
-        let ev = on_curve_at(&self.curve, 0.0, a, JkrHistory { established: true });
+        let ev = self.on_curve_at(a);
         (ev, 2.0 * self.curve.youngs_modulus * a, Some(a))
     }
 }
 
 impl LawInfo for Jkr {
     const TANGENTIAL: TangentialModel = TangentialModel::Mindlin;
-    type Options = NoOptions;
-    fn from_pair(eff: &Effective, _options: &LawOptions) -> Result<Jkr, ParamError> {
-        Ok(Jkr::new(eff.radius, eff.youngs_modulus, eff.surface_energy))
+    type Options = JkrOptions;
+    fn from_pair(eff: &Effective, options: &LawOptions) -> Result<Jkr, ParamError> {
+        Ok(Jkr::with_detachment(eff.radius, eff.youngs_modulus, eff.surface_energy, options.jkr.jkr_detachment))
+    }
+}
+
+#[cfg(test)]
+mod detachment_tests {
+    use super::*;
+    use crate::law::params::w_jkr;
+    use crate::theory::energy_balance;
+
+    // 000 Table 5's pair (ammonium fluorescein on silicon): R*, E*, Gamma; the sphere's mass.
+    const R: f64 = 2.45e-6;
+    const E: f64 = 1.33666e9;
+    const GAMMA: f64 = 0.24;
+    const MASS: f64 = 8.31612e-14;
+
+    #[test]
+    fn the_displacement_readings_adhesion_work_is_000_eq_37s_w_jkr() {
+        let w = Jkr::new(R, E, GAMMA).adhesion_work();
+        let eq37 = w_jkr(GAMMA, R, E);
+        // Eq. 37's 7.09 is printed to three digits.
+        assert!((w / eq37 - 1.0).abs() < 2e-3, "{w:e} vs {eq37:e}");
+    }
+
+    #[test]
+    fn the_closed_form_work_is_the_quadrature_of_the_curve() {
+        let c = JkrCurve::new(R, E, GAMMA);
+        let (a1, a2) = (c.detach_radius(), 3.0 * c.pull_off_radius());
+        let n = 200_000;
+        let quad: f64 = (0..n)
+            .map(|i| {
+                let (x0, x1) = (a1 + (a2 - a1) * i as f64 / n as f64, a1 + (a2 - a1) * (i + 1) as f64 / n as f64);
+                let xm = 0.5 * (x0 + x1);
+                c.force(xm) * (c.overlap(x1) - c.overlap(x0))
+            })
+            .sum();
+        assert!((c.work(a1, a2) / quad - 1.0).abs() < 1e-6, "{:e} vs {quad:e}", c.work(a1, a2));
+    }
+
+    #[test]
+    fn force_detachment_ends_the_contact_at_the_force_minimum() {
+        let law = Jkr::with_detachment(R, E, GAMMA, JkrDetachment::Force);
+        let c = law.curve;
+        let alpha_c = c.pull_off_overlap();
+        let on = law.evaluate(alpha_c * (1.0 - 1e-9), &JkrHistory { established: true });
+        assert_eq!(on.branch, Branch::Elastic);
+        assert!((on.force + c.pull_off_force()).abs() < 1e-6 * c.pull_off_force(), "-f_c at alpha_c");
+        assert_eq!(on.lower, alpha_c, "the contact's lower bound is where it ends");
+        let off = law.evaluate(alpha_c * (1.0 + 1e-9), &JkrHistory { established: true });
+        assert_eq!(off.branch, Branch::Separated);
+        // The displacement reading goes on along the adhesive branch.
+        let disp = Jkr::new(R, E, GAMMA).evaluate(alpha_c * (1.0 + 1e-3), &JkrHistory { established: true });
+        assert_eq!(disp.branch, Branch::Adhesive);
+    }
+
+    #[test]
+    fn force_detachment_sticks_below_0_703_of_the_displacement_readings_velocity() {
+        let (disp, force) = (Jkr::new(R, E, GAMMA), Jkr::with_detachment(R, E, GAMMA, JkrDetachment::Force));
+        let ratio_w = force.adhesion_work() / disp.adhesion_work();
+        assert!((ratio_w - 0.494).abs() < 5e-4, "{ratio_w}");
+        for law in [&disp, &force] {
+            // The energy balance of the law's own path against the closed form sqrt(2 W / m).
+            let balance = energy_balance::sticking_velocity(law, MASS, R, 1e-3, 10.0).unwrap();
+            let closed = (2.0 * law.adhesion_work() / MASS).sqrt();
+            assert!((balance / closed - 1.0).abs() < 1e-6, "{:?}: {balance} vs {closed}", law.detachment);
+        }
+        let v = |l: &Jkr| energy_balance::sticking_velocity(l, MASS, R, 1e-3, 10.0).unwrap();
+        assert!((v(&force) / v(&disp) - 0.703).abs() < 5e-4, "{}", v(&force) / v(&disp));
     }
 }

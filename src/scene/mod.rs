@@ -292,6 +292,7 @@ mod tests {
                 "pull_off_law" => r#""curvature""#.into(),
                 "adhesive_stiffness_law" => r#""approximate""#.into(),
                 "pasha_stiffness_law" => r#""load_dependent""#.into(),
+                "jkr_detachment" => r#""force""#.into(),
                 "particle_poisson_ratio" | "wall_poisson_ratio" => "0.25".into(),
                 "restitution_coefficient" | "tomas_area_coefficient" => "0.9".into(),
                 "tomas_repulsion_coefficient" => "0.2".into(),
