@@ -231,3 +231,19 @@ def test_contact_element_loading_unloading_cycle(contact, cli):
     allowed = k_e * np.abs(np.diff(alpha))[both]
     assert both.sum() > 100
     assert np.all(jump <= allowed * (1 + 1e-9) + 1e-18), f"largest excess {np.max(jump - allowed)} N"
+
+
+def test_jkr_force_detachment_through_the_fmu_sticks_at_0_703_of_the_displacement_reading(impact, cli):
+    """jkr_detachment (docs/models.md, JKR): the contact ended at the force minimum -f_c (LAMMPS's
+    reading) keeps 0.494 of W_JKR; through the FMU (CS, adaptive) each reading sticks at its own energy
+    balance, and their ratio is 0.703."""
+    velocities = {}
+    for reading in ("displacement", "force"):
+        start = {"contact_model": "jkr", "jkr_detachment": reading}
+        lo, hi = 0.2, 1.0
+        velocities[reading] = sticking_velocity(impact, cli, start, lo, hi, iterations=30)
+        balance = cli.restitution_sticking_velocity(impact.scene(start), [lo, hi])
+        assert rel(velocities[reading], balance) < 1e-5, f"{reading}: {velocities[reading]} vs energy balance {balance}"
+    assert velocities["force"] / velocities["displacement"] == pytest.approx(0.703, abs=5e-4)
+    # The displacement reading is 000 Eq. 73's V_s.
+    assert rel(velocities["displacement"], cli.analyze(impact.scene({"contact_model": "jkr"}))["jkr_sticking_velocity"]) < 2e-3
