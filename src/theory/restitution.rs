@@ -3,7 +3,7 @@
 //! `energy_balance` computes the same for any law by integrating its force; the tests hold the two equal.
 
 use crate::law::linear::Linear;
-use crate::law::luding::Luding;
+use crate::law::luding::{Luding, LudingVariant};
 use crate::law::nan::Nan;
 use crate::law::pasha::Pasha;
 use crate::law::pasha_simplified::PashaSimplified;
@@ -76,17 +76,29 @@ pub fn pasha_simplified(law: &PashaSimplified, mass: f64, v: f64) -> ImpactOutco
 }
 
 /// Luding's law: loading work (k_1 alpha^2)/2 - f_0 alpha; unloading along k_2 to the adhesion limit,
-/// along it to alpha = 0, where the contact breaks (004 Sec. 4.1.5).
+/// along it to alpha = 0, where the contact breaks (004 Sec. 4.1.5). The mercurydpm reading loads on the
+/// k_2_hat line through delta_0 = phi_f 2 R* beyond alpha* and unloads on the same line.
 pub fn luding(law: &Luding, mass: f64, v: f64) -> ImpactOutcome {
     let (k1, f0, kc) = (law.k1, law.f0, law.kc);
-    let alpha_max = (f0 + (f0 * f0 + k1 * mass * v * v).sqrt()) / k1;
-    let k2 = law.k2(alpha_max);
-    let d0 = (1.0 - k1 / k2) * alpha_max;
+    let energy = 0.5 * mass * v * v;
+    let mut alpha_max = (f0 + (f0 * f0 + 2.0 * k1 * energy).sqrt()) / k1;
+    let (mut k2, mut d0, mut f_max) = (law.k2(alpha_max), 0.0, k1 * alpha_max - f0);
+    d0 += (1.0 - k1 / k2) * alpha_max;
+    if law.variant == LudingVariant::Mercurydpm && alpha_max > law.alpha_star {
+        // The rest of the energy goes into the k_2_hat line from alpha*: (k2_hat/2)((a - cap)^2 - (a* - cap)^2)
+        // - f_0 (a - a*) = E - W(a*), a quadratic in a - cap.
+        let (a_s, cap, k2h) = (law.alpha_star, law.delta0_cap, law.k2_hat);
+        let rest = energy - (0.5 * k1 * a_s * a_s - f0 * a_s);
+        let (b, c) = (-2.0 * f0 / k2h, -(a_s - cap).powi(2) - 2.0 * (rest - f0 * (a_s - cap)) / k2h);
+        let x = 0.5 * (-b + (b * b - 4.0 * c).sqrt());
+        alpha_max = cap + x;
+        (k2, d0, f_max) = (k2h, cap, k2h * x - f0);
+    }
     let a_c = k2 * d0 / (k2 + kc);
     // Work the contact returns from alpha_max down to a_c on the k_2 line, then from a_c to 0 on the limit.
     let on_line = 0.5 * k2 * ((alpha_max - d0).powi(2) - (a_c - d0).powi(2)) - f0 * (alpha_max - a_c);
     let on_limit = -0.5 * kc * a_c * a_c - f0 * a_c;
-    ImpactOutcome::from_rebound_energy(mass, v, alpha_max, k1 * alpha_max - f0, on_line + on_limit)
+    ImpactOutcome::from_rebound_energy(mass, v, alpha_max, f_max, on_line + on_limit)
 }
 
 /// Walton & Braun: all loading work above the unloading line is lost, e = sqrt(k_p / k_e) for constant k_e
