@@ -29,12 +29,13 @@ def set_direction():
 
 
 def record():
-    f = 0.0
+    f, a = 0.0, overlap()
     if O.interactions.has(0, mover) and O.interactions[0, mover].isReal:
         i = O.interactions[0, mover]
-        # The force on the moving sphere along -normal is the repulsion (positive in compression).
-        f = -i.phys.normalForce.dot(i.geom.normal)
-    out.write("%.17g %.17g\n" % (overlap(), f))
+        # The normal force along the contact normal (positive in compression), at the overlap it was
+        # computed from (the body has moved on since).
+        f, a = i.phys.normalForce.dot(i.geom.normal), i.geom.penetrationDepth
+    out.write("%.17g %.17g %d\n" % (a, f, state["leg"]))
     a, target = overlap(), turns[state["leg"]]
     if (O.bodies[mover].state.vel[0] < 0 and a >= target) or (O.bodies[mover].state.vel[0] > 0 and a <= target):
         state["leg"] += 1
