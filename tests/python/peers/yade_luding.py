@@ -9,7 +9,7 @@ import sys
 args = json.load(open(sys.argv[-2]))
 out = open(sys.argv[-1], "w")
 r = args["radius"]
-mat = O.materials.append(LudingMat(k1=args["k1"], kp=args["kp"], kc=args["kc"], PhiF=args["phi_f"], G0=0.0,
+mat = O.materials.append(LudingMat(k1=args["k1"], kp=args["kp"], kc=args["kc"], PhiF=args["phi_f"], G0=0.0, ks=0.0,
                                    frictionAngle=0.0, density=args["density"]))
 O.bodies.append(sphere((0, 0, 0), r, material=mat, fixed=True))
 mover = O.bodies.append(sphere((2 * r - args["turns"][-1], 0, 0), r, material=mat))
