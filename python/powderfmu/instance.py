@@ -4,6 +4,8 @@ unit's words (which parameter, which range) instead of fmpy's bare status."""
 
 from __future__ import annotations
 
+import atexit
+import shutil
 from pathlib import Path
 from typing import Any, Mapping
 
@@ -93,6 +95,7 @@ def extracted(fmu: Path) -> str:
     key = str(fmu.resolve())
     if key not in _EXTRACTED:
         _EXTRACTED[key] = extract(key)
+        atexit.register(shutil.rmtree, _EXTRACTED[key], True)
     return _EXTRACTED[key]
 
 

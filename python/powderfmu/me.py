@@ -135,6 +135,7 @@ def _event_iteration(p: FMU2Model) -> None:
 
 def detachment_threshold(spec: Mapping[str, Any], rel_tol: float = 1e-3, relative_tolerance: float = 1e-8) -> float:
     """As sieve.detachment_threshold, in Model Exchange."""
+    spec = {k: v for k, v in spec.items() if k != "amplitude"}
     r = sieve.run({**spec, "particles": 1, "acceleration": 1.0, "periods": 0.01, "ramp_periods": 0})
     quasi_static = float(r.quasi_static_threshold[0])
 

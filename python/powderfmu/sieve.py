@@ -168,6 +168,8 @@ def resolve(spec: Mapping[str, Any], fmu: Path | None = None) -> tuple[dict[str,
     number("seed", integer=True)
     number("gravity")
     number("periods", 0.0)
+    if "ramp_periods" not in spec:
+        system["ramp_periods"] = min(SYSTEM_DEFAULTS["ramp_periods"], system["periods"])
     number("ramp_periods", 0.0, low_open=False)
     if system["ramp_periods"] > system["periods"]:
         raise SpecError(f"`ramp_periods` = {system['ramp_periods']} is out of range ({KEYS_HELP['ramp_periods']} = {system['periods']})")
@@ -386,7 +388,9 @@ def run(spec: Mapping[str, Any] | None = None, fmu: Path | None = None, progress
         xs, vs, fs = np.empty(n_steps + 1), np.empty(n_steps + 1), np.zeros(n_steps + 1)
         xs[0], vs[0] = x, v
         detach = np.full(len(r), np.nan)
-        force_on_plate = 0.0  # the particles' force of the previous step [N]
+        # The particles' force of the previous step [N]. Their settled weight (1e-5 of the drive's load at
+        # 1e6 m/s2) is in the plate's static equilibrium and left out of the first step.
+        force_on_plate = 0.0
         plate_impulse = 0.0  # what the plate received from the particles [N s]
         particle_impulse = 0.0  # what the particles received from their contacts [N s]
         steps = 0

@@ -77,6 +77,13 @@ def points(spec: Mapping[str, Any]) -> list[dict[str, Any]]:
             if not isinstance(values, list) or not values:
                 raise SweepError(f"`grid.{key}` must be a non-empty list of values")
         keys = list(grid)
+        for key in keys:
+            seen = set()
+            for value in grid[key]:
+                marker = json.dumps(value, sort_keys=True)
+                if marker in seen:
+                    raise SweepError(f"`grid.{key}` lists {value!r} twice: every task must be different")
+                seen.add(marker)
         return [dict(zip(keys, combo)) for combo in itertools.product(*(grid[k] for k in keys))]
     sample = spec["sample"]
     if not isinstance(sample, dict):
@@ -121,7 +128,7 @@ def check(spec: Mapping[str, Any]) -> tuple[str, dict[str, Any], list[dict[str, 
     for p in pts:
         try:
             resolve_task(task, {**base, **p})
-        except ValueError as e:
+        except (ValueError, RuntimeError) as e:  # a bad key or value; no FMU to run
             raise SweepError(f"task {p}: {e}") from None
     return task, base, pts
 
@@ -171,18 +178,38 @@ def versions() -> dict[str, str]:
     return out
 
 
-def _read_done(path: Path, spec_text: str) -> tuple[dict[str, dict[str, str]], list[str] | None]:
-    """The rows of an earlier run of the same spec (by task id) and its columns; an error for another
-    sweep's file."""
+def _rows(path: Path) -> tuple[list[str], list[dict[str, str]]]:
+    """The comment lines and the complete rows of an output file, the last row of each task (a task
+    that failed and then ran again keeps its last outcome; a line torn by an interruption is dropped)."""
+    with path.open(newline="") as f:
+        text = f.read()
+    comments = [line for line in text.split("\n") if line.startswith("#")]
+    body = [line for line in text.split("\n") if line and not line.startswith("#")]
+    if not body:
+        return comments, []
+    records = list(csv.reader(body))
+    header, latest = records[0], {}
+    for rec in records[1:]:
+        if len(rec) == len(header) and rec[-2] in ("ok", "failed"):
+            row = dict(zip(header, rec))
+            latest[row["task_id"]] = row
+    return comments, list(latest.values())
+
+
+def _read_done(path: Path, spec_text: str, fmu_text: str) -> tuple[dict[str, dict[str, str]], list[str] | None]:
+    """The finished rows of an earlier run of the same spec with the same FMU (by task id) and its columns;
+    an error for another sweep's file."""
     if not path.exists():
         return {}, None
-    lines = path.read_text().splitlines()
-    meta = [line for line in lines if line.startswith("# spec: ")]
+    comments, rows = _rows(path)
+    meta = [line for line in comments if line.startswith("# spec: ")]
     if not meta or meta[0][len("# spec: ") :] != spec_text:
         raise SweepError(f"{path} holds the results of another sweep (its spec differs); give another --output or --restart")
-    rows = list(csv.DictReader(line for line in lines if not line.startswith("#")))
-    header = next((line for line in lines if not line.startswith("#")), None)
-    return {r["task_id"]: r for r in rows if r.get("status") == "ok"}, (header.split(",") if header else None)
+    fmu = [line for line in comments if line.startswith("# fmu: ")]
+    if fmu and fmu[0][len("# fmu: ") :] != fmu_text:
+        raise SweepError(f"{path} was written with another build of the FMU ({fmu[0][len('# fmu: '):]}, now {fmu_text}); give another --output or --restart")
+    header = next((line for line in path.read_text().splitlines() if line and not line.startswith("#")), None)
+    return {r["task_id"]: r for r in rows if r["status"] == "ok"}, (header.split(",") if header else None)
 
 
 def _has_header(path: Path) -> bool:
@@ -255,7 +282,8 @@ def run(
     spec_text = json.dumps(spec, sort_keys=True)
     if restart and output.exists():
         output.unlink()
-    done, columns = _read_done(output, spec_text)
+    fmu_text = _fmu_identity(task)
+    done, columns = _read_done(output, spec_text, fmu_text)
     if output.exists() and not output.read_bytes().endswith(b"\n"):
         # A run killed in the middle of a row: end the torn line (it is not `ok`, so its task runs again).
         with output.open("a") as f:
@@ -269,7 +297,7 @@ def run(
             f.write("# powderfmu sweep\n")
             f.write(f"# spec: {spec_text}\n")
             f.write(f"# versions: {json.dumps(versions(), sort_keys=True)}\n")
-            f.write(f"# fmu: {_fmu_identity(task)}\n")
+            f.write(f"# fmu: {fmu_text}\n")
     varied = list(pts[0]) if pts else []
     if columns is None:
         columns = ["task_id", *varied, *(k for k in _summary_keys(task) if k not in varied), "status", "error"]
@@ -287,7 +315,7 @@ def run(
             if not writer_state["header_written"]:
                 f.write(",".join(writer_state["columns"]) + "\n")
                 writer_state["header_written"] = True
-            w = csv.DictWriter(f, fieldnames=writer_state["columns"], extrasaction="ignore", restval="")
+            w = csv.DictWriter(f, fieldnames=writer_state["columns"], extrasaction="ignore", restval="", lineterminator="\n")
             w.writerow({k: _fmt(v) for k, v in record.items()})
         counts["ran" if error is None else "failed"] += 1
         if error is not None:
@@ -333,10 +361,9 @@ def run(
 
 
 def read(output: str | Path) -> tuple[dict[str, Any], list[dict[str, str]]]:
-    """The spec and rows of a sweep's output file."""
-    lines = Path(output).read_text().splitlines()
-    spec = json.loads(next(line for line in lines if line.startswith("# spec: "))[len("# spec: ") :])
-    rows = list(csv.DictReader(line for line in lines if not line.startswith("#")))
+    """The spec and the rows of a sweep's output file (the last complete row of each task)."""
+    comments, rows = _rows(Path(output))
+    spec = json.loads(next(line for line in comments if line.startswith("# spec: "))[len("# spec: ") :])
     return spec, rows
 
 

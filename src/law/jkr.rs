@@ -260,11 +260,14 @@ impl Jkr {
         (!h.established && alpha < 0.0) || alpha < self.detach_at
     }
 
-    /// On the curve; with force detachment the contact's lower bound is the pull-off overlap.
+    /// On the curve; with force detachment there is no adhesive branch: the contact's lower bound is the
+    /// pull-off overlap (a radius that rounding puts just below a_c is still the elastic branch there).
     fn on_curve_at(&self, a: f64) -> Evaluation<JkrHistory> {
         let mut ev = on_curve_at(&self.curve, 0.0, a, JkrHistory { established: true });
-        if ev.branch == Branch::Elastic && self.detachment == JkrDetachment::Force {
+        if self.detachment == JkrDetachment::Force && self.curve.surface_energy > 0.0 {
+            ev.branch = Branch::Elastic;
             ev.lower = self.detach_at;
+            ev.upper = f64::INFINITY;
         }
         ev
     }

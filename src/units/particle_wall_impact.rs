@@ -117,9 +117,8 @@ pub struct ParticleWallImpact {
     cs_wall: Option<CsWall>,
     /// ME: the wall inputs as last seen and the time they were first seen at (`SeenWall`).
     me_wall: Option<SeenWall>,
-    /// CS: the wall's acceleration over the next step, from fmi2SetRealInputDerivatives (order 1 of
-    /// wall_velocity or order 2 of wall_displacement) [m/s^2]; 0 after each step.
-    wall_acceleration: f64,
+    /// CS: the input derivatives for the next step (fmi2SetRealInputDerivatives); cleared after it.
+    derivatives: InputDerivatives,
     /// Messages for the logEvents category (the derived parameters at initialization).
     events: Vec<String>,
 }
@@ -137,6 +136,16 @@ struct SeenWall {
     t: f64,
 }
 
+/// CS: what fmi2SetRealInputDerivatives gave for the next step.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+struct InputDerivatives {
+    /// Order 1 of wall_displacement: the wall's velocity over the step, in place of the wall_velocity
+    /// input (for masters that connect only the displacement) [m/s].
+    velocity: Option<f64>,
+    /// Order 1 of wall_velocity or order 2 of wall_displacement [m/s^2].
+    acceleration: f64,
+}
+
 /// The dynamic state, for fmi2GetFMUstate and serialization.
 #[derive(Serialize, Deserialize)]
 struct Snapshot {
@@ -146,6 +155,7 @@ struct Snapshot {
     last_step: f64,
     cs_wall: Option<CsWall>,
     me_wall: Option<SeenWall>,
+    derivatives: InputDerivatives,
 }
 
 /// Co-Simulation: the wall inputs a step started from and the wall's position and velocity at its end.
@@ -186,7 +196,7 @@ impl ParticleWallImpact {
             t: 0.0,
             cs_wall: None,
             me_wall: None,
-            wall_acceleration: 0.0,
+            derivatives: InputDerivatives::default(),
             events: Vec::new(),
         }
     }
@@ -398,16 +408,29 @@ impl Model for ParticleWallImpact {
         if let Some(c) = self.cs_wall {
             wall = c.continued(wall);
         }
-        let a = std::mem::take(&mut self.wall_acceleration);
+        let InputDerivatives { velocity, acceleration: a } = self.derivatives;
+        if let Some(v) = velocity {
+            wall.velocity = v;
+        }
+        if !((wall.velocity + a * h).abs() <= MAX_SPEED) {
+            return Err(UnitError::Variable {
+                name: "wall_acceleration",
+                why: format!(
+                    "the wall's acceleration {a:e} m/s2 over a step of {h:e} s takes its velocity to {:e} m/s; allowed at most {MAX_SPEED:e} m/s",
+                    wall.velocity + a * h
+                ),
+            });
+        }
         let sphere = self.sphere.as_mut().ok_or(UnitError::NotInitialized)?;
         let saved = (sphere.clone(), self.y);
         // A wall accelerating at a (an input derivative): in the frame that moves with a t^2/2 the wall
         // moves at constant velocity, as the integrators expect, and the sphere feels gravity g + a. The
         // overlap, and so the force and the contact work, are the same in both frames.
-        sphere.gravity += a;
+        let g = sphere.gravity;
+        sphere.gravity = g + a;
         let mut y = self.y;
         let result = sphere.advance(&wall, t, t + h, &mut y);
-        sphere.gravity -= a;
+        sphere.gravity = g; // as it was, not (g + a) - a
         if let Err(e) = result {
             // Nothing half-done: the state stays at the start of the step.
             (*sphere, self.y) = saved;
@@ -418,6 +441,7 @@ impl Model for ParticleWallImpact {
         y.velocity += a * h;
         self.y = y;
         self.t = t + h;
+        self.derivatives = InputDerivatives::default();
         self.cs_wall = Some(CsWall {
             position_input: real(values, REFS.wall_displacement),
             velocity_input: real(values, REFS.wall_velocity),
@@ -428,39 +452,46 @@ impl Model for ParticleWallImpact {
     }
 
     fn set_input_derivatives(&mut self, derivatives: &[(usize, i32, f64)]) -> Result<(), UnitError> {
-        let mut a = self.wall_acceleration;
+        let mut d = self.derivatives;
         for &(vr, order, value) in derivatives {
             let name = &self.variables[vr].name;
-            match (vr, order) {
-                // The wall's rate is the wall_velocity input; its derivative of order 1 is accepted and
-                // not used, so that masters that extrapolate every input linearly may call.
-                (vr, 1) if vr == REFS.wall_displacement => continue,
-                (vr, 1) if vr == REFS.wall_velocity => {}
-                (vr, 2) if vr == REFS.wall_displacement => {}
+            let (max, unit) = match (vr, order) {
+                (vr, 1) if vr == REFS.wall_displacement => (MAX_SPEED, "m/s"),
+                (vr, 1) if vr == REFS.wall_velocity => (MAX_WALL_ACCELERATION, "m/s2"),
+                (vr, 2) if vr == REFS.wall_displacement => (MAX_WALL_ACCELERATION, "m/s2"),
                 _ => {
                     return Err(UnitError::Unsupported(format!(
-                        "derivative of order {order} of `{name}` is not taken: the wall's acceleration is order 1 of `wall_velocity` or order 2 of `wall_displacement`"
+                        "derivative of order {order} of `{name}` is not taken: the wall's velocity is order 1 of `wall_displacement` (or the `wall_velocity` input), its acceleration order 1 of `wall_velocity` or order 2 of `wall_displacement`"
                     )))
                 }
-            }
-            if !(value.is_finite() && value.abs() <= MAX_WALL_ACCELERATION) {
+            };
+            if !(value.is_finite() && value.abs() <= max) {
                 return Err(UnitError::Variable {
-                    name: "wall_acceleration",
-                    why: format!(
-                        "derivative of order {order} of `{name}` (the wall's acceleration) = {value:e} m/s2 is out of range: allowed [-{MAX_WALL_ACCELERATION:e}, {MAX_WALL_ACCELERATION:e}] m/s2"
-                    ),
+                    name: if unit == "m/s" { "wall_velocity" } else { "wall_acceleration" },
+                    why: format!("derivative of order {order} of `{name}` = {value:e} {unit} is out of range: allowed [-{max:e}, {max:e}] {unit}"),
                 });
             }
-            a = value;
+            if unit == "m/s" {
+                d.velocity = Some(value);
+            } else {
+                d.acceleration = value;
+            }
         }
-        self.wall_acceleration = a;
+        self.derivatives = d;
         Ok(())
     }
 
     fn save(&self) -> Result<Vec<u8>, UnitError> {
         let Some(s) = &self.sphere else { return Ok(Vec::new()) };
-        let snap =
-            Snapshot { y: self.y, t: self.t, contact: s.contact.memory(), last_step: s.last_step, cs_wall: self.cs_wall, me_wall: self.me_wall };
+        let snap = Snapshot {
+            y: self.y,
+            t: self.t,
+            contact: s.contact.memory(),
+            last_step: s.last_step,
+            cs_wall: self.cs_wall,
+            me_wall: self.me_wall,
+            derivatives: self.derivatives,
+        };
         contact_parts::encode(&snap)
     }
 
@@ -489,8 +520,8 @@ impl Model for ParticleWallImpact {
         self.t = snap.t;
         self.cs_wall = snap.cs_wall;
         self.me_wall = snap.me_wall;
-        // Input derivatives belong to the step they were set for, not to a saved state.
-        self.wall_acceleration = 0.0;
+        // The input derivatives set for the next step, like the inputs, are part of the state.
+        self.derivatives = snap.derivatives;
         Ok(())
     }
 }
@@ -611,13 +642,65 @@ mod tests {
         ] {
             let e = m.set_input_derivatives(&bad).unwrap_err().to_string();
             assert!(e.contains("wall_velocity") || e.contains("wall_displacement"), "{e}");
-            assert_eq!(m.wall_acceleration, 5.0, "{bad:?}");
+            assert_eq!(m.derivatives, InputDerivatives { velocity: None, acceleration: 5.0 }, "{bad:?}");
         }
-        // Order 1 of the displacement is taken and not used (the rate is the wall_velocity input).
+        // Order 1 of the displacement is the wall's velocity over the step.
         m.set_input_derivatives(&[(REFS.wall_displacement, 1, 9.0)]).unwrap();
-        assert_eq!(m.wall_acceleration, 5.0);
+        assert_eq!(m.derivatives, InputDerivatives { velocity: Some(9.0), acceleration: 5.0 });
         let ce = super::super::by_identifier("ContactElement").unwrap();
         let e = (ce.new_model)(ce, None).set_input_derivatives(&[(0, 1, 1.0)]).unwrap_err();
         assert!(e.to_string().contains("canInterpolateInputs is false"), "{e}");
+    }
+}
+
+#[cfg(test)]
+mod derivative_state_tests {
+    use super::*;
+
+    fn model() -> (ParticleWallImpact, Vec<Value>) {
+        let u = super::super::by_identifier(MODEL_IDENTIFIER).unwrap();
+        let mut values = u.start_values();
+        values[REFS.initial_gap] = Value::Real(1e-6); // far from the wall: the sphere flies on
+        values[REFS.initial_velocity] = Value::Real(0.0);
+        values[REFS.gravity] = Value::Real(9.81);
+        let mut m = ParticleWallImpact::new(u);
+        m.initialize(&values, 0.0, false).unwrap();
+        (m, values)
+    }
+
+    fn wall_after_step(m: &mut ParticleWallImpact, values: &mut [Value], h: f64) -> f64 {
+        m.do_step(values, m.t, h).unwrap();
+        m.cs_wall.unwrap().position_end
+    }
+
+    #[test]
+    fn order_1_of_the_displacement_moves_the_wall_at_that_velocity_for_the_step() {
+        let (mut m, mut values) = model();
+        m.set_input_derivatives(&[(REFS.wall_displacement, 1, 2.0)]).unwrap();
+        assert_eq!(wall_after_step(&mut m, &mut values, 1e-6), 2e-6);
+        // Then it is gone; the wall, its velocity input not set again, continues at the velocity it had.
+        assert_eq!(wall_after_step(&mut m, &mut values, 1e-6), 4e-6);
+    }
+
+    #[test]
+    fn a_saved_state_keeps_the_derivatives_set_for_the_next_step_and_gravity_stays_exact() {
+        let (mut m, mut values) = model();
+        m.set_input_derivatives(&[(REFS.wall_velocity, 1, 8e5)]).unwrap();
+        let saved = m.save().unwrap();
+        let once = wall_after_step(&mut m, &mut values, 1e-6);
+        assert_eq!(m.sphere.as_ref().unwrap().gravity, 9.81, "gravity restored to the bit");
+        m.restore(&values, &saved).unwrap();
+        assert_eq!(wall_after_step(&mut m, &mut values, 1e-6), once, "the restored state steps as the saved one");
+        assert!((once - 0.5 * 8e5 * 1e-12).abs() < 1e-22, "{once:e}");
+    }
+
+    #[test]
+    fn an_acceleration_that_would_take_the_wall_past_the_speed_limit_is_refused_before_the_step() {
+        let (mut m, values) = model();
+        m.set_input_derivatives(&[(REFS.wall_velocity, 1, 1e12)]).unwrap();
+        let before = (m.t, m.y);
+        let e = m.do_step(&values, 0.0, 1e-6).unwrap_err().to_string();
+        assert!(e.contains("wall_acceleration") || e.contains("m/s"), "{e}");
+        assert_eq!((m.t, m.y), before);
     }
 }

@@ -168,6 +168,29 @@ def test_a_sweep_command_stopped_with_ctrl_c_resumes_where_it_was(tmp_path):
     assert len(rows) == 16 and {r["status"] for r in rows.values()} == {"ok"}
 
 
+def test_a_torn_line_and_a_task_that_failed_then_ran_leave_one_complete_row_each(tmp_path):
+    out = tmp_path / "s.csv"
+
+    def fails_once(task, inputs):
+        if inputs["acceleration"] == 2e6 and inputs["frequency"] == 5e4 and not (tmp_path / "ran").exists():
+            raise RuntimeError("not yet")
+        return sweep.run_task(task, inputs)
+
+    sweep.run(GRID, out, serial=True, progress=False, task_runner=fails_once)
+    (tmp_path / "ran").touch()
+    with out.open("a") as f:
+        f.write("deadbeefdeadbeef,50000.0,20")  # a row torn by a kill
+    assert sweep.run(GRID, out, serial=True, progress=False, task_runner=fails_once)["ran"] == 1
+    _, rows = sweep.read(out)
+    assert len(rows) == 4 and {r["status"] for r in rows} == {"ok"}
+    assert all(None not in r.values() for r in rows)
+    # Rebuilding the FMU (another GUID) and resuming into the same file is refused.
+    text = out.read_text().replace("# fmu: ParticleWallImpact.fmu guid {", "# fmu: ParticleWallImpact.fmu guid {0")
+    out.write_text(text)
+    with pytest.raises(sweep.SweepError, match="another build of the FMU"):
+        sweep.run(GRID, out, serial=True, progress=False)
+
+
 def test_a_failed_task_is_retried_once_then_reported_with_its_inputs(tmp_path, capsys):
     attempts = []
 
@@ -211,6 +234,7 @@ def test_on_the_cluster_too_a_failed_task_is_retried_once_and_reported(tmp_path)
         ({"task": "sieve", "grid": {}}, ["grid", "empty"]),
         ({"task": "sieve", "grid": {"frequency": []}}, ["grid.frequency", "non-empty"]),
         ({"task": "sieve", "grid": {"frequency": [1e3, -5e3]}}, ["frequency", "-5000", "> 0"]),
+        ({"task": "sieve", "grid": {"frequency": [1e3, 1e3]}}, ["grid.frequency", "twice"]),
         ({"task": "sieve", "grid": {"surface_energy": [-1.0]}}, ["surface_energy"]),
         ({"task": "hopper", "grid": {"frequency": [1e3]}}, ["task", "hopper"]),
         ({"task": "sieve", "sample": {"count": 0, "ranges": {"frequency": [1e3, 1e4]}}}, ["sample.count"]),
