@@ -229,7 +229,7 @@ crate::scene_options! {
         luding_max_unloading_stiffness: derived("5 k_1"), "N/m", Range::Open(0.0, 1e12), "k_2 hat, the unloading stiffness reached at alpha* (004 Eqs. 3.71, 3.74)";
         luding_adhesion_stiffness: number(0.0), "N/m", Range::ClosedLow(0.0, 1e12), "k_c, slope of the adhesion limit -k_c alpha - f_0 (003 Eq. 4)";
         luding_plasticity_depth: number(0.05), "-", Range::Open(0.0, 0.5), "phi_f, dimensionless plasticity depth: alpha* = k2/(k2 - k1) phi_f 2 R* (004 Eq. 3.71)";
-        luding_contact_adhesion_force: derived("8/9 f_ce"), "N", Range::ClosedLow(0.0, 1e6), "f_0, attraction at first contact (003 Eq. 4; 004 Table 4.2 sets it to 8/9 f_ce)";
+        luding_contact_adhesion_force: derived("8/9 f_ce; 0 with luding_variant mercurydpm"), "N", Range::ClosedLow(0.0, 1e6), "f_0, attraction at first contact (003 Eq. 4; 004 Table 4.2 sets it to 8/9 f_ce; the peers' law, luding_variant mercurydpm, has none)";
         luding_variant: choice(LudingVariant::Pasha), "-", Range::Names, "reading of the luding law: pasha (004 Sec. 3.4.4.5: k_2 of the largest overlap ever, loading on k_1 beyond alpha*) or mercurydpm (MercuryDPM, LIGGGHTS, Yade: Singh 2013 Eq. 9 on the adhesion limit, delta_0 capped at phi_f 2 R*)";
     }
 }
@@ -249,7 +249,12 @@ impl LawInfo for Luding {
                 why: format!("k_2_hat = {k2_hat:e} N/m must exceed k_1 = {k1:e} N/m (004 Eq. 3.71)"),
             });
         }
-        let f0 = own.luding_contact_adhesion_force.unwrap_or(8.0 / 9.0 * pair.f_ce());
+        // The peers' law has no f_0 (adhesion comes from separate models there): the mercurydpm reading's
+        // default is 0, which an FMU, whose 0 means "derive it", could not otherwise express.
+        let f0 = own.luding_contact_adhesion_force.unwrap_or(match own.luding_variant {
+            LudingVariant::Pasha => 8.0 / 9.0 * pair.f_ce(),
+            LudingVariant::Mercurydpm => 0.0,
+        });
         Ok(Luding::with_variant(k1, k2_hat, own.luding_adhesion_stiffness, f0, own.luding_plasticity_depth, pair.radius, own.luding_variant))
     }
 }

@@ -266,3 +266,15 @@ def test_each_luding_reading_rebounds_through_the_fmu_as_its_energy_balance(impa
         assert r["contact_state"][-1] == 0
         assert r["sphere_velocity"][-1] == pytest.approx(ref["rebound_velocity"], rel=1e-8)
     assert r["max_overlap"][-1] == pytest.approx(ref["max_overlap"], rel=1e-8)
+
+
+def test_the_peers_luding_reading_has_no_contact_adhesion_by_default_through_the_fmu(impact, cli):
+    """With luding_variant = mercurydpm the start value 0 of luding_contact_adhesion_force ("derive it")
+    gives f_0 = 0, the peers' law (docs/porting.md): the FMU's rebound at 8 m/s is the energy balance with
+    an explicit f_0 = 0 (0.7237 on Table 4.2's values, sphere on a wall)."""
+    start = {**pasha_table_4_2(impact), "contact_model": "luding", "luding_variant": "mercurydpm", "luding_contact_adhesion_force": 0.0}
+    scene = {**impact.scene(start), "luding_contact_adhesion_force": 0.0}
+    ref = cli.analyze(scene, velocity=8.0)
+    assert ref["restitution"] == pytest.approx(0.7237, abs=1e-4)
+    r = impact_run(impact, cli, start, 8.0)
+    assert r["sphere_velocity"][-1] == pytest.approx(ref["rebound_velocity"], rel=1e-8)
