@@ -200,6 +200,13 @@ impl<'a> Instance<'a> {
         Ok(v)
     }
 
+    pub fn set_input_derivative(&self, name: &str, order: c_int, value: f64) -> Result<(), String> {
+        let vr = self.fmu.model_description.vr(name)?;
+        let f: unsafe extern "C" fn(Component, *const u32, usize, *const c_int, *const f64) -> Status = self.fmu.symbol("fmi2SetRealInputDerivatives")?;
+        // SAFETY: one value reference, one order, one value.
+        check(&format!("fmi2SetRealInputDerivatives({name})"), unsafe { f(self.c, &vr, 1, &order, &value) })
+    }
+
     pub fn do_step(&self, t: f64, h: f64) -> Result<(), String> {
         let f: unsafe extern "C" fn(Component, f64, f64, c_int) -> Status = self.fmu.symbol("fmi2DoStep")?;
         // SAFETY: a live instance.

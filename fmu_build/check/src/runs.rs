@@ -1,4 +1,5 @@
-//! The runs of each unit: a short scenario per unit in Co-Simulation (with a saved state halfway) and in
+//! The runs of each unit: a short scenario per unit in Co-Simulation (with a saved state halfway; for
+//! ParticleWallImpact a vibrating wall given by its acceleration, an input derivative) and in
 //! Model Exchange (explicit Euler at a fixed step with event handling). Each prints its final outputs
 //! with `{:e}` (the shortest text that reads back to the same f64), to be compared across platforms.
 
@@ -12,6 +13,8 @@ struct Scenario {
     steps: usize,
     step: f64,
     inputs: fn(f64) -> Vec<(&'static str, f64)>,
+    /// Co-Simulation only: input derivatives (name, order, value) at the start of each step.
+    derivatives: fn(f64) -> Vec<(&'static str, i32, f64)>,
     outputs: &'static [&'static str],
     integers: &'static [&'static str],
 }
@@ -34,6 +37,16 @@ fn no_inputs(_: f64) -> Vec<(&'static str, f64)> {
     Vec::new()
 }
 
+fn no_derivatives(_: f64) -> Vec<(&'static str, i32, f64)> {
+    Vec::new()
+}
+
+/// ParticleWallImpact in Co-Simulation: the wall vibrates, its acceleration given as an input derivative
+/// (fmi2SetRealInputDerivatives, order 1 of wall_velocity), 1e6 m/s2 peak at 5 MHz.
+fn vibrating_wall(t: f64) -> Vec<(&'static str, i32, f64)> {
+    vec![("wall_velocity", 1, 1e6 * (2.0 * std::f64::consts::PI * 5e6 * t).cos())]
+}
+
 fn scenario(id: &str) -> Result<Scenario, String> {
     match id {
         // An impact at 3 m/s of the default sphere (000 Table 5, Nan's law) on a still wall.
@@ -43,6 +56,7 @@ fn scenario(id: &str) -> Result<Scenario, String> {
             steps: 300,
             step: 1e-9,
             inputs: no_inputs,
+            derivatives: vibrating_wall,
             outputs: &["force", "overlap", "sphere_position", "sphere_velocity", "max_overlap", "dissipated_energy"],
             integers: &["contact_state"],
         }),
@@ -52,6 +66,7 @@ fn scenario(id: &str) -> Result<Scenario, String> {
             steps: 250,
             step: 1e-8,
             inputs: contact_wall,
+            derivatives: no_derivatives,
             outputs: &["force", "overlap", "max_overlap", "plastic_overlap", "pull_off_force", "dissipated_energy"],
             integers: &["contact_state"],
         }),
@@ -63,6 +78,7 @@ fn scenario(id: &str) -> Result<Scenario, String> {
             steps: 10,
             step: 1e-4,
             inputs: no_inputs,
+            derivatives: no_derivatives,
             outputs: &["indenter_force", "penetration_depth", "hardness", "kinetic_energy"],
             integers: &["test_state", "indenter_contacts"],
         }),
@@ -122,6 +138,9 @@ pub fn co_simulation(fmu: &Unpacked, state_out: Option<&Path>, state_in: Option<
         let t = k as f64 * s.step;
         for (name, value) in (s.inputs)(t) {
             i.set_real(name, value)?;
+        }
+        for (name, order, value) in (s.derivatives)(t) {
+            i.set_input_derivative(name, order, value)?;
         }
         i.do_step(t, s.step)?;
     }
