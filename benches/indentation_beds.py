@@ -10,24 +10,19 @@ gamma 0.01 is its bed's reference, the others are compared with it.
 """
 
 import argparse
-import csv
 import os
 import statistics
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from indentation_work_precision import plateau  # noqa: E402
+from indentation_work_precision import read_runs  # noqa: E402
 
 
 def main():
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("table")
     a = p.parse_args()
-    folder = os.path.dirname(os.path.abspath(a.table))
-    with open(a.table) as f:
-        runs = list(csv.DictReader(f))
-    for r in runs:
-        r["plateau"], r["spread"] = plateau(os.path.join(folder, r["file"]))
+    runs = read_runs(a.table)
     seeds = sorted({r["seed"] for r in runs}, key=int)
     refs = {s: next((r for r in runs if r["seed"] == s and float(r["gamma"]) == 0.01), None) for s in seeds}
     print("| bed (fill seed) | gamma* | time step [s] | fidelity | wall time [s] | plateau hardness [Pa] | fluctuation [Pa] | against the bed's gamma* 0.01 | note |")

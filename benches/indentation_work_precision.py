@@ -26,16 +26,23 @@ def plateau(path, window=(0.1, 0.2)):
     return statistics.fmean(h), statistics.pstdev(h)
 
 
+def read_runs(table):
+    """The rows of a table of runs, each with the plateau hardness and its fluctuation of its `file`
+    (relative to the table's folder)."""
+    folder = os.path.dirname(os.path.abspath(table))
+    with open(table) as f:
+        runs = list(csv.DictReader(f))
+    for r in runs:
+        r["plateau"], r["spread"] = plateau(os.path.join(folder, r["file"]))
+    return runs
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("table", help="CSV: file, gamma, time_step_s, fidelity, wall_s, note")
     p.add_argument("--plot", help="write the figure here (PNG)")
     a = p.parse_args()
-    folder = os.path.dirname(os.path.abspath(a.table))
-    with open(a.table) as f:
-        runs = list(csv.DictReader(f))
-    for r in runs:
-        r["plateau"], r["spread"] = plateau(os.path.join(folder, r["file"]))
+    runs = read_runs(a.table)
     refs = [r for r in runs if r["note"].startswith("reference")]
     if len(refs) != 1:
         raise SystemExit(f"{a.table}: mark exactly one run `reference` in `note` (found {len(refs)})")

@@ -20,8 +20,9 @@ OWN_KEYS = ("stop_time", "output_interval")
 SUMMARY_KEYS = ("plateau_hardness", "hardness", "unconfined_yield_strength", "max_force", "max_depth", "test_state", "wall_time")
 
 
-def resolve(inputs: Mapping[str, Any], fmu: Path | None = None) -> tuple[dict[str, Any], dict[str, Any]]:
-    """(run settings, start values) of a task, checked: unknown keys and non-positive times are errors."""
+def resolve(inputs: Mapping[str, Any], fmu: Path | None = None, check_unit: bool = False) -> tuple[dict[str, Any], dict[str, Any]]:
+    """(run settings, start values) of a task, checked: unknown keys and non-positive times are errors;
+    `check_unit` also initializes the unit with them (loading the bed), as a sweep does before any task."""
     fmu = fmu or fmu_path("BallIndentation")
     md = read_model_description(str(fmu))
     settings = {"stop_time": float(md.defaultExperiment.stopTime), "output_interval": float(md.defaultExperiment.stepSize)}
@@ -34,11 +35,11 @@ def resolve(inputs: Mapping[str, Any], fmu: Path | None = None) -> tuple[dict[st
         else:
             params[key] = value
     start = scene_mod.start_values(fmu, params)
-    # The unit checks its parameters (ranges, the bed file and its scene) at initialization: ask it now,
-    # so that a bad value stops a sweep before any task.
-    p, _ = cosimulation(fmu, "check", start)
-    p.terminate()
-    p.freeInstance()
+    if check_unit:
+        # The unit checks its parameters (ranges, the bed file and its scene) at initialization.
+        p, _ = cosimulation(fmu, "check", start)
+        p.terminate()
+        p.freeInstance()
     return settings, start
 
 

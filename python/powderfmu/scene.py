@@ -19,20 +19,23 @@ def _variables(fmu: str) -> dict[str, Any]:
     return {v.name: v for v in read_model_description(fmu).modelVariables}
 
 
+def read_object(path: str | Path, what: str, error: type[Exception] = ValueError) -> dict[str, Any]:
+    """A JSON file holding one object, or `error` naming the file and what it should hold."""
+    path = Path(path)
+    try:
+        data = json.loads(path.read_text())
+    except FileNotFoundError:
+        raise error(f"{path} does not exist") from None
+    except json.JSONDecodeError as e:
+        raise error(f"{path} is not JSON: {e}") from None
+    if not isinstance(data, dict):
+        raise error(f"{path} must hold a JSON object ({what})")
+    return data
+
+
 def load(scene: str | Path | Mapping[str, Any]) -> dict[str, Any]:
     """A scene as a dict: a mapping as given, or a JSON file. Keys starting with `comment` are dropped."""
-    if isinstance(scene, Mapping):
-        data = dict(scene)
-    else:
-        path = Path(scene)
-        try:
-            data = json.loads(path.read_text())
-        except FileNotFoundError:
-            raise ValueError(f"scene file {path} does not exist") from None
-        except json.JSONDecodeError as e:
-            raise ValueError(f"scene file {path} is not JSON: {e}") from None
-        if not isinstance(data, dict):
-            raise ValueError(f"scene file {path} must hold a JSON object of scene keys")
+    data = dict(scene) if isinstance(scene, Mapping) else read_object(scene, "scene keys")
     return {k: v for k, v in data.items() if not k.startswith("comment")}
 
 

@@ -115,9 +115,11 @@ def _unit_parameters(fmu: Path) -> dict[str, Any]:
     return {v.name: v for v in read_model_description(str(fmu)).modelVariables if v.causality == "parameter"}
 
 
-def resolve(spec: Mapping[str, Any], fmu: Path | None = None) -> tuple[dict[str, Any], dict[str, Any]]:
+def resolve(spec: Mapping[str, Any], fmu: Path | None = None, check_unit: bool = False) -> tuple[dict[str, Any], dict[str, Any]]:
     """Splits a spec into the system's keys (defaults filled in, checked) and the powder's scene keys
-    (checked against the unit's parameters). Raises SpecError naming the key."""
+    (checked against the unit's parameters). Raises SpecError naming the key. `check_unit` also asks the
+    unit to initialize with them (a sweep checks every task before any runs; `run` meets the unit's
+    refusal when it creates the instances)."""
     fmu = fmu or fmu_path("ParticleWallImpact")
     unit = _unit_parameters(fmu)
     system = dict(SYSTEM_DEFAULTS)
@@ -187,9 +189,9 @@ def resolve(spec: Mapping[str, Any], fmu: Path | None = None) -> tuple[dict[str,
             f"`plate_mass` = {system['plate_mass']:g} kg carries {ratio:.3g} times its mass of powder (particles x particle_weight); "
             f"the master's explicit coupling needs at most {MAX_MASS_RATIO} (added-mass instability): raise plate_mass or lower particles or particle_weight"
         )
-    # The unit checks its own parameters (ranges, combinations) at initialization: ask it now, for the
-    # smallest and the largest particle, so that a bad value stops a sweep before any task.
-    for radius in {float(r[0]), float(r[-1])}:
+    # The unit checks its own parameters (ranges, combinations) at initialization: for the smallest and
+    # the largest particle.
+    for radius in {float(r[0]), float(r[-1])} if check_unit else ():
         try:
             p, _ = cosimulation(fmu, "check", {**powder, "particle_radius": radius, "initial_gap": 0.0, "initial_velocity": 0.0, "gravity": system["gravity"]})
         except RefusedStart as e:

@@ -49,16 +49,9 @@ class SweepError(ValueError):
 
 
 def load_spec(path: str | Path) -> dict[str, Any]:
-    path = Path(path)
-    try:
-        spec = json.loads(path.read_text())
-    except FileNotFoundError:
-        raise SweepError(f"spec file {path} does not exist") from None
-    except json.JSONDecodeError as e:
-        raise SweepError(f"spec file {path} is not JSON: {e}") from None
-    if not isinstance(spec, dict):
-        raise SweepError(f"spec file {path} must hold a JSON object (task, base, grid or sample, output)")
-    return spec
+    from .scene import read_object
+
+    return read_object(path, "task, base, grid or sample, output", SweepError)
 
 
 def points(spec: Mapping[str, Any]) -> list[dict[str, Any]]:
@@ -137,11 +130,11 @@ def resolve_task(task: str, inputs: Mapping[str, Any]) -> None:
     if task == "sieve":
         from . import sieve
 
-        sieve.resolve(inputs)
+        sieve.resolve(inputs, check_unit=True)
     else:
         from . import indentation
 
-        indentation.resolve(inputs)
+        indentation.resolve(inputs, check_unit=True)
 
 
 # ---------------------------------------------------------------------------------------------------

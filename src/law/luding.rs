@@ -113,16 +113,15 @@ impl Luding {
         }
         if spring <= -self.kc * alpha {
             let peak = self.singh_peak(alpha);
-            return Evaluation {
-                force: -self.kc * alpha - self.f0,
-                stiffness: -self.kc,
-                branch: Branch::Adhesive,
-                lower: 0.0,
-                upper: alpha,
-                history: LudingHistory { established: true, delta_peak: peak, delta_0: self.capped_delta0(peak) },
-            };
+            return self.on_adhesion_limit(alpha, LudingHistory { established: true, delta_peak: peak, delta_0: self.capped_delta0(peak) });
         }
         self.on_line(alpha, k2, h)
+    }
+
+    /// On the adhesion limit -k_c alpha - f_0, unloading; `history` puts the reloading line through this
+    /// point (each reading its own way).
+    fn on_adhesion_limit(&self, alpha: f64, history: LudingHistory) -> Evaluation<LudingHistory> {
+        Evaluation { force: -self.kc * alpha - self.f0, stiffness: -self.kc, branch: Branch::Adhesive, lower: 0.0, upper: alpha, history }
     }
 
     /// mercurydpm: on the un/reloading line k_2 (alpha - delta_0) - f_0, between the adhesion limit and
@@ -178,14 +177,7 @@ impl NormalLaw for Luding {
             };
         }
         if spring <= -self.kc * alpha {
-            return Evaluation {
-                force: -self.kc * alpha - self.f0,
-                stiffness: -self.kc,
-                branch: Branch::Adhesive,
-                lower: 0.0,
-                upper: alpha,
-                history: LudingHistory { established: true, delta_peak: h.delta_peak, delta_0: (1.0 + self.kc / k2) * alpha },
-            };
+            return self.on_adhesion_limit(alpha, LudingHistory { established: true, delta_peak: h.delta_peak, delta_0: (1.0 + self.kc / k2) * alpha });
         }
         Evaluation {
             force: spring - self.f0,
