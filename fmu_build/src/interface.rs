@@ -1,5 +1,5 @@
 //! The files generated from the units' variable tables that are checked in, so that a review sees every
-//! interface change: `modelDescription/<Unit>.xml` and the variable table inside `docs/units/<Unit>.md`
+//! interface change: `modelDescription/<Unit>.xml`, `modelDescription/fmi3/<Unit>.xml` and the variable table inside `docs/units/<Unit>.md`
 //! (between the `variables:begin` and `variables:end` markers).
 
 use powderfmu::units::{model_description, UnitInfo};
@@ -17,6 +17,11 @@ pub fn model_description_path(unit: &UnitInfo) -> PathBuf {
     root().join("modelDescription").join(format!("{}.xml", unit.model_identifier))
 }
 
+/// The FMI 3.0 description, beside the FMI 2.0 one: `modelDescription/fmi3/<Unit>.xml`.
+pub fn model_description_fmi3_path(unit: &UnitInfo) -> PathBuf {
+    root().join("modelDescription").join("fmi3").join(format!("{}.xml", unit.model_identifier))
+}
+
 pub fn docs_path(unit: &UnitInfo) -> PathBuf {
     root().join("docs").join("units").join(format!("{}.md", unit.model_identifier))
 }
@@ -32,11 +37,11 @@ pub fn docs_with_table(page: &str, unit: &UnitInfo) -> Result<String, String> {
 /// Writes both generated files of a unit; returns the paths that changed.
 pub fn update(unit: &UnitInfo) -> Result<Vec<PathBuf>, String> {
     let mut changed = Vec::new();
-    let xml_path = model_description_path(unit);
-    let xml = unit.model_description();
-    if std::fs::read_to_string(&xml_path).ok().as_deref() != Some(xml.as_str()) {
-        write_atomic(&xml_path, xml.as_bytes())?;
-        changed.push(xml_path);
+    for (xml_path, xml) in [(model_description_path(unit), unit.model_description()), (model_description_fmi3_path(unit), unit.model_description_fmi3())] {
+        if std::fs::read_to_string(&xml_path).ok().as_deref() != Some(xml.as_str()) {
+            write_atomic(&xml_path, xml.as_bytes())?;
+            changed.push(xml_path);
+        }
     }
     let docs = docs_path(unit);
     let page = std::fs::read_to_string(&docs).map_err(|e| format!("cannot read {}: {e}", docs.display()))?;

@@ -1,5 +1,6 @@
 //! `fmu_build`: builds the powderfmu cdylib (profile `fmu-release`: release without debug info) and writes
-//! `target/fmu/<Unit>.fmu` for every unit: `modelDescription.xml`, `binaries/linux64/<Unit>.so` and,
+//! `target/fmu/<Unit>.fmu` (FMI 2.0) and `target/fmu/fmi3/<Unit>.fmu` (FMI 3.0, `binaries/x86_64-linux`,
+//! `binaries/x86_64-windows`) for every unit: `modelDescription.xml`, `binaries/linux64/<Unit>.so` and,
 //! cross-compiled with mingw-w64, `binaries/win64/<Unit>.dll`, `documentation/` (the unit's page, the
 //! model equations, an index) and `resources/` (the default scene). Archives are reproducible: sorted
 //! entries, fixed timestamps.
@@ -51,7 +52,7 @@ fn options() -> Result<Options, String> {
                 println!("  DIR/<Unit>.fmu (default target/fmu) with binaries/linux64/<Unit>.so and binaries/win64/<Unit>.dll");
                 println!("  --linux-only  skip the Windows cross-build (which needs `rustup target add {WINDOWS_TARGET}`");
                 println!("                and the linker x86_64-w64-mingw32-gcc, Debian's gcc-mingw-w64-x86-64)");
-                println!("  --update-interface  rewrite modelDescription/<Unit>.xml and the docs variable tables");
+                println!("  --update-interface  rewrite modelDescription/<Unit>.xml, modelDescription/fmi3/<Unit>.xml and the docs tables");
                 std::process::exit(0);
             }
             other => return Err(format!("unknown argument `{other}` (see --help)")),
@@ -89,17 +90,22 @@ fn run() -> Result<(), String> {
     std::fs::create_dir_all(&o.out).map_err(|e| format!("cannot create {}: {e}", o.out.display()))?;
     for unit in units::all() {
         let checked_in = std::fs::read_to_string(interface::model_description_path(unit)).unwrap_or_default();
-        if checked_in != unit.model_description() {
+        let checked_in_fmi3 = std::fs::read_to_string(interface::model_description_fmi3_path(unit)).unwrap_or_default();
+        if checked_in != unit.model_description() || checked_in_fmi3 != unit.model_description_fmi3() {
             eprintln!(
                 "fmu_build: warning: modelDescription/{}.xml differs from the variable table; run `cargo run -p fmu_build -- --update-interface` and commit",
                 unit.model_identifier
             );
         }
         let path = o.out.join(format!("{}.fmu", unit.model_identifier));
-        let entries = entries(unit, &binaries, &root)?;
-        let bytes = zip_bytes(entries).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+        let bytes = zip_bytes(entries(unit, &binaries, &root, Version::Fmi2)?).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
         interface::write_atomic(&path, &bytes)?;
         println!("fmu_build: wrote {} ({:.1} MiB, GUID {})", path.display(), bytes.len() as f64 / 1048576.0, unit.guid());
+        // The FMI 3.0 FMU: the same binary (it exports both ABIs), its own description and platform folders.
+        let path = o.out.join("fmi3").join(format!("{}.fmu", unit.model_identifier));
+        let bytes = zip_bytes(entries(unit, &binaries, &root, Version::Fmi3)?).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+        interface::write_atomic(&path, &bytes)?;
+        println!("fmu_build: wrote {} ({:.1} MiB, instantiationToken {})", path.display(), bytes.len() as f64 / 1048576.0, unit.instantiation_token());
     }
     Ok(())
 }
@@ -140,18 +146,30 @@ fn read(root: &Path, rel: &str) -> Result<Vec<u8>, String> {
     std::fs::read(root.join(rel)).map_err(|e| format!("cannot read {rel}: {e}"))
 }
 
-fn entries(unit: &UnitInfo, binaries: &Binaries, root: &Path) -> Result<Vec<Entry>, String> {
+/// Which standard an archive is for.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Version {
+    Fmi2,
+    Fmi3,
+}
+
+fn entries(unit: &UnitInfo, binaries: &Binaries, root: &Path, version: Version) -> Result<Vec<Entry>, String> {
     let id = unit.model_identifier;
     let page = format!("docs/units/{id}.md");
+    // The platform folders: FMI 2.0's names, and FMI 3.0's platform tuples (FMI 3.0 Sec. 2.5.1.1).
+    let (description, linux, windows) = match version {
+        Version::Fmi2 => (unit.model_description(), "linux64", "win64"),
+        Version::Fmi3 => (unit.model_description_fmi3(), "x86_64-linux", "x86_64-windows"),
+    };
     let mut entries = vec![
-        Entry { name: "modelDescription.xml".into(), data: unit.model_description().into_bytes() },
-        Entry { name: format!("binaries/linux64/{id}.so"), data: binaries.linux.to_vec() },
+        Entry { name: "modelDescription.xml".into(), data: description.into_bytes() },
+        Entry { name: format!("binaries/{linux}/{id}.so"), data: binaries.linux.to_vec() },
         Entry { name: "documentation/index.html".into(), data: index_html(unit).into_bytes() },
         Entry { name: format!("documentation/{id}.md"), data: read(root, &page)? },
         Entry { name: "documentation/models.md".into(), data: read(root, "docs/models.md")? },
     ];
     if let Some(dll) = binaries.windows {
-        entries.push(Entry { name: format!("binaries/win64/{id}.dll"), data: dll.to_vec() });
+        entries.push(Entry { name: format!("binaries/{windows}/{id}.dll"), data: dll.to_vec() });
     }
     if id == units::ball_indentation::MODEL_IDENTIFIER {
         let scene = units::ball_indentation::DEFAULT_BED_SCENE.as_bytes().to_vec();

@@ -12,7 +12,7 @@ use super::particles::Particles;
 use super::scene::BedScene;
 use super::walls::Wall;
 use super::{Vec3, ZERO};
-use crate::fmi2::saved_state::fnv1a;
+use crate::fmi::saved_state::fnv1a;
 use std::io::Write;
 use std::path::Path;
 

@@ -5,42 +5,20 @@
 
 #![allow(non_snake_case, non_upper_case_globals, clippy::missing_safety_doc)]
 
-use super::instance::{allowed, error, Call, Failure, Instance, Kind, Logger, Mode};
 use super::types::*;
-use super::uri::file_uri_to_path;
+use crate::fmi::ffi::{self, c_str, out, saved, slice, slice_mut, Registry, SavedState};
+use crate::fmi::instance::{allowed, error, Call, Instance, Kind, LogCallback, Logger, Mode};
+use crate::fmi::uri::file_uri_to_path;
+use crate::fmi::{Api, Status};
 use crate::units::variables::{Value, VarType};
 use crate::units::{self, LOG_CATEGORIES};
-use std::collections::BTreeSet;
-use std::ffi::{CStr, CString};
+use std::ffi::CString;
 use std::os::raw::c_char;
 use std::panic::{catch_unwind, AssertUnwindSafe};
-use std::sync::Mutex;
 
-/// Addresses of the live instances and saved states: a pointer not in these sets is never dereferenced.
-static INSTANCES: Mutex<BTreeSet<usize>> = Mutex::new(BTreeSet::new());
-static STATES: Mutex<BTreeSet<usize>> = Mutex::new(BTreeSet::new());
-
-/// Arrays longer than this are refused (a garbage length must not become a huge allocation).
-const MAX_ARRAY: usize = 1 << 24;
-
-fn live(set: &Mutex<BTreeSet<usize>>, p: usize) -> bool {
-    set.lock().map(|s| s.contains(&p)).unwrap_or(false)
-}
-
-fn register(set: &Mutex<BTreeSet<usize>>, p: usize) {
-    if let Ok(mut s) = set.lock() {
-        s.insert(p);
-    }
-}
-
-fn unregister(set: &Mutex<BTreeSet<usize>>, p: usize) -> bool {
-    set.lock().map(|mut s| s.remove(&p)).unwrap_or(false)
-}
-
-/// A saved FMU state: the bytes of `saved_state`.
-struct SavedState {
-    bytes: Vec<u8>,
-}
+/// The live instances and saved states of this ABI: a pointer not in these sets is never dereferenced.
+static INSTANCES: Registry = Registry::new();
+static STATES: Registry = Registry::new();
 
 /// Runs `f` on the instance behind `c` if `c` is live and the mode allows `function`.
 fn call(c: fmi2Component, function: &'static str, modes: u32, f: impl FnOnce(&mut Instance) -> Call) -> fmi2Status {
@@ -50,112 +28,7 @@ fn call(c: fmi2Component, function: &'static str, modes: u32, f: impl FnOnce(&mu
 /// `call` for a function of one interface (`kind`), or of both (`None`): the interface is checked before
 /// the calling sequence, so a function of the other interface is refused as such in every state.
 fn call_for(c: fmi2Component, function: &'static str, kind: Option<Kind>, modes: u32, f: impl FnOnce(&mut Instance) -> Call) -> fmi2Status {
-    if c.is_null() || !live(&INSTANCES, c as usize) {
-        return fmi2Error;
-    }
-    // SAFETY: `c` was made by fmi2Instantiate from a Box<Instance> and has not been freed (it is live).
-    let inst = unsafe { &mut *(c as *mut Instance) };
-    let result = catch_unwind(AssertUnwindSafe(|| {
-        if inst.mode == Mode::Fatal {
-            return error(format!("{function}: the instance is in the Fatal state after an earlier internal error; free it"));
-        }
-        if let Some(kind) = kind {
-            inst.check_kind(function, kind)?;
-        }
-        inst.check_mode(function, modes)?;
-        if inst.logger.enabled("logAll") {
-            inst.log(fmi2OK, "logAll", function);
-        }
-        f(inst)
-    }));
-    match result {
-        Ok(Ok(())) => fmi2OK,
-        Ok(Err(Failure { status, message, enters_error_state })) => {
-            let category = if status == fmi2Fatal { "logStatusFatal" } else { "logStatusError" };
-            if status == fmi2Fatal {
-                inst.mode = Mode::Fatal;
-                inst.log(status, category, &message);
-            } else if enters_error_state {
-                inst.mode = Mode::Error;
-                inst.log(
-                    status,
-                    category,
-                    &format!("{message} (the instance is now in the Error state: fmi2Reset, fmi2SetFMUstate or fmi2FreeInstance)"),
-                );
-            } else {
-                inst.log(status, category, &message);
-            }
-            status
-        }
-        Err(panic) => {
-            let what = panic.downcast_ref::<&str>().map(|s| s.to_string()).or_else(|| panic.downcast_ref::<String>().cloned()).unwrap_or_default();
-            inst.mode = Mode::Fatal;
-            inst.log(fmi2Fatal, "logStatusFatal", &format!("{function}: internal error ({what}); the instance cannot continue"));
-            fmi2Fatal
-        }
-    }
-}
-
-/// A C array as a slice; NULL is allowed only for an empty array.
-///
-/// # Safety
-/// A non-NULL `p` must point to `n` initialized values of `T` that stay valid and unaliased by writes for
-/// `'a` (the host's array argument for the duration of the call).
-unsafe fn slice<'a, T>(p: *const T, n: usize, function: &str, name: &str) -> Call<&'a [T]> {
-    if n == 0 {
-        return Ok(&[]);
-    }
-    if p.is_null() {
-        return error(format!("{function}: argument `{name}` is NULL but its length is {n}"));
-    }
-    if n > MAX_ARRAY {
-        return error(format!("{function}: length {n} of `{name}` is larger than any array of this unit"));
-    }
-    // SAFETY: `p` is non-NULL and the caller guarantees `n` readable elements (this function's contract).
-    Ok(unsafe { std::slice::from_raw_parts(p, n) })
-}
-
-/// A C array as a mutable slice; NULL is allowed only for an empty array.
-///
-/// # Safety
-/// A non-NULL `p` must point to `n` writable values of `T`, not aliased elsewhere, valid for `'a` (the host's
-/// output array for the duration of the call).
-unsafe fn slice_mut<'a, T>(p: *mut T, n: usize, function: &str, name: &str) -> Call<&'a mut [T]> {
-    if n == 0 {
-        return Ok(&mut []);
-    }
-    if p.is_null() {
-        return error(format!("{function}: argument `{name}` is NULL but its length is {n}"));
-    }
-    if n > MAX_ARRAY {
-        return error(format!("{function}: length {n} of `{name}` is larger than any array of this unit"));
-    }
-    // SAFETY: `p` is non-NULL and the caller guarantees `n` readable elements (this function's contract).
-    Ok(unsafe { std::slice::from_raw_parts_mut(p, n) })
-}
-
-/// A C string argument as a String; NULL and non-UTF-8 are refused by name.
-///
-/// # Safety
-/// A non-NULL `p` must point to a NUL-terminated string valid for the duration of the call.
-unsafe fn c_str(p: fmi2String, function: &str, name: &str) -> Call<String> {
-    if p.is_null() {
-        return error(format!("{function}: argument `{name}` is NULL"));
-    }
-    // SAFETY: `p` is non-NULL and the caller guarantees a NUL-terminated string (this function's contract).
-    unsafe { CStr::from_ptr(p) }.to_str().map(str::to_owned).map_err(|_| Failure {
-        status: fmi2Error,
-        message: format!("{function}: argument `{name}` is not UTF-8"),
-        enters_error_state: false,
-    })
-}
-
-fn out<T>(p: *mut T, function: &str, name: &str) -> Call<*mut T> {
-    if p.is_null() {
-        error(format!("{function}: output argument `{name}` is NULL"))
-    } else {
-        Ok(p)
-    }
+    ffi::call_on(&INSTANCES, c, function, kind, modes, f) as fmi2Status
 }
 
 // ---------------------------------------------------------------------------------------------------
@@ -227,10 +100,10 @@ pub unsafe extern "C" fn fmi2Instantiate(
     let result = catch_unwind(AssertUnwindSafe(|| {
         // SAFETY: `functions` is non-NULL (checked above) and points to the host's callback struct.
         let cb = unsafe { *functions };
-        let logger = Logger::new(cb.logger, cb.componentEnvironment, loggingOn != fmi2False);
+        let logger = Logger::new(LogCallback::Fmi2(cb.logger), cb.componentEnvironment, loggingOn != fmi2False);
         let fail = |name: &str, msg: String| {
             let n = CString::new(name.replace('\0', " ")).unwrap_or_default();
-            logger.log(&n, fmi2Error, "logStatusError", &msg);
+            logger.log(&n, Status::Error, "logStatusError", &msg);
             std::ptr::null_mut()
         };
         // SAFETY: the host passes a NUL-terminated string (FMI 2.0 Sec. 2.1.2); NULL is refused inside.
@@ -277,9 +150,9 @@ pub unsafe extern "C" fn fmi2Instantiate(
                 Err(e) => return fail(&name, format!("fmi2Instantiate: {e}")),
             }
         }
-        let inst = Box::new(Instance::new(&name, unit, kind, logger, resources));
+        let inst = Box::new(Instance::new(Api::Fmi2, &name, unit, kind, logger, resources));
         let p = Box::into_raw(inst);
-        register(&INSTANCES, p as usize);
+        INSTANCES.register(p as usize);
         p as fmi2Component
     }));
     result.unwrap_or(std::ptr::null_mut())
@@ -287,7 +160,7 @@ pub unsafe extern "C" fn fmi2Instantiate(
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi2FreeInstance(c: fmi2Component) {
-    if c.is_null() || !unregister(&INSTANCES, c as usize) {
+    if c.is_null() || !INSTANCES.unregister(c as usize) {
         return;
     }
     let _ = catch_unwind(AssertUnwindSafe(|| {
@@ -474,12 +347,12 @@ pub unsafe extern "C" fn fmi2GetFMUstate(c: fmi2Component, FMUstate: *mut fmi2FM
         let bytes = inst.save()?;
         // SAFETY: an output argument of the host, checked non-NULL by `out` above.
         let existing = unsafe { *p };
-        if !existing.is_null() && live(&STATES, existing as usize) {
+        if !existing.is_null() && STATES.live(existing as usize) {
             // SAFETY: a live state pointer came from Box::into_raw of a SavedState.
             unsafe { (*(existing as *mut SavedState)).bytes = bytes };
         } else {
             let s = Box::into_raw(Box::new(SavedState { bytes }));
-            register(&STATES, s as usize);
+            STATES.register(s as usize);
             // SAFETY: an output argument of the host, checked non-NULL by `out` above.
             unsafe { *p = s as fmi2FMUstate };
         }
@@ -487,21 +360,10 @@ pub unsafe extern "C" fn fmi2GetFMUstate(c: fmi2Component, FMUstate: *mut fmi2FM
     })
 }
 
-fn saved<'a>(state: fmi2FMUstate, function: &str) -> Call<&'a SavedState> {
-    if state.is_null() {
-        return error(format!("{function}: argument `FMUstate` is NULL"));
-    }
-    if !live(&STATES, state as usize) {
-        return error(format!("{function}: `FMUstate` is not a live state of this library (freed, or made by another FMU)"));
-    }
-    // SAFETY: live state pointers come from Box::into_raw of a SavedState and are not yet freed.
-    Ok(unsafe { &*(state as *const SavedState) })
-}
-
 #[no_mangle]
 pub unsafe extern "C" fn fmi2SetFMUstate(c: fmi2Component, FMUstate: fmi2FMUstate) -> fmi2Status {
     call(c, "fmi2SetFMUstate", allowed::ANY_LIVE, |inst| {
-        let bytes = saved(FMUstate, "fmi2SetFMUstate")?.bytes.clone();
+        let bytes = saved(&STATES, FMUstate, "fmi2SetFMUstate")?.bytes.clone();
         inst.restore(&bytes)
     })
 }
@@ -515,7 +377,7 @@ pub unsafe extern "C" fn fmi2FreeFMUstate(c: fmi2Component, FMUstate: *mut fmi2F
         if s.is_null() {
             return Ok(());
         }
-        if !unregister(&STATES, s as usize) {
+        if !STATES.unregister(s as usize) {
             return error("fmi2FreeFMUstate: `*FMUstate` is not a live state of this library (already freed?)");
         }
         // SAFETY: just unregistered; it came from Box::into_raw of a SavedState.
@@ -531,7 +393,7 @@ pub unsafe extern "C" fn fmi2SerializedFMUstateSize(c: fmi2Component, FMUstate: 
     call(c, "fmi2SerializedFMUstateSize", allowed::ANY_LIVE, |_| {
         let p = out(size, "fmi2SerializedFMUstateSize", "size")?;
         // SAFETY: an output argument of the host, checked non-NULL by `out` above.
-        unsafe { *p = saved(FMUstate, "fmi2SerializedFMUstateSize")?.bytes.len() };
+        unsafe { *p = saved(&STATES, FMUstate, "fmi2SerializedFMUstateSize")?.bytes.len() };
         Ok(())
     })
 }
@@ -539,7 +401,7 @@ pub unsafe extern "C" fn fmi2SerializedFMUstateSize(c: fmi2Component, FMUstate: 
 #[no_mangle]
 pub unsafe extern "C" fn fmi2SerializeFMUstate(c: fmi2Component, FMUstate: fmi2FMUstate, serializedState: *mut fmi2Byte, size: usize) -> fmi2Status {
     call(c, "fmi2SerializeFMUstate", allowed::ANY_LIVE, |_| {
-        let bytes = &saved(FMUstate, "fmi2SerializeFMUstate")?.bytes;
+        let bytes = &saved(&STATES, FMUstate, "fmi2SerializeFMUstate")?.bytes;
         if size < bytes.len() {
             return error(format!(
                 "fmi2SerializeFMUstate: size = {size} is smaller than the state ({} bytes, see fmi2SerializedFMUstateSize)",
@@ -564,11 +426,11 @@ pub unsafe extern "C" fn fmi2DeSerializeFMUstate(
         let p = out(FMUstate, "fmi2DeSerializeFMUstate", "FMUstate")?;
         // SAFETY: the host passes an array of this length (FMI 2.0 Sec. 2.1); NULL and impossible lengths are refused inside.
         let src = unsafe { slice(serializedState as *const u8, size, "fmi2DeSerializeFMUstate", "serializedState") }?;
-        if let Err(m) = super::saved_state::read(inst.unit, src) {
+        if let Err(m) = crate::fmi::saved_state::read(inst.unit, Api::Fmi2, src) {
             return error(format!("fmi2DeSerializeFMUstate: {m}"));
         }
         let s = Box::into_raw(Box::new(SavedState { bytes: src.to_vec() }));
-        register(&STATES, s as usize);
+        STATES.register(s as usize);
         // SAFETY: an output argument of the host, checked non-NULL by `out` above.
         unsafe { *p = s as fmi2FMUstate };
         Ok(())

@@ -55,7 +55,9 @@ impl Sphere {
     }
 
     /// Advances the state from `t` to `t_end` with the wall moving as `wall`, landing on branch switches.
-    pub(super) fn advance_adaptive(&mut self, wall: &WallMotion, t: f64, t_end: f64, y: &mut State) -> Result<(), StepError> {
+    /// With `stop_at_event`, stops at the first located switch that changes the contact state and returns its time.
+    pub(super) fn advance_adaptive(&mut self, wall: &WallMotion, t: f64, t_end: f64, y: &mut State, stop_at_event: bool) -> Result<Option<f64>, StepError> {
+        let start_state = self.contact_state();
         let mut t = t;
         let mut h = if self.last_step > 0.0 { self.last_step } else { self.initial_step(y) };
         let mut steps = 0u64;
@@ -103,6 +105,9 @@ impl Sphere {
             *y = y_new;
             t = t_new;
             self.accept(wall, t, y);
+            if stop_at_event && any_crossed && self.contact_state() != start_state {
+                return Ok(Some(t));
+            }
             // The shortened last step of a communication step says nothing about the step size the
             // dynamics allows: it is not kept for the next call.
             if !any_crossed && !last {
@@ -110,7 +115,7 @@ impl Sphere {
                 h = h_try * (0.9 * e.max(1e-10).powf(-0.2)).min(5.0);
             }
         }
-        Ok(())
+        Ok(None)
     }
 
     /// The smallest step in (0, h] after which one of the `crossed` indicators has changed sign, to 1e-13 h.

@@ -200,12 +200,15 @@ const MAX_STALLS: u32 = 16;
 impl Sphere {
     /// Advances by closed-form segments from branch switch to branch switch. The contact work is the
     /// energy the sphere lost in the wall's frame: W = m g (x_1 - x_0) - m (x_1'^2 - x_0'^2) / 2.
-    pub(super) fn advance_exact(&mut self, wall: &WallMotion, t: f64, t_end: f64, y: &mut State) -> Result<(), StepError> {
+    /// With `stop_at_event`, stops at the first branch switch that changes the contact state and returns its time.
+    pub(super) fn advance_exact(&mut self, wall: &WallMotion, t: f64, t_end: f64, y: &mut State, stop_at_event: bool) -> Result<Option<f64>, StepError> {
         let u = wall.velocity;
         let mut t = t;
         let mut x = [wall.at(t) - y.bottom, u - y.velocity];
         // The branch the motion goes into now: the master may have turned the wall around.
         self.contact.accept(x[0], x[1]);
+        let start_state = self.contact_state();
+        let mut event = None;
         let (mut segments, mut stalls) = (0u64, 0u32);
         // A rounding leftover of the communication step is no step at all.
         while t_end - t > 4.0 * f64::EPSILON * t_end.abs() {
@@ -239,10 +242,14 @@ impl Sphere {
                 t += horizon;
             }
             self.contact.accept(x[0], x[1]);
+            if stop_at_event && crossing.is_some() && self.contact_state() != start_state {
+                event = Some(t);
+                break;
+            }
         }
         y.bottom = wall.at(t) - x[0];
         y.velocity = u - x[1];
-        Ok(())
+        Ok(event)
     }
 }
 

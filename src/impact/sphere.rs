@@ -139,12 +139,29 @@ impl Sphere {
 
     /// Advances the state from `t` to `t_end` with the wall moving as `wall`.
     pub fn advance(&mut self, wall: &WallMotion, t: f64, t_end: f64, y: &mut State) -> Result<(), StepError> {
+        self.advance_until(wall, t, t_end, y, false).map(|_| ())
+    }
+
+    /// Advances from `t` toward `t_end`, stopping at the first change of the contact state (the
+    /// integer output: formation, the elastic-plastic switches, pull-off, detachment) on the way. Returns
+    /// the time of that event, or None when the state reached `t_end` without one. `exact` and `adaptive`
+    /// locate the event as they locate every branch switch; `verlet` at the end of its fixed step.
+    pub fn advance_to_event(&mut self, wall: &WallMotion, t: f64, t_end: f64, y: &mut State) -> Result<Option<f64>, StepError> {
+        self.advance_until(wall, t, t_end, y, true)
+    }
+
+    pub fn advance_until(&mut self, wall: &WallMotion, t: f64, t_end: f64, y: &mut State, stop_at_event: bool) -> Result<Option<f64>, StepError> {
         self.follow_jump(wall, t, y);
         match self.solver {
-            Solver::Exact => self.advance_exact(wall, t, t_end, y),
-            Solver::Adaptive => self.advance_adaptive(wall, t, t_end, y),
-            Solver::Verlet { step } => self.advance_verlet(step, wall, t, t_end, y),
+            Solver::Exact => self.advance_exact(wall, t, t_end, y, stop_at_event),
+            Solver::Adaptive => self.advance_adaptive(wall, t, t_end, y, stop_at_event),
+            Solver::Verlet { step } => self.advance_verlet(step, wall, t, t_end, y, stop_at_event),
         }
+    }
+
+    /// The integer contact state of the accepted branch (the `contact_state` output).
+    pub fn contact_state(&self) -> i32 {
+        self.contact.accepted.branch.contact_state()
     }
 
     /// A wall the master moved between steps: the contact walks from the accepted overlap to the new one

@@ -6,11 +6,21 @@
 use super::sphere::{Sphere, State, StepError, WallMotion, MAX_STEPS};
 
 impl Sphere {
-    pub(super) fn advance_verlet(&mut self, step: f64, wall: &WallMotion, t0: f64, t_end: f64, y: &mut State) -> Result<(), StepError> {
+    /// With `stop_at_event`, stops after the first step that changes the contact state and returns its end.
+    pub(super) fn advance_verlet(
+        &mut self,
+        step: f64,
+        wall: &WallMotion,
+        t0: f64,
+        t_end: f64,
+        y: &mut State,
+        stop_at_event: bool,
+    ) -> Result<Option<f64>, StepError> {
         let span = t_end - t0;
         if span <= 4.0 * f64::EPSILON * t_end.abs() {
-            return Ok(());
+            return Ok(None);
         }
+        let start_state = self.contact_state();
         let n = (span / step).ceil().max(1.0);
         if n > MAX_STEPS as f64 {
             return Err(StepError::TooManySteps { t: t0, limit: MAX_STEPS });
@@ -35,7 +45,10 @@ impl Sphere {
             self.steps += 1;
             f = f1;
             alpha = alpha1;
+            if stop_at_event && self.contact_state() != start_state && i + 1 < n as u64 {
+                return Ok(Some(t1));
+            }
         }
-        Ok(())
+        Ok(None)
     }
 }

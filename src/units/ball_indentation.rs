@@ -128,11 +128,16 @@ pub fn info() -> UnitInfo {
     UnitInfo {
         model_identifier: MODEL_IDENTIFIER,
         description: "Ball indentation of a pre-consolidated bed of cohesive spheres by DEM (powderfmu)",
-        variables: variables(),
+        variables: {
+            let mut v = variables();
+            v.push(Variable::time());
+            v
+        },
         n_states: 0,
         n_event_indicators: 0,
         model_exchange: false,
         can_interpolate_inputs: false,
+        returns_early: false,
         // The default test: 11.2 ms of loading, the unloading no longer (the bed is not stepped once
         // the indenter has left it).
         stop_time: 0.025,
@@ -141,6 +146,7 @@ pub fn info() -> UnitInfo {
             Box::new(BallIndentation { variables: u.variables.clone(), resources: resources.map(Path::to_path_buf), test: None, reported: None, events: vec![], fresh: false })
         },
         guid_cache: std::sync::OnceLock::new(),
+        token_cache: std::sync::OnceLock::new(),
     }
 }
 

@@ -52,6 +52,9 @@ const OUTPUTS: Outputs = Outputs {
 pub fn info() -> UnitInfo {
     let mut variables = own_variables();
     variables.extend(scene_params::variables());
+    // Last, so that the references of the table above stay as they were.
+    variables.extend(Variable::contact_indicators());
+    variables.push(Variable::time());
     UnitInfo {
         model_identifier: MODEL_IDENTIFIER,
         description: "One elasto-plastic adhesive normal contact as a force element (powderfmu)",
@@ -62,8 +65,10 @@ pub fn info() -> UnitInfo {
         step_size: 1e-3,
         model_exchange: true,
         can_interpolate_inputs: false,
+        returns_early: false,
         new_model: |u, _| Box::new(ContactElement::new(u)),
         guid_cache: std::sync::OnceLock::new(),
+        token_cache: std::sync::OnceLock::new(),
     }
 }
 

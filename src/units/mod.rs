@@ -8,6 +8,7 @@ pub mod contact_element;
 mod contact_parts;
 mod error;
 pub mod model_description;
+pub mod model_description_fmi3;
 pub mod particle_wall_impact;
 mod scene_params;
 
@@ -50,6 +51,13 @@ pub trait Model: Send {
     fn accept(&mut self, values: &[Value]) -> Option<String>;
     /// CS: advance from `t` by `h` with the current inputs.
     fn do_step(&mut self, values: &[Value], t: f64, h: f64) -> Result<(), UnitError>;
+    /// CS with early return (FMI 3.0 `earlyReturnAllowed`): advance from `t` by at most `h`, ending at the
+    /// first change of the contact state inside the step. Returns the time of that event, or None when the
+    /// step went to `t + h`. Units whose state changes only at communication points (`returns_early`
+    /// false) step to the end.
+    fn do_step_to_event(&mut self, values: &[Value], t: f64, h: f64) -> Result<Option<f64>, UnitError> {
+        self.do_step(values, t, h).map(|()| None)
+    }
     /// CS, fmi2SetRealInputDerivatives: (value reference, order, value) of time derivatives of inputs at
     /// the start of the next step. Only units with `can_interpolate_inputs` take any; a refusal of one
     /// changes nothing.
@@ -77,13 +85,16 @@ pub struct UnitInfo {
     pub model_exchange: bool,
     /// CS: whether the unit takes input derivatives (fmi2SetRealInputDerivatives, canInterpolateInputs).
     pub can_interpolate_inputs: bool,
+    /// CS: whether a step can have events inside it, where FMI 3.0 returns early (`do_step_to_event`).
+    pub returns_early: bool,
     /// DefaultExperiment of the XML [s].
     pub stop_time: f64,
     pub step_size: f64,
     /// A fresh model; the second argument is the unzipped `resources` folder, when the host gave one.
     pub new_model: fn(&UnitInfo, Option<&std::path::Path>) -> Box<dyn Model>,
-    /// The GUID, computed once (it hashes the whole model description).
+    /// The GUID and the FMI 3.0 instantiation token, computed once (each hashes its model description).
     pub guid_cache: OnceLock<String>,
+    pub token_cache: OnceLock<String>,
 }
 
 impl UnitInfo {
@@ -95,24 +106,41 @@ impl UnitInfo {
 
     /// The GUID: a hash of the model description without it, so it changes exactly when the interface does.
     pub fn guid(&self) -> String {
-        self.guid_cache
-            .get_or_init(|| {
-                let text = model_description::xml(self, "");
-                let a = fnv1a64(text.as_bytes(), 0xcbf2_9ce4_8422_2325);
-                let b = fnv1a64(text.as_bytes(), 0x6c62_272e_07bb_0142);
-                format!("{{{:08x}-{:04x}-{:04x}-{:04x}-{:012x}}}", a >> 32, (a >> 16) & 0xffff, a & 0xffff, b >> 48, b & 0xffff_ffff_ffff)
-            })
-            .clone()
+        self.guid_cache.get_or_init(|| uuid_of(&model_description::xml(self, ""))).clone()
+    }
+
+    /// The FMI 3.0 instantiationToken: the same kind of hash, of the FMI 3.0 model description.
+    pub fn instantiation_token(&self) -> String {
+        self.token_cache.get_or_init(|| uuid_of(&model_description_fmi3::xml(self, ""))).clone()
+    }
+
+    /// What an instance made through `api` is checked against at instantiation and in saved states.
+    pub fn token(&self, api: crate::fmi::Api) -> String {
+        match api {
+            crate::fmi::Api::Fmi2 => self.guid(),
+            crate::fmi::Api::Fmi3 => self.instantiation_token(),
+        }
     }
 
     pub fn model_description(&self) -> String {
         model_description::xml(self, &self.guid())
     }
 
+    pub fn model_description_fmi3(&self) -> String {
+        model_description_fmi3::xml(self, &self.instantiation_token())
+    }
+
     /// Every variable at its start value.
     pub fn start_values(&self) -> Vec<Value> {
         self.variables.iter().map(|v| v.initial_value()).collect()
     }
+}
+
+/// A UUID-shaped hash of a text (two FNV-1a 64 with different offsets).
+fn uuid_of(text: &str) -> String {
+    let a = fnv1a64(text.as_bytes(), 0xcbf2_9ce4_8422_2325);
+    let b = fnv1a64(text.as_bytes(), 0x6c62_272e_07bb_0142);
+    format!("{{{:08x}-{:04x}-{:04x}-{:04x}-{:012x}}}", a >> 32, (a >> 16) & 0xffff, a & 0xffff, b >> 48, b & 0xffff_ffff_ffff)
 }
 
 /// FNV-1a, 64 bit, from `seed` (the standard offset basis is 0xcbf2_9ce4_8422_2325).

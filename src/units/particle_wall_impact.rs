@@ -7,7 +7,7 @@
 
 use super::contact_parts::{self, Outputs};
 use super::scene_params;
-use super::variables::{Causality, Role, Value, VarType, Variable};
+use super::variables::{Role, Value, VarType, Variable};
 use super::{Model, UnitError, UnitInfo};
 use crate::impact::contact::Memory;
 use crate::impact::{Solver, Sphere, State, WallMotion};
@@ -91,7 +91,9 @@ const OUTPUTS: Outputs = Outputs {
 pub fn info() -> UnitInfo {
     let mut variables = own_variables();
     variables.extend(scene_params::variables());
-    debug_assert!(variables.iter().all(|v| v.causality != Causality::Independent));
+    // Last, so that the references of the table above stay as they were.
+    variables.extend(Variable::contact_indicators());
+    variables.push(Variable::time());
     UnitInfo {
         model_identifier: MODEL_IDENTIFIER,
         description: "A sphere against a moving wall with an elasto-plastic adhesive contact law (powderfmu)",
@@ -102,8 +104,10 @@ pub fn info() -> UnitInfo {
         step_size: 1e-9,
         model_exchange: true,
         can_interpolate_inputs: true,
+        returns_early: true,
         new_model: |u, _| Box::new(ParticleWallImpact::new(u)),
         guid_cache: std::sync::OnceLock::new(),
+        token_cache: std::sync::OnceLock::new(),
     }
 }
 
@@ -239,6 +243,62 @@ impl ParticleWallImpact {
             Some(s) if s.position == position && s.velocity == velocity => WallMotion { t0: s.t, position, velocity },
             _ => WallMotion { t0: self.t, position, velocity },
         }
+    }
+
+    /// CS: one step from `t` by `h`, or (`stop_at_event`) to the first change of the contact state in it,
+    /// whose time it returns.
+    fn step(&mut self, values: &[Value], t: f64, h: f64, stop_at_event: bool) -> Result<Option<f64>, UnitError> {
+        let mut wall = self.wall(values);
+        wall.t0 = t;
+        if let Some(c) = self.cs_wall {
+            wall = c.continued(wall);
+        }
+        let InputDerivatives { velocity, acceleration: a } = self.derivatives;
+        if let Some(v) = velocity {
+            wall.velocity = v;
+        }
+        if !((wall.velocity + a * h).abs() <= MAX_SPEED) {
+            return Err(UnitError::Variable {
+                name: "wall_acceleration",
+                why: format!(
+                    "the wall's acceleration {a:e} m/s2 over a step of {h:e} s takes its velocity to {:e} m/s; allowed at most {MAX_SPEED:e} m/s",
+                    wall.velocity + a * h
+                ),
+            });
+        }
+        let sphere = self.sphere.as_mut().ok_or(UnitError::NotInitialized)?;
+        let saved = (sphere.clone(), self.y);
+        // A wall accelerating at a (an input derivative): in the frame that moves with a t^2/2 the wall
+        // moves at constant velocity, as the integrators expect, and the sphere feels gravity g + a. The
+        // overlap, and so the force and the contact work, are the same in both frames.
+        let g = sphere.gravity;
+        sphere.gravity = g + a;
+        let mut y = self.y;
+        let result = sphere.advance_until(&wall, t, t + h, &mut y, stop_at_event);
+        sphere.gravity = g; // as it was, not (g + a) - a
+        let event = match result {
+            Ok(event) => event,
+            Err(e) => {
+                // Nothing half-done: the state stays at the start of the step.
+                (*sphere, self.y) = saved;
+                return Err(e.into());
+            }
+        };
+        // The step's end: its full length, or the event's time.
+        let h = event.map_or(h, |te| te - t);
+        let frame = 0.5 * a * h * h;
+        y.bottom += frame;
+        y.velocity += a * h;
+        self.y = y;
+        self.t = t + h;
+        self.derivatives = InputDerivatives::default();
+        self.cs_wall = Some(CsWall {
+            position_input: real(values, REFS.wall_displacement),
+            velocity_input: real(values, REFS.wall_velocity),
+            position_end: wall.at(t + h) + frame,
+            velocity_end: wall.velocity + a * h,
+        });
+        Ok(event)
     }
 
     /// ME: notes inputs that changed since they were last seen, with the current time.
@@ -403,52 +463,11 @@ impl Model for ParticleWallImpact {
     }
 
     fn do_step(&mut self, values: &[Value], t: f64, h: f64) -> Result<(), UnitError> {
-        let mut wall = self.wall(values);
-        wall.t0 = t;
-        if let Some(c) = self.cs_wall {
-            wall = c.continued(wall);
-        }
-        let InputDerivatives { velocity, acceleration: a } = self.derivatives;
-        if let Some(v) = velocity {
-            wall.velocity = v;
-        }
-        if !((wall.velocity + a * h).abs() <= MAX_SPEED) {
-            return Err(UnitError::Variable {
-                name: "wall_acceleration",
-                why: format!(
-                    "the wall's acceleration {a:e} m/s2 over a step of {h:e} s takes its velocity to {:e} m/s; allowed at most {MAX_SPEED:e} m/s",
-                    wall.velocity + a * h
-                ),
-            });
-        }
-        let sphere = self.sphere.as_mut().ok_or(UnitError::NotInitialized)?;
-        let saved = (sphere.clone(), self.y);
-        // A wall accelerating at a (an input derivative): in the frame that moves with a t^2/2 the wall
-        // moves at constant velocity, as the integrators expect, and the sphere feels gravity g + a. The
-        // overlap, and so the force and the contact work, are the same in both frames.
-        let g = sphere.gravity;
-        sphere.gravity = g + a;
-        let mut y = self.y;
-        let result = sphere.advance(&wall, t, t + h, &mut y);
-        sphere.gravity = g; // as it was, not (g + a) - a
-        if let Err(e) = result {
-            // Nothing half-done: the state stays at the start of the step.
-            (*sphere, self.y) = saved;
-            return Err(e.into());
-        }
-        let frame = 0.5 * a * h * h;
-        y.bottom += frame;
-        y.velocity += a * h;
-        self.y = y;
-        self.t = t + h;
-        self.derivatives = InputDerivatives::default();
-        self.cs_wall = Some(CsWall {
-            position_input: real(values, REFS.wall_displacement),
-            velocity_input: real(values, REFS.wall_velocity),
-            position_end: wall.at(t + h) + frame,
-            velocity_end: wall.velocity + a * h,
-        });
-        Ok(())
+        self.step(values, t, h, false).map(|_| ())
+    }
+
+    fn do_step_to_event(&mut self, values: &[Value], t: f64, h: f64) -> Result<Option<f64>, UnitError> {
+        self.step(values, t, h, true)
     }
 
     fn set_input_derivatives(&mut self, derivatives: &[(usize, i32, f64)]) -> Result<(), UnitError> {

@@ -125,6 +125,10 @@ pub enum Role {
     State(usize),
     /// The derivative of the i-th continuous state.
     Derivative(usize),
+    /// The i-th event indicator (0-based, ME): a variable so that FMI 3.0's ModelStructure can name it.
+    Indicator(usize),
+    /// The independent variable, time.
+    Time,
 }
 
 /// One FMU variable.
@@ -186,6 +190,24 @@ impl Variable {
     pub fn output(name: &str, var_type: VarType, unit: &'static str, description: &str) -> Variable {
         let variability = if var_type == VarType::Real { Variability::Continuous } else { Variability::Discrete };
         Variable::new(name, Causality::Output, variability, var_type, None, unit, description, Role::Plain)
+    }
+
+    /// The independent variable `time` (FMI 3.0 needs exactly one; the value is the instance's time).
+    pub fn time() -> Variable {
+        Variable::new("time", Causality::Independent, Variability::Continuous, VarType::Real, None, "s", "simulation time", Role::Time)
+    }
+
+    /// The event indicators of the contact units (`Contact::indicators`), dimensionless, as locals.
+    pub fn contact_indicators() -> Vec<Variable> {
+        [
+            ("event_indicator_lower", "event indicator: distance above the lower bound of the accepted branch, in nominal overlaps (or the overlap rate at a bound it leaves), positive while the branch holds"),
+            ("event_indicator_upper", "event indicator: distance below the upper bound of the accepted branch, in nominal overlaps (or minus the overlap rate at the largest overlap), positive while the branch holds"),
+            ("event_indicator_rate", "event indicator: the overlap rate in nominal rates (a turning point at the largest overlap), or below the largest overlap its distance from it"),
+        ]
+        .iter()
+        .enumerate()
+        .map(|(i, (name, doc))| Variable::local(name, "", doc, Role::Indicator(i)))
+        .collect()
     }
 
     /// A calculated local continuous real (states and derivatives).

@@ -1,12 +1,16 @@
-//! One FMU instance behind the C ABI: the calling-sequence state machine (FMI 2.0 Sec. 3.2.3 and 4.2.4),
-//! the variable values indexed by value reference, logging, and the calls into the unit's `Model`. All
-//! of it is safe Rust; `exports` turns C pointers into slices before calling here.
+//! One FMU instance behind either C ABI (FMI 2.0 `crate::fmi2`, FMI 3.0 `crate::fmi3`): the calling-sequence
+//! state machine (FMI 2.0 Secs. 3.2.3 and 4.2.4, FMI 3.0 Sec. 3.2), the variable values indexed by value
+//! reference, logging, and the calls into the unit's `Model`. All of it is safe Rust; each `exports` turns
+//! C pointers into slices before calling here. The two standards share the status numbers, the modes the
+//! units use and what a call may change; they differ in names, which `Api` gives.
 
 use super::saved_state;
-use super::types::*;
-use crate::units::variables::{Causality, Value, VarType, Variability};
+use super::{Api, Status};
+use crate::units::variables::{Causality, Role, Value, VarType, Variability};
 use crate::units::{Model, UnitInfo, LOG_CATEGORIES};
-use std::ffi::CString;
+use crate::fmi2::types::fmi2CallbackLogger;
+use crate::fmi3::types::fmi3LogMessageCallback;
+use std::ffi::{c_void, CString};
 
 /// The states of the FMI 2.0 calling sequence, by the standard's names (hence "...Mode").
 #[allow(clippy::enum_variant_names)]
@@ -27,8 +31,10 @@ impl Mode {
         1 << (self as u32)
     }
 
-    pub fn name(self) -> &'static str {
+    /// The mode's name in the standard of `api` (FMI 3.0 calls Step Complete "Step Mode").
+    pub fn name(self, api: Api) -> &'static str {
         match self {
+            Mode::StepComplete if api == Api::Fmi3 => "Step Mode",
             Mode::Instantiated => "Instantiated",
             Mode::InitializationMode => "Initialization Mode",
             Mode::EventMode => "Event Mode",
@@ -83,6 +89,9 @@ pub mod allowed {
     pub const DO_STEP: u32 = m(&[StepComplete]);
     pub const SET_INPUT_DERIVATIVES: u32 = m(&[Instantiated, InitializationMode, StepComplete]);
     pub const CS_STATUS: u32 = m(&[StepComplete, Terminated]);
+    /// FMI 3.0: Event Mode is entered from Continuous-Time Mode (ME) and from Step Mode (CS, eventModeUsed).
+    pub const ENTER_EVENT_MODE_3: u32 = m(&[EventMode, ContinuousTimeMode, StepComplete]);
+    pub const ENTER_STEP_MODE: u32 = m(&[EventMode]);
 }
 
 /// Which interface the instance was made for.
@@ -97,37 +106,45 @@ pub enum Kind {
 /// place in the calling sequence changed nothing, and leaves the instance as it was.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Failure {
-    pub status: fmi2Status,
+    pub status: Status,
     pub message: String,
     pub enters_error_state: bool,
 }
 
 pub type Call<T = ()> = Result<T, Failure>;
 
-/// A refused call: fmi2Error, nothing changed.
+/// A refused call: Error, nothing changed.
 pub fn error<T>(message: impl Into<String>) -> Call<T> {
-    Err(Failure { status: fmi2Error, message: message.into(), enters_error_state: false })
+    Err(Failure { status: Status::Error, message: message.into(), enters_error_state: false })
 }
 
-/// A computation that failed: fmi2Error, and the instance is in the Error state.
+/// A computation that failed: Error, and the instance is in the Error state.
 pub fn failed<T>(message: impl Into<String>) -> Call<T> {
-    Err(Failure { status: fmi2Error, message: message.into(), enters_error_state: true })
+    Err(Failure { status: Status::Error, message: message.into(), enters_error_state: true })
+}
+
+/// The host's logging function: FMI 2.0's (printf-style, with the instance name) or FMI 3.0's.
+#[derive(Clone, Copy)]
+pub enum LogCallback {
+    Fmi2(fmi2CallbackLogger),
+    Fmi3(fmi3LogMessageCallback),
 }
 
 /// The host's logger and which categories are switched on.
 pub struct Logger {
-    pub callback: fmi2CallbackLogger,
-    pub environment: fmi2ComponentEnvironment,
+    pub callback: LogCallback,
+    /// The host's environment pointer (fmi2ComponentEnvironment, fmi3InstanceEnvironment).
+    pub environment: *mut c_void,
     pub logging_on: bool,
     pub categories: Vec<bool>,
 }
 
 // SAFETY: the environment pointer is the host's and never dereferenced here; it is only handed back to
-// the host's logger, which FMI 2.0 lets the host call from the thread the instance is used on.
+// the host's logger, which FMI lets the host call from the thread the instance is used on.
 unsafe impl Send for Logger {}
 
 impl Logger {
-    pub fn new(callback: fmi2CallbackLogger, environment: fmi2ComponentEnvironment, logging_on: bool) -> Logger {
+    pub fn new(callback: LogCallback, environment: *mut c_void, logging_on: bool) -> Logger {
         Logger { callback, environment, logging_on, categories: vec![true; LOG_CATEGORIES.len()] }
     }
 
@@ -143,20 +160,32 @@ impl Logger {
         }
     }
 
-    pub fn log(&self, instance_name: &CString, status: fmi2Status, category: &str, message: &str) {
-        let Some(callback) = self.callback else { return };
+    pub fn log(&self, instance_name: &CString, status: Status, category: &str, message: &str) {
         if !self.enabled(category) {
             return;
         }
-        // The host formats the message with printf: a literal % must be doubled.
-        let text = CString::new(message.replace('%', "%%").replace('\0', " ")).unwrap_or_default();
         let category = CString::new(category).unwrap_or_default();
-        // SAFETY: the host gave this callback for exactly these arguments; the strings outlive the call.
-        unsafe { callback(self.environment, instance_name.as_ptr(), status, category.as_ptr(), text.as_ptr()) };
+        match self.callback {
+            LogCallback::Fmi2(Some(callback)) => {
+                // The host formats the message with printf: a literal % must be doubled.
+                let text = CString::new(message.replace('%', "%%").replace('\0', " ")).unwrap_or_default();
+                // SAFETY: the host gave this callback for exactly these arguments; the strings outlive the call.
+                unsafe { callback(self.environment, instance_name.as_ptr(), status as i32, category.as_ptr(), text.as_ptr()) };
+            }
+            LogCallback::Fmi3(Some(callback)) => {
+                // FMI 3.0 passes the message as it is (no printf); the instance name goes in front of it.
+                let text = CString::new(format!("{}: {message}", instance_name.to_string_lossy()).replace('\0', " ")).unwrap_or_default();
+                // SAFETY: the host gave this callback for exactly these arguments; the strings outlive the call.
+                unsafe { callback(self.environment, status as i32, category.as_ptr(), text.as_ptr()) };
+            }
+            LogCallback::Fmi2(None) | LogCallback::Fmi3(None) => {}
+        }
     }
 }
 
 pub struct Instance {
+    /// Which C ABI made the instance: the names in its messages.
+    pub api: Api,
     pub name: CString,
     pub unit: &'static UnitInfo,
     pub kind: Kind,
@@ -174,11 +203,15 @@ pub struct Instance {
     model_ready: bool,
     /// The unzipped `resources` folder the host named (fmuResourceLocation), if any.
     resources: Option<std::path::PathBuf>,
+    /// FMI 3.0 Co-Simulation: whether the master uses Event Mode and lets a step return early.
+    pub event_mode_used: bool,
+    pub early_return_allowed: bool,
 }
 
 impl Instance {
-    pub fn new(name: &str, unit: &'static UnitInfo, kind: Kind, logger: Logger, resources: Option<std::path::PathBuf>) -> Instance {
+    pub fn new(api: Api, name: &str, unit: &'static UnitInfo, kind: Kind, logger: Logger, resources: Option<std::path::PathBuf>) -> Instance {
         Instance {
+            api,
             name: CString::new(name.replace('\0', " ")).unwrap_or_default(),
             unit,
             kind,
@@ -192,10 +225,17 @@ impl Instance {
             strings: Vec::new(),
             model_ready: false,
             resources,
+            event_mode_used: false,
+            early_return_allowed: false,
         }
     }
 
-    pub fn log(&self, status: fmi2Status, category: &str, message: &str) {
+    /// The GUID (FMI 2.0) or instantiationToken (FMI 3.0) of the unit: what a saved state is tied to.
+    pub fn token(&self) -> String {
+        self.unit.token(self.api)
+    }
+
+    pub fn log(&self, status: Status, category: &str, message: &str) {
         self.logger.log(&self.name, status, category, message);
     }
 
@@ -204,8 +244,8 @@ impl Instance {
         if allowed & self.mode.bit() != 0 {
             return Ok(());
         }
-        let modes: Vec<&str> = Mode::ALL.iter().filter(|m| allowed & m.bit() != 0).map(|m| m.name()).collect();
-        error(format!("{function} must not be called in {}; allowed in: {}", self.mode.name(), modes.join(", ")))
+        let modes: Vec<&str> = Mode::ALL.iter().filter(|m| allowed & m.bit() != 0).map(|m| m.name(self.api)).collect();
+        error(format!("{function} must not be called in {}; allowed in: {}", self.mode.name(self.api), modes.join(", ")))
     }
 
     pub fn check_kind(&self, function: &str, kind: Kind) -> Call {
@@ -228,11 +268,11 @@ impl Instance {
 
     pub fn setup_experiment(&mut self, start: f64, stop: Option<f64>) -> Call {
         if !start.is_finite() {
-            return error(format!("fmi2SetupExperiment: startTime = {start} is not finite"));
+            return error(format!("{}: startTime = {start} is not finite", self.api.name("SetupExperiment")));
         }
         if let Some(stop) = stop {
             if !(stop >= start) {
-                return error(format!("fmi2SetupExperiment: stopTime = {stop:e} s must not be less than startTime = {start:e} s"));
+                return error(format!("{}: stopTime = {stop:e} s must not be less than startTime = {start:e} s", self.api.name("SetupExperiment")));
             }
         }
         self.start_time = start;
@@ -259,8 +299,9 @@ impl Instance {
     }
 
     pub fn exit_initialization_mode(&mut self) -> Call {
-        self.initialize_model("fmi2ExitInitializationMode")?;
-        self.mode = if self.kind == Kind::ModelExchange { Mode::EventMode } else { Mode::StepComplete };
+        self.initialize_model(&self.api.name("ExitInitializationMode"))?;
+        // FMI 3.0 Co-Simulation with Event Mode starts in Event Mode, as Model Exchange does.
+        self.mode = if self.kind == Kind::ModelExchange || self.event_mode_used { Mode::EventMode } else { Mode::StepComplete };
         Ok(())
     }
 
@@ -272,12 +313,28 @@ impl Instance {
         if self.model_ready {
             let between_events = self.kind == Kind::ModelExchange && self.mode == Mode::ContinuousTimeMode;
             self.model.compute(&mut self.values, between_events);
+            self.write_time_and_indicators();
         }
         Ok(())
     }
 
+    /// The variables the glue itself knows: `time` and the event indicators (`Role`).
+    fn write_time_and_indicators(&mut self) {
+        let mut z = vec![0.0; self.unit.n_event_indicators];
+        if !z.is_empty() {
+            self.model.event_indicators(&self.values, &mut z);
+        }
+        for (value, v) in self.values.iter_mut().zip(&self.unit.variables) {
+            match v.role {
+                Role::Time => *value = Value::Real(self.time),
+                Role::Indicator(i) => *value = Value::Real(z[i]),
+                _ => {}
+            }
+        }
+    }
+
     /// Checks value references and types of a get or set.
-    fn check_refs(&self, function: &str, vrs: &[fmi2ValueReference], var_type: VarType) -> Call {
+    fn check_refs(&self, function: &str, vrs: &[u32], var_type: VarType) -> Call {
         let n = self.unit.variables.len();
         for &vr in vrs {
             let Some(v) = self.unit.variables.get(vr as usize) else {
@@ -295,14 +352,14 @@ impl Instance {
         Ok(())
     }
 
-    pub fn get(&mut self, function: &str, vrs: &[fmi2ValueReference], var_type: VarType) -> Call<Vec<Value>> {
+    pub fn get(&mut self, function: &str, vrs: &[u32], var_type: VarType) -> Call<Vec<Value>> {
         self.check_refs(function, vrs, var_type)?;
         self.refresh(function)?;
         Ok(vrs.iter().map(|&vr| self.values[vr as usize].clone()).collect())
     }
 
     /// Sets values after checking every one of them: a call either sets all or none.
-    pub fn set(&mut self, function: &str, vrs: &[fmi2ValueReference], new: Vec<Value>, var_type: VarType) -> Call {
+    pub fn set(&mut self, function: &str, vrs: &[u32], new: Vec<Value>, var_type: VarType) -> Call {
         self.check_refs(function, vrs, var_type)?;
         for (&vr, value) in vrs.iter().zip(&new) {
             let v = &self.unit.variables[vr as usize];
@@ -311,9 +368,10 @@ impl Instance {
                 (Causality::Parameter, Mode::Instantiated | Mode::InitializationMode) => true,
                 (Causality::Parameter, _) => {
                     return error(format!(
-                        "{function}: parameter `{}` is fixed; it can only be set before fmi2ExitInitializationMode (now in {})",
+                        "{function}: parameter `{}` is fixed; it can only be set before {} (now in {})",
                         v.name,
-                        self.mode.name()
+                        self.api.name("ExitInitializationMode"),
+                        self.mode.name(self.api)
                     ))
                 }
                 _ => false,
@@ -352,7 +410,7 @@ impl Instance {
 
     pub fn set_time(&mut self, t: f64) -> Call {
         if !t.is_finite() {
-            return error(format!("fmi2SetTime: time = {t} is not finite"));
+            return error(format!("{}: time = {t} is not finite", self.api.name("SetTime")));
         }
         self.time = t;
         self.model.set_time(t);
@@ -368,37 +426,41 @@ impl Instance {
     }
 
     pub fn set_continuous_states(&mut self, x: &[f64]) -> Call {
-        self.check_len("fmi2SetContinuousStates", "nx", x.len(), self.unit.n_states)?;
+        let f = self.api.name("SetContinuousStates");
+        self.check_len(&f, "nx", x.len(), self.unit.n_states)?;
         if let Some(i) = x.iter().position(|v| !v.is_finite()) {
-            return error(format!("fmi2SetContinuousStates: x[{i}] = {} is not finite", x[i]));
+            return error(format!("{f}: x[{i}] = {} is not finite", x[i]));
         }
         self.model.set_states(x);
         Ok(())
     }
 
     pub fn get_continuous_states(&mut self, x: &mut [f64]) -> Call {
-        self.check_len("fmi2GetContinuousStates", "nx", x.len(), self.unit.n_states)?;
-        self.refresh("fmi2GetContinuousStates")?;
+        let f = self.api.name("GetContinuousStates");
+        self.check_len(&f, "nx", x.len(), self.unit.n_states)?;
+        self.refresh(&f)?;
         self.model.get_states(x);
         Ok(())
     }
 
     pub fn get_derivatives(&mut self, dx: &mut [f64]) -> Call {
-        self.check_len("fmi2GetDerivatives", "nx", dx.len(), self.unit.n_states)?;
-        self.refresh("fmi2GetDerivatives")?;
+        let f = self.api.name("GetDerivatives");
+        self.check_len(&f, "nx", dx.len(), self.unit.n_states)?;
+        self.refresh(&f)?;
         self.model.derivatives(&self.values, dx);
         Ok(())
     }
 
     pub fn get_event_indicators(&mut self, z: &mut [f64]) -> Call {
-        self.check_len("fmi2GetEventIndicators", "ni", z.len(), self.unit.n_event_indicators)?;
-        self.refresh("fmi2GetEventIndicators")?;
+        let f = self.api.name("GetEventIndicators");
+        self.check_len(&f, "ni", z.len(), self.unit.n_event_indicators)?;
+        self.refresh(&f)?;
         self.model.event_indicators(&self.values, z);
         Ok(())
     }
 
     pub fn get_nominals(&mut self, x: &mut [f64]) -> Call {
-        self.check_len("fmi2GetNominalsOfContinuousStates", "nx", x.len(), self.unit.n_states)?;
+        self.check_len(&self.api.name("GetNominalsOfContinuousStates"), "nx", x.len(), self.unit.n_states)?;
         if self.model_ready {
             self.model.nominals(x);
         } else {
@@ -410,44 +472,52 @@ impl Instance {
     /// The model's news since the last call, under logEvents.
     fn log_events(&mut self) {
         for message in self.model.take_events() {
-            self.log(fmi2OK, "logEvents", &message);
+            self.log(Status::Ok, "logEvents", &message);
         }
     }
 
     /// Event iteration (fmi2NewDiscreteStates): the history accepts the current state.
     pub fn accept(&mut self) {
         if let Some(message) = self.model.accept(&self.values) {
-            self.log(fmi2OK, "logEvents", &message);
+            self.log(Status::Ok, "logEvents", &message);
         }
     }
 
     pub fn do_step(&mut self, t: f64, h: f64) -> Call {
+        self.step(t, h, false).map(|_| ())
+    }
+
+    /// A step that may end early (FMI 3.0 with earlyReturnAllowed): at the first change of the contact
+    /// state inside it, whose time it returns (None: the step went to t + h).
+    pub fn step(&mut self, t: f64, h: f64, may_return_early: bool) -> Call<Option<f64>> {
         if !t.is_finite() || !h.is_finite() {
-            return error(format!("fmi2DoStep: currentCommunicationPoint = {t} and communicationStepSize = {h} must be finite"));
+            return error(format!("{}: currentCommunicationPoint = {t} and communicationStepSize = {h} must be finite", self.api.name("DoStep")));
         }
         if h <= 0.0 {
-            return error(format!("fmi2DoStep: communicationStepSize = {h:e} s must be positive"));
+            return error(format!("{}: communicationStepSize = {h:e} s must be positive", self.api.name("DoStep")));
         }
         if (t - self.time).abs() > 1e-10 * h.max(t.abs()) {
             return error(format!(
-                "fmi2DoStep: currentCommunicationPoint = {t:e} s is not the unit's time {:e} s (steps must follow each other; use fmi2SetFMUstate to go back)",
-                self.time
+                "{}: currentCommunicationPoint = {t:e} s is not the unit's time {:e} s (steps must follow each other; use {} to go back)",
+                self.api.name("DoStep"),
+                self.time,
+                self.api.name("SetFMUstate")
             ));
         }
-        let result = self.model.do_step(&self.values, t, h);
+        let result = if may_return_early { self.model.do_step_to_event(&self.values, t, h) } else { self.model.do_step(&self.values, t, h).map(|()| None) };
         self.log_events();
         match result {
-            Ok(()) => {
-                self.time = t + h;
-                Ok(())
+            Ok(event) => {
+                self.time = event.unwrap_or(t + h);
+                Ok(event)
             }
-            Err(message) => failed(format!("fmi2DoStep from t = {t:e} s by {h:e} s failed, the state is that of t = {t:e} s: {message}")),
+            Err(message) => failed(format!("{} from t = {t:e} s by {h:e} s failed, the state is that of t = {t:e} s: {message}", self.api.name("DoStep"))),
         }
     }
 
     /// fmi2SetRealInputDerivatives: every (vr, order, value) is checked before any is taken, so a refusal
     /// changes nothing.
-    pub fn set_input_derivatives(&mut self, vrs: &[fmi2ValueReference], orders: &[fmi2Integer], values: &[f64]) -> Call {
+    pub fn set_input_derivatives(&mut self, vrs: &[u32], orders: &[i32], values: &[f64]) -> Call {
         const F: &str = "fmi2SetRealInputDerivatives";
         if !self.unit.can_interpolate_inputs {
             return error(format!("{F}: {} takes no input derivatives (canInterpolateInputs is false)", self.unit.model_identifier));
@@ -470,12 +540,12 @@ impl Instance {
     /// The saved state; a model that cannot serialize itself is an error the host sees (fmi2Error), never
     /// an empty state that would restore as "not initialized".
     pub fn save(&self) -> Call<Vec<u8>> {
-        saved_state::write(self).map_err(|m| Failure { status: fmi2Error, message: format!("FMU state not saved: {m}"), enters_error_state: false })
+        saved_state::write(self).map_err(|m| Failure { status: Status::Error, message: format!("FMU state not saved: {m}"), enters_error_state: false })
     }
 
     pub fn restore(&mut self, bytes: &[u8]) -> Call {
-        let s = saved_state::read(self.unit, bytes).map_err(|m| Failure {
-            status: fmi2Error,
+        let s = saved_state::read(self.unit, self.api, bytes).map_err(|m| Failure {
+            status: Status::Error,
             message: format!("FMU state rejected: {m}"),
             enters_error_state: false,
         })?;
@@ -488,7 +558,7 @@ impl Instance {
         // Model first: if it refuses, nothing of this instance has changed.
         let mut model = (self.unit.new_model)(self.unit, self.resources.as_deref());
         model.restore(&s.values, &s.model).map_err(|m| Failure {
-            status: fmi2Error,
+            status: Status::Error,
             message: format!("FMU state rejected: {m}"),
             enters_error_state: false,
         })?;
@@ -553,13 +623,15 @@ mod tests {
             step_size: 0.1,
             model_exchange: true,
             can_interpolate_inputs: false,
+            returns_early: false,
             new_model: |_, _| Box::new(Unserializable),
             guid_cache: std::sync::OnceLock::new(),
+            token_cache: std::sync::OnceLock::new(),
         }));
-        let mut inst = Instance::new("i", unit, Kind::CoSimulation, Logger::new(None, std::ptr::null_mut(), false), None);
+        let mut inst = Instance::new(Api::Fmi2, "i", unit, Kind::CoSimulation, Logger::new(LogCallback::Fmi2(None), std::ptr::null_mut(), false), None);
         inst.exit_initialization_mode().unwrap();
         let failure = inst.save().unwrap_err();
-        assert_eq!(failure.status, fmi2Error);
+        assert_eq!(failure.status, Status::Error);
         assert!(failure.message.contains("a failure of the serializer"), "{}", failure.message);
         assert!(!failure.enters_error_state, "the unit stays usable");
     }

@@ -7,6 +7,7 @@
 //! (u32 length + bytes), and an FNV-1a 64 checksum of everything before it.
 
 use super::instance::{Instance, Kind};
+use super::Api;
 use crate::units::variables::{Value, VarType};
 use crate::units::UnitInfo;
 
@@ -31,7 +32,7 @@ pub fn write(inst: &Instance) -> Result<Vec<u8>, String> {
     b.extend_from_slice(MAGIC);
     b.extend_from_slice(&VERSION.to_le_bytes());
     put_str(&mut b, inst.unit.model_identifier)?;
-    put_str(&mut b, &inst.unit.guid())?;
+    put_str(&mut b, &inst.token())?;
     b.push(if inst.kind == Kind::ModelExchange { 0 } else { 1 });
     b.push(inst.mode as u8);
     b.extend_from_slice(&inst.time.to_le_bytes());
@@ -118,8 +119,10 @@ impl<'a> Reader<'a> {
     }
 }
 
-/// Reads a saved state for `unit`, refusing anything that is not exactly what `write` makes for it.
-pub fn read(unit: &UnitInfo, bytes: &[u8]) -> Result<Saved, String> {
+/// Reads a saved state for `unit` made through `api`, refusing anything that is not exactly what `write`
+/// makes for it (a state of the FMI 2.0 unit carries its GUID, one of the FMI 3.0 unit its
+/// instantiationToken: neither restores into the other).
+pub fn read(unit: &UnitInfo, api: Api, bytes: &[u8]) -> Result<Saved, String> {
     if bytes.len() < MAGIC.len() + 4 + 8 || &bytes[..8] != MAGIC {
         return Err("not a powderfmu FMU state (wrong magic bytes or too short)".into());
     }
@@ -137,8 +140,9 @@ pub fn read(unit: &UnitInfo, bytes: &[u8]) -> Result<Saved, String> {
     }
     let id = r.string("model identifier")?;
     let guid = r.string("GUID")?;
-    if id != unit.model_identifier || guid != unit.guid() {
-        return Err(format!("saved by {id} {guid}, not by this unit {} {}", unit.model_identifier, unit.guid()));
+    let token = unit.token(api);
+    if id != unit.model_identifier || guid != token {
+        return Err(format!("saved by {id} {guid}, not by this unit {} {token}", unit.model_identifier));
     }
     let kind = r.u8("interface kind")?;
     let mode = r.u8("mode")?;

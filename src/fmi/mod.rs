@@ -1,0 +1,47 @@
+//! What the FMI 2.0 and FMI 3.0 C ABIs share (DESIGN 2, fourth layer): one `Instance` with its calling
+//! sequence and value handling, the byte format of saved states, and the status numbers. `crate::fmi2` and
+//! `crate::fmi3` hold the `extern "C"` functions of each standard and their C types.
+
+pub mod ffi;
+pub mod instance;
+pub(crate) mod saved_state;
+pub(crate) mod uri;
+
+/// The status of a call: fmi2Status and fmi3Status have the same numbers (FMI 2.0 Sec. 2.1.3, FMI 3.0
+/// Sec. 2.2.3); fmi2Pending (5) is never returned.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Status {
+    Ok = 0,
+    Warning = 1,
+    Discard = 2,
+    Error = 3,
+    Fatal = 4,
+}
+
+/// Which standard's C ABI an instance was made through.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Api {
+    Fmi2,
+    Fmi3,
+}
+
+impl Api {
+    /// The name of a function in this standard, given its FMI 2.0 name without the prefix
+    /// ("DoStep" is fmi2DoStep or fmi3DoStep; a few were renamed in FMI 3.0).
+    pub fn name(self, fmi2_name: &str) -> String {
+        match self {
+            Api::Fmi2 => format!("fmi2{fmi2_name}"),
+            Api::Fmi3 => {
+                let renamed = match fmi2_name {
+                    "GetDerivatives" => "GetContinuousStateDerivatives",
+                    "SetupExperiment" => "EnterInitializationMode",
+                    "SetFMUstate" => "SetFMUState",
+                    "GetFMUstate" => "GetFMUState",
+                    "NewDiscreteStates" => "UpdateDiscreteStates",
+                    other => other,
+                };
+                format!("fmi3{renamed}")
+            }
+        }
+    }
+}

@@ -1,0 +1,984 @@
+//! The 75 exported `fmi3*` functions. Like the FMI 2.0 ones (`crate::fmi2::exports`), each checks its
+//! pointers, finds its instance among the live ones, checks the calling sequence and runs inside the one
+//! `catch_unwind` boundary (`crate::fmi::ffi::call_on`). The instance, its values, the units and the saved
+//! states are those of FMI 2.0; what is FMI 3.0's own is here: typed getters and setters (the types the
+//! units do not have are refused by reference), Event Mode and early return in Co-Simulation, and the
+//! optional parts the units do not offer (clocks, configuration, dependencies, derivatives), refused with
+//! the reason.
+
+#![allow(non_snake_case, non_upper_case_globals, clippy::missing_safety_doc, clippy::too_many_arguments)]
+
+use super::types::*;
+use crate::fmi::ffi::{self, c_str, out, saved, slice, slice_mut, Registry, SavedState};
+use crate::fmi::instance::{allowed, error, Call, Instance, Kind, LogCallback, Logger, Mode};
+use crate::fmi::{Api, Status};
+use crate::units::variables::{Value, VarType};
+use crate::units::{self, LOG_CATEGORIES};
+use std::ffi::CString;
+use std::os::raw::c_char;
+use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::path::PathBuf;
+
+/// The live instances and saved states of this ABI (separate from FMI 2.0's: an FMI 2.0 pointer is foreign here).
+static INSTANCES: Registry = Registry::new();
+static STATES: Registry = Registry::new();
+
+fn call(c: fmi3Instance, function: &'static str, modes: u32, f: impl FnOnce(&mut Instance) -> Call) -> fmi3Status {
+    ffi::call_on(&INSTANCES, c, function, None, modes, f) as fmi3Status
+}
+
+fn me(c: fmi3Instance, function: &'static str, modes: u32, f: impl FnOnce(&mut Instance) -> Call) -> fmi3Status {
+    ffi::call_on(&INSTANCES, c, function, Some(Kind::ModelExchange), modes, f) as fmi3Status
+}
+
+fn cs(c: fmi3Instance, function: &'static str, modes: u32, f: impl FnOnce(&mut Instance) -> Call) -> fmi3Status {
+    ffi::call_on(&INSTANCES, c, function, Some(Kind::CoSimulation), modes, f) as fmi3Status
+}
+
+/// Writes a value to a host's output argument.
+///
+/// # Safety
+/// `p` must be NULL or point to a writable `T`.
+unsafe fn put<T>(p: *mut T, value: T, function: &str, name: &str) -> Call {
+    let p = out(p, function, name)?;
+    // SAFETY: non-NULL (checked by `out`), and the host's output argument by this function's contract.
+    unsafe { *p = value };
+    Ok(())
+}
+
+// ---------------------------------------------------------------------------------------------------
+// Inquire version numbers, logging
+
+#[no_mangle]
+pub extern "C" fn fmi3GetVersion() -> *const c_char {
+    c"3.0".as_ptr()
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3SetDebugLogging(c: fmi3Instance, loggingOn: fmi3Boolean, nCategories: usize, categories: *const fmi3String) -> fmi3Status {
+    const F: &str = "fmi3SetDebugLogging";
+    call(c, F, allowed::ANY_LIVE, |inst| {
+        // SAFETY: the host passes an array of this length (FMI 3.0 Sec. 2.2.5); NULL and impossible lengths are refused inside.
+        let names = unsafe { slice(categories, nCategories, F, "categories") }?;
+        let mut indices = Vec::new();
+        for (i, &p) in names.iter().enumerate() {
+            // SAFETY: the host passes NUL-terminated strings; NULL is refused inside.
+            let name = unsafe { c_str(p, F, &format!("categories[{i}]")) }?;
+            match LOG_CATEGORIES.iter().position(|(n, _)| *n == name) {
+                Some(k) => indices.push(k),
+                None => {
+                    let known: Vec<&str> = LOG_CATEGORIES.iter().map(|(n, _)| *n).collect();
+                    return error(format!("{F}: unknown log category \"{name}\"; known: {}", known.join(", ")));
+                }
+            }
+        }
+        if indices.is_empty() {
+            inst.logger.categories.fill(loggingOn);
+            inst.logger.logging_on = loggingOn;
+        } else {
+            for k in indices {
+                inst.logger.categories[k] = loggingOn;
+            }
+            inst.logger.logging_on = inst.logger.categories.iter().any(|&x| x);
+        }
+        Ok(())
+    })
+}
+
+// ---------------------------------------------------------------------------------------------------
+// Creation and destruction
+
+/// What the three instantiate functions share: the checks of name, token and resource path, and the
+/// instance. Errors go to the host's logger; the result is NULL then.
+///
+/// # Safety
+/// The string arguments must be NULL or NUL-terminated strings valid for the call.
+unsafe fn instantiate(
+    function: &'static str,
+    kind: Kind,
+    instanceName: fmi3String,
+    instantiationToken: fmi3String,
+    resourcePath: fmi3String,
+    loggingOn: fmi3Boolean,
+    instanceEnvironment: fmi3InstanceEnvironment,
+    logMessage: fmi3LogMessageCallback,
+    configure: impl FnOnce(&mut Instance),
+) -> fmi3Instance {
+    let result = catch_unwind(AssertUnwindSafe(|| {
+        let logger = Logger::new(LogCallback::Fmi3(logMessage), instanceEnvironment, loggingOn);
+        let fail = |name: &str, msg: String| {
+            let n = CString::new(name.replace('\0', " ")).unwrap_or_default();
+            logger.log(&n, Status::Error, "logStatusError", &msg);
+            std::ptr::null_mut()
+        };
+        // SAFETY: this function's contract: NULL or a NUL-terminated string; NULL is refused inside.
+        let name = match unsafe { c_str(instanceName, function, "instanceName") } {
+            Ok(n) if !n.is_empty() => n,
+            Ok(_) => return fail("", format!("{function}: instanceName is empty")),
+            Err(e) => return fail("", e.message),
+        };
+        // SAFETY: as above.
+        let token = match unsafe { c_str(instantiationToken, function, "instantiationToken") } {
+            Ok(t) => t,
+            Err(e) => return fail(&name, e.message),
+        };
+        let Some(unit) = units::all().iter().find(|u| u.instantiation_token() == token) else {
+            let known: Vec<String> = units::all().iter().map(|u| format!("{} {}", u.model_identifier, u.instantiation_token())).collect();
+            let fmi2 = units::all().iter().find(|u| u.guid() == token).map(|u| format!(" ({token} is the GUID of the FMI 2.0 {})", u.model_identifier));
+            return fail(
+                &name,
+                format!(
+                    "{function}: instantiationToken {token} matches no FMI 3.0 unit of this binary ({}){}; modelDescription.xml and the binary do not belong together",
+                    known.join(", "),
+                    fmi2.unwrap_or_default()
+                ),
+            );
+        };
+        if kind == Kind::ModelExchange && !unit.model_exchange {
+            return fail(&name, format!("{function}: {} offers Co-Simulation only (fmi3InstantiateCoSimulation)", unit.model_identifier));
+        }
+        // FMI 3.0 passes the resources folder as an absolute path with a trailing separator (Sec. 2.3.1).
+        let mut resources = None;
+        if !resourcePath.is_null() {
+            // SAFETY: as above.
+            let path = match unsafe { c_str(resourcePath, function, "resourcePath") } {
+                Ok(p) => PathBuf::from(p),
+                Err(e) => return fail(&name, e.message),
+            };
+            if !path.is_dir() {
+                return fail(&name, format!("{function}: resourcePath {} is not a directory", path.display()));
+            }
+            resources = Some(path);
+        }
+        let mut inst = Box::new(Instance::new(Api::Fmi3, &name, unit, kind, logger, resources));
+        configure(&mut inst);
+        let p = Box::into_raw(inst);
+        INSTANCES.register(p as usize);
+        p as fmi3Instance
+    }));
+    result.unwrap_or(std::ptr::null_mut())
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3InstantiateModelExchange(
+    instanceName: fmi3String,
+    instantiationToken: fmi3String,
+    resourcePath: fmi3String,
+    _visible: fmi3Boolean,
+    loggingOn: fmi3Boolean,
+    instanceEnvironment: fmi3InstanceEnvironment,
+    logMessage: fmi3LogMessageCallback,
+) -> fmi3Instance {
+    // SAFETY: the host's arguments, passed on as they came (FMI 3.0 Sec. 2.3.1).
+    unsafe {
+        instantiate(
+            "fmi3InstantiateModelExchange",
+            Kind::ModelExchange,
+            instanceName,
+            instantiationToken,
+            resourcePath,
+            loggingOn,
+            instanceEnvironment,
+            logMessage,
+            |_| {},
+        )
+    }
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3InstantiateCoSimulation(
+    instanceName: fmi3String,
+    instantiationToken: fmi3String,
+    resourcePath: fmi3String,
+    _visible: fmi3Boolean,
+    loggingOn: fmi3Boolean,
+    eventModeUsed: fmi3Boolean,
+    earlyReturnAllowed: fmi3Boolean,
+    _requiredIntermediateVariables: *const fmi3ValueReference,
+    _nRequiredIntermediateVariables: usize,
+    instanceEnvironment: fmi3InstanceEnvironment,
+    logMessage: fmi3LogMessageCallback,
+    _intermediateUpdate: fmi3IntermediateUpdateCallback,
+) -> fmi3Instance {
+    // SAFETY: the host's arguments, passed on as they came (FMI 3.0 Sec. 2.3.1).
+    unsafe {
+        instantiate(
+            "fmi3InstantiateCoSimulation",
+            Kind::CoSimulation,
+            instanceName,
+            instantiationToken,
+            resourcePath,
+            loggingOn,
+            instanceEnvironment,
+            logMessage,
+            |inst| {
+                // A unit without events inside a step (hasEventMode false) is never in Co-Simulation's
+                // Event Mode, whatever the master asks.
+                inst.event_mode_used = eventModeUsed && inst.unit.returns_early;
+                inst.early_return_allowed = earlyReturnAllowed && inst.unit.returns_early;
+            },
+        )
+    }
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3InstantiateScheduledExecution(
+    instanceName: fmi3String,
+    _instantiationToken: fmi3String,
+    _resourcePath: fmi3String,
+    _visible: fmi3Boolean,
+    _loggingOn: fmi3Boolean,
+    instanceEnvironment: fmi3InstanceEnvironment,
+    logMessage: fmi3LogMessageCallback,
+    _clockUpdate: fmi3ClockUpdateCallback,
+    _lockPreemption: fmi3LockPreemptionCallback,
+    _unlockPreemption: fmi3UnlockPreemptionCallback,
+) -> fmi3Instance {
+    let _ = catch_unwind(AssertUnwindSafe(|| {
+        let logger = Logger::new(LogCallback::Fmi3(logMessage), instanceEnvironment, false);
+        // SAFETY: the host passes NULL or a NUL-terminated string.
+        let name = unsafe { c_str(instanceName, "fmi3InstantiateScheduledExecution", "instanceName") }.unwrap_or_default();
+        let n = CString::new(name.replace('\0', " ")).unwrap_or_default();
+        logger.log(&n, Status::Error, "logStatusError", "fmi3InstantiateScheduledExecution: the units offer Model Exchange and Co-Simulation, not Scheduled Execution");
+    }));
+    std::ptr::null_mut()
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3FreeInstance(c: fmi3Instance) {
+    if c.is_null() || !INSTANCES.unregister(c as usize) {
+        return;
+    }
+    let _ = catch_unwind(AssertUnwindSafe(|| {
+        // SAFETY: `c` was live (just unregistered) and came from Box::into_raw in `instantiate`.
+        drop(unsafe { Box::from_raw(c as *mut Instance) });
+    }));
+}
+
+// ---------------------------------------------------------------------------------------------------
+// Initialization, events, termination, reset
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3EnterInitializationMode(
+    c: fmi3Instance,
+    _toleranceDefined: fmi3Boolean,
+    _tolerance: fmi3Float64,
+    startTime: fmi3Float64,
+    stopTimeDefined: fmi3Boolean,
+    stopTime: fmi3Float64,
+) -> fmi3Status {
+    call(c, "fmi3EnterInitializationMode", allowed::ENTER_INITIALIZATION, |inst| {
+        inst.setup_experiment(startTime, stopTimeDefined.then_some(stopTime))?;
+        inst.mode = Mode::InitializationMode;
+        Ok(())
+    })
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3ExitInitializationMode(c: fmi3Instance) -> fmi3Status {
+    call(c, "fmi3ExitInitializationMode", allowed::EXIT_INITIALIZATION, |inst| inst.exit_initialization_mode())
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3EnterEventMode(c: fmi3Instance) -> fmi3Status {
+    const F: &str = "fmi3EnterEventMode";
+    call(c, F, allowed::ENTER_EVENT_MODE_3, |inst| {
+        match (inst.kind, inst.mode) {
+            (Kind::ModelExchange, Mode::StepComplete) => unreachable!("a Model Exchange instance is never in Step Mode"),
+            (Kind::CoSimulation, Mode::ContinuousTimeMode) => unreachable!("a Co-Simulation instance is never in Continuous-Time Mode"),
+            (Kind::CoSimulation, _) if !inst.event_mode_used => {
+                let why = if inst.unit.returns_early { "the master instantiated it with eventModeUsed = false" } else { "this unit has no events inside a step (hasEventMode is false)" };
+                return error(format!("{F}: Co-Simulation's Event Mode is not used: {why}"));
+            }
+            _ => {}
+        }
+        inst.mode = Mode::EventMode;
+        Ok(())
+    })
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3Terminate(c: fmi3Instance) -> fmi3Status {
+    call(c, "fmi3Terminate", allowed::TERMINATE, |inst| {
+        inst.mode = Mode::Terminated;
+        Ok(())
+    })
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3Reset(c: fmi3Instance) -> fmi3Status {
+    call(c, "fmi3Reset", allowed::ANY_LIVE, |inst| {
+        inst.reset();
+        Ok(())
+    })
+}
+
+// ---------------------------------------------------------------------------------------------------
+// Getting and setting variable values
+
+/// nValues must equal nValueReferences: every variable of the units is a scalar.
+fn scalar_count(function: &str, nvr: usize, n_values: usize) -> Call {
+    if nvr == n_values {
+        Ok(())
+    } else {
+        error(format!("{function}: nValues = {n_values} but nValueReferences = {nvr}; every variable of this unit is a scalar"))
+    }
+}
+
+/// fmi3Get* of a type the units have: the values of `vr` into `value`.
+///
+/// # Safety
+/// `vr` and `value` must be the host's arrays (or NULL with length 0), as `slice` says.
+unsafe fn get_into<T>(
+    c: fmi3Instance,
+    function: &'static str,
+    vr: *const fmi3ValueReference,
+    nvr: usize,
+    value: *mut T,
+    n_values: usize,
+    var_type: VarType,
+    convert: impl Fn(&Value) -> T,
+) -> fmi3Status {
+    call(c, function, allowed::GET, |inst| {
+        scalar_count(function, nvr, n_values)?;
+        // SAFETY: the host promises arrays of these lengths; NULL and huge lengths are refused first.
+        let vrs = unsafe { slice(vr, nvr, function, "valueReferences")? };
+        let dst = unsafe { slice_mut(value, n_values, function, "values")? };
+        let got = inst.get(function, vrs, var_type)?;
+        for (d, v) in dst.iter_mut().zip(&got) {
+            *d = convert(v);
+        }
+        Ok(())
+    })
+}
+
+/// fmi3Set* of a type the units have.
+///
+/// # Safety
+/// `vr` and `value` must be the host's arrays (or NULL with length 0), as `slice` says.
+unsafe fn set_from<T: Copy>(
+    c: fmi3Instance,
+    function: &'static str,
+    modes: u32,
+    vr: *const fmi3ValueReference,
+    nvr: usize,
+    value: *const T,
+    n_values: usize,
+    var_type: VarType,
+    convert: impl Fn(T) -> Value,
+) -> fmi3Status {
+    call(c, function, modes, |inst| {
+        scalar_count(function, nvr, n_values)?;
+        // SAFETY: the host promises arrays of these lengths; NULL and huge lengths are refused first.
+        let vrs = unsafe { slice(vr, nvr, function, "valueReferences")? };
+        let src = unsafe { slice(value, n_values, function, "values")? };
+        inst.set(function, vrs, src.iter().map(|&x| convert(x)).collect(), var_type)
+    })
+}
+
+/// A get or set of a type no variable of the units has: nothing to do for no references; any reference
+/// is refused with the type its variable really has.
+///
+/// # Safety
+/// `vr` must be the host's array of `nvr` references (or NULL with `nvr` = 0).
+unsafe fn other_type(c: fmi3Instance, function: &'static str, modes: u32, type_name: &'static str, vr: *const fmi3ValueReference, nvr: usize) -> fmi3Status {
+    call(c, function, modes, |inst| {
+        // SAFETY: the host promises an array of this length; NULL and huge lengths are refused first.
+        let vrs = unsafe { slice(vr, nvr, function, "valueReferences")? };
+        if let Some(&r) = vrs.first() {
+            return match inst.unit.variables.get(r as usize) {
+                Some(v) => error(format!(
+                    "{function}: value reference {r} is `{}`, a {} variable, not {type_name} (the units have Float64, Int32, Boolean and String variables only)",
+                    v.name,
+                    units::model_description_fmi3::element(v.var_type)
+                )),
+                None => error(format!("{function}: value reference {r} does not exist (this unit has {} variables)", inst.unit.variables.len())),
+            };
+        }
+        Ok(())
+    })
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3GetFloat64(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, values: *mut fmi3Float64, nValues: usize) -> fmi3Status {
+    // SAFETY: the host's arguments of this FMI function, passed on as they came.
+    unsafe { get_into(c, "fmi3GetFloat64", vr, nvr, values, nValues, VarType::Real, Value::as_real) }
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3GetInt32(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, values: *mut fmi3Int32, nValues: usize) -> fmi3Status {
+    // SAFETY: the host's arguments of this FMI function, passed on as they came.
+    unsafe { get_into(c, "fmi3GetInt32", vr, nvr, values, nValues, VarType::Integer, |v| if let Value::Integer(i) = v { *i } else { 0 }) }
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3GetBoolean(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, values: *mut fmi3Boolean, nValues: usize) -> fmi3Status {
+    // SAFETY: the host's arguments of this FMI function, passed on as they came.
+    unsafe { get_into(c, "fmi3GetBoolean", vr, nvr, values, nValues, VarType::Boolean, |v| matches!(v, Value::Boolean(true))) }
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3GetString(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, values: *mut fmi3String, nValues: usize) -> fmi3Status {
+    const F: &str = "fmi3GetString";
+    call(c, F, allowed::GET, |inst| {
+        scalar_count(F, nvr, nValues)?;
+        // SAFETY: the host passes arrays of these lengths; NULL and impossible lengths are refused inside.
+        let vrs = unsafe { slice(vr, nvr, F, "valueReferences") }?;
+        let dst = unsafe { slice_mut(values, nValues, F, "values") }?;
+        let got = inst.get(F, vrs, VarType::String)?;
+        // Valid until the next call (FMI 3.0 Sec. 2.2.6.1).
+        inst.strings = got.iter().map(|v| CString::new(v.as_str().replace('\0', " ")).unwrap_or_default()).collect();
+        for (d, s) in dst.iter_mut().zip(&inst.strings) {
+            *d = s.as_ptr();
+        }
+        Ok(())
+    })
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3SetFloat64(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, values: *const fmi3Float64, nValues: usize) -> fmi3Status {
+    // SAFETY: the host's arguments of this FMI function, passed on as they came.
+    unsafe { set_from(c, "fmi3SetFloat64", allowed::SET_REAL, vr, nvr, values, nValues, VarType::Real, Value::Real) }
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3SetInt32(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, values: *const fmi3Int32, nValues: usize) -> fmi3Status {
+    // SAFETY: the host's arguments of this FMI function, passed on as they came.
+    unsafe { set_from(c, "fmi3SetInt32", allowed::SET_OTHER, vr, nvr, values, nValues, VarType::Integer, Value::Integer) }
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3SetBoolean(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, values: *const fmi3Boolean, nValues: usize) -> fmi3Status {
+    // SAFETY: the host's arguments of this FMI function, passed on as they came.
+    unsafe { set_from(c, "fmi3SetBoolean", allowed::SET_OTHER, vr, nvr, values, nValues, VarType::Boolean, Value::Boolean) }
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3SetString(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, values: *const fmi3String, nValues: usize) -> fmi3Status {
+    const F: &str = "fmi3SetString";
+    call(c, F, allowed::SET_OTHER, |inst| {
+        scalar_count(F, nvr, nValues)?;
+        // SAFETY: the host passes arrays of these lengths; NULL and impossible lengths are refused inside.
+        let vrs = unsafe { slice(vr, nvr, F, "valueReferences") }?;
+        let src = unsafe { slice(values, nValues, F, "values") }?;
+        let mut strings = Vec::with_capacity(nvr);
+        for (i, &p) in src.iter().enumerate() {
+            // SAFETY: the host passes NUL-terminated strings; NULL is refused inside.
+            strings.push(Value::String(unsafe { c_str(p, F, &format!("values[{i}]")) }?));
+        }
+        inst.set(F, vrs, strings, VarType::String)
+    })
+}
+
+/// The getters and setters of the types no variable of the units has (`other_type`).
+macro_rules! other_type_functions {
+    ($($get:ident, $set:ident, $t:ty, $name:literal;)*) => {$(
+        #[no_mangle]
+        pub unsafe extern "C" fn $get(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, _values: *mut $t, _nValues: usize) -> fmi3Status {
+            // SAFETY: the host's arguments of this FMI function, passed on as they came.
+            unsafe { other_type(c, stringify!($get), allowed::GET, $name, vr, nvr) }
+        }
+
+        #[no_mangle]
+        pub unsafe extern "C" fn $set(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, _values: *const $t, _nValues: usize) -> fmi3Status {
+            // SAFETY: the host's arguments of this FMI function, passed on as they came.
+            unsafe { other_type(c, stringify!($set), allowed::SET_OTHER, $name, vr, nvr) }
+        }
+    )*};
+}
+
+other_type_functions! {
+    fmi3GetFloat32, fmi3SetFloat32, fmi3Float32, "Float32";
+    fmi3GetInt8, fmi3SetInt8, fmi3Int8, "Int8";
+    fmi3GetUInt8, fmi3SetUInt8, fmi3UInt8, "UInt8";
+    fmi3GetInt16, fmi3SetInt16, fmi3Int16, "Int16";
+    fmi3GetUInt16, fmi3SetUInt16, fmi3UInt16, "UInt16";
+    fmi3GetUInt32, fmi3SetUInt32, fmi3UInt32, "UInt32";
+    fmi3GetInt64, fmi3SetInt64, fmi3Int64, "Int64";
+    fmi3GetUInt64, fmi3SetUInt64, fmi3UInt64, "UInt64";
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3GetBinary(
+    c: fmi3Instance,
+    vr: *const fmi3ValueReference,
+    nvr: usize,
+    _valueSizes: *mut usize,
+    _values: *mut fmi3Binary,
+    _nValues: usize,
+) -> fmi3Status {
+    // SAFETY: the host's arguments of this FMI function, passed on as they came.
+    unsafe { other_type(c, "fmi3GetBinary", allowed::GET, "Binary", vr, nvr) }
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3SetBinary(
+    c: fmi3Instance,
+    vr: *const fmi3ValueReference,
+    nvr: usize,
+    _valueSizes: *const usize,
+    _values: *const fmi3Binary,
+    _nValues: usize,
+) -> fmi3Status {
+    // SAFETY: the host's arguments of this FMI function, passed on as they came.
+    unsafe { other_type(c, "fmi3SetBinary", allowed::SET_OTHER, "Binary", vr, nvr) }
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3GetClock(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, _values: *mut fmi3Clock) -> fmi3Status {
+    // SAFETY: the host's arguments of this FMI function, passed on as they came.
+    unsafe { other_type(c, "fmi3GetClock", allowed::GET, "Clock", vr, nvr) }
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3SetClock(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, _values: *const fmi3Clock) -> fmi3Status {
+    // SAFETY: the host's arguments of this FMI function, passed on as they came.
+    unsafe { other_type(c, "fmi3SetClock", allowed::SET_OTHER, "Clock", vr, nvr) }
+}
+
+// ---------------------------------------------------------------------------------------------------
+// Variable dependencies, derivatives, configuration, clocks: optional parts the units do not offer
+
+/// A refusal that names the capability the model description leaves out.
+fn unsupported(c: fmi3Instance, function: &'static str, why: &'static str) -> fmi3Status {
+    call(c, function, allowed::ANY_LIVE, |_| error(format!("{function} is not supported ({why})")))
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3GetNumberOfVariableDependencies(c: fmi3Instance, _valueReference: fmi3ValueReference, _nDependencies: *mut usize) -> fmi3Status {
+    unsupported(c, "fmi3GetNumberOfVariableDependencies", "providesPerElementDependencies is false; ModelStructure lists the unknowns")
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3GetVariableDependencies(
+    c: fmi3Instance,
+    _dependent: fmi3ValueReference,
+    _elementIndicesOfDependent: *mut usize,
+    _independents: *mut fmi3ValueReference,
+    _elementIndicesOfIndependents: *mut usize,
+    _dependencyKinds: *mut fmi3DependencyKind,
+    _nDependencies: usize,
+) -> fmi3Status {
+    unsupported(c, "fmi3GetVariableDependencies", "providesPerElementDependencies is false; ModelStructure lists the unknowns")
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3GetDirectionalDerivative(
+    c: fmi3Instance,
+    _unknowns: *const fmi3ValueReference,
+    _nUnknowns: usize,
+    _knowns: *const fmi3ValueReference,
+    _nKnowns: usize,
+    _seed: *const fmi3Float64,
+    _nSeed: usize,
+    _sensitivity: *mut fmi3Float64,
+    _nSensitivity: usize,
+) -> fmi3Status {
+    unsupported(c, "fmi3GetDirectionalDerivative", "providesDirectionalDerivatives is false")
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3GetAdjointDerivative(
+    c: fmi3Instance,
+    _unknowns: *const fmi3ValueReference,
+    _nUnknowns: usize,
+    _knowns: *const fmi3ValueReference,
+    _nKnowns: usize,
+    _seed: *const fmi3Float64,
+    _nSeed: usize,
+    _sensitivity: *mut fmi3Float64,
+    _nSensitivity: usize,
+) -> fmi3Status {
+    unsupported(c, "fmi3GetAdjointDerivative", "providesAdjointDerivatives is false")
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3EnterConfigurationMode(c: fmi3Instance) -> fmi3Status {
+    unsupported(c, "fmi3EnterConfigurationMode", "the units have no structural parameters")
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3ExitConfigurationMode(c: fmi3Instance) -> fmi3Status {
+    unsupported(c, "fmi3ExitConfigurationMode", "the units have no structural parameters")
+}
+
+const NO_CLOCKS: &str = "the units have no clocks";
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3GetIntervalDecimal(
+    c: fmi3Instance,
+    _vr: *const fmi3ValueReference,
+    _nvr: usize,
+    _intervals: *mut fmi3Float64,
+    _qualifiers: *mut fmi3IntervalQualifier,
+) -> fmi3Status {
+    unsupported(c, "fmi3GetIntervalDecimal", NO_CLOCKS)
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3GetIntervalFraction(
+    c: fmi3Instance,
+    _vr: *const fmi3ValueReference,
+    _nvr: usize,
+    _counters: *mut fmi3UInt64,
+    _resolutions: *mut fmi3UInt64,
+    _qualifiers: *mut fmi3IntervalQualifier,
+) -> fmi3Status {
+    unsupported(c, "fmi3GetIntervalFraction", NO_CLOCKS)
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3GetShiftDecimal(c: fmi3Instance, _vr: *const fmi3ValueReference, _nvr: usize, _shifts: *mut fmi3Float64) -> fmi3Status {
+    unsupported(c, "fmi3GetShiftDecimal", NO_CLOCKS)
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3GetShiftFraction(
+    c: fmi3Instance,
+    _vr: *const fmi3ValueReference,
+    _nvr: usize,
+    _counters: *mut fmi3UInt64,
+    _resolutions: *mut fmi3UInt64,
+) -> fmi3Status {
+    unsupported(c, "fmi3GetShiftFraction", NO_CLOCKS)
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3SetIntervalDecimal(c: fmi3Instance, _vr: *const fmi3ValueReference, _nvr: usize, _intervals: *const fmi3Float64) -> fmi3Status {
+    unsupported(c, "fmi3SetIntervalDecimal", NO_CLOCKS)
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3SetIntervalFraction(
+    c: fmi3Instance,
+    _vr: *const fmi3ValueReference,
+    _nvr: usize,
+    _counters: *const fmi3UInt64,
+    _resolutions: *const fmi3UInt64,
+) -> fmi3Status {
+    unsupported(c, "fmi3SetIntervalFraction", NO_CLOCKS)
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3SetShiftDecimal(c: fmi3Instance, _vr: *const fmi3ValueReference, _nvr: usize, _shifts: *const fmi3Float64) -> fmi3Status {
+    unsupported(c, "fmi3SetShiftDecimal", NO_CLOCKS)
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3SetShiftFraction(
+    c: fmi3Instance,
+    _vr: *const fmi3ValueReference,
+    _nvr: usize,
+    _counters: *const fmi3UInt64,
+    _resolutions: *const fmi3UInt64,
+) -> fmi3Status {
+    unsupported(c, "fmi3SetShiftFraction", NO_CLOCKS)
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3ActivateModelPartition(c: fmi3Instance, _clockReference: fmi3ValueReference, _activationTime: fmi3Float64) -> fmi3Status {
+    unsupported(c, "fmi3ActivateModelPartition", "the units offer no Scheduled Execution")
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3EvaluateDiscreteStates(c: fmi3Instance) -> fmi3Status {
+    unsupported(c, "fmi3EvaluateDiscreteStates", "providesEvaluateDiscreteStates is false")
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3GetOutputDerivatives(
+    c: fmi3Instance,
+    _vr: *const fmi3ValueReference,
+    _nvr: usize,
+    _orders: *const fmi3Int32,
+    _values: *mut fmi3Float64,
+    _nValues: usize,
+) -> fmi3Status {
+    unsupported(c, "fmi3GetOutputDerivatives", "maxOutputDerivativeOrder is 0")
+}
+
+// ---------------------------------------------------------------------------------------------------
+// FMU state: get, set, free, serialize (the bytes of `crate::fmi::saved_state`, tied to the FMI 3.0 token)
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3GetFMUState(c: fmi3Instance, FMUState: *mut fmi3FMUState) -> fmi3Status {
+    const F: &str = "fmi3GetFMUState";
+    call(c, F, allowed::ANY_LIVE, |inst| {
+        let p = out(FMUState, F, "FMUState")?;
+        let bytes = inst.save()?;
+        // SAFETY: an output argument of the host, checked non-NULL by `out` above.
+        let existing = unsafe { *p };
+        if !existing.is_null() && STATES.live(existing as usize) {
+            // SAFETY: a live state pointer came from Box::into_raw of a SavedState.
+            unsafe { (*(existing as *mut SavedState)).bytes = bytes };
+        } else {
+            let s = Box::into_raw(Box::new(SavedState { bytes }));
+            STATES.register(s as usize);
+            // SAFETY: an output argument of the host, checked non-NULL by `out` above.
+            unsafe { *p = s as fmi3FMUState };
+        }
+        Ok(())
+    })
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3SetFMUState(c: fmi3Instance, FMUState: fmi3FMUState) -> fmi3Status {
+    call(c, "fmi3SetFMUState", allowed::ANY_LIVE, |inst| {
+        let bytes = saved(&STATES, FMUState, "fmi3SetFMUState")?.bytes.clone();
+        inst.restore(&bytes)
+    })
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3FreeFMUState(c: fmi3Instance, FMUState: *mut fmi3FMUState) -> fmi3Status {
+    const F: &str = "fmi3FreeFMUState";
+    call(c, F, allowed::ANY_LIVE, |_| {
+        let p = out(FMUState, F, "FMUState")?;
+        // SAFETY: an output argument of the host, checked non-NULL by `out` above.
+        let s = unsafe { *p };
+        if s.is_null() {
+            return Ok(());
+        }
+        if !STATES.unregister(s as usize) {
+            return error(format!("{F}: `*FMUState` is not a live state of this library (already freed?)"));
+        }
+        // SAFETY: just unregistered; it came from Box::into_raw of a SavedState.
+        drop(unsafe { Box::from_raw(s as *mut SavedState) });
+        // SAFETY: an output argument of the host, checked non-NULL by `out` above.
+        unsafe { *p = std::ptr::null_mut() };
+        Ok(())
+    })
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3SerializedFMUStateSize(c: fmi3Instance, FMUState: fmi3FMUState, size: *mut usize) -> fmi3Status {
+    const F: &str = "fmi3SerializedFMUStateSize";
+    call(c, F, allowed::ANY_LIVE, |_| {
+        let n = saved(&STATES, FMUState, F)?.bytes.len();
+        // SAFETY: the host's output argument; NULL is refused inside.
+        unsafe { put(size, n, F, "size") }
+    })
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3SerializeFMUState(c: fmi3Instance, FMUState: fmi3FMUState, serializedState: *mut fmi3Byte, size: usize) -> fmi3Status {
+    const F: &str = "fmi3SerializeFMUState";
+    call(c, F, allowed::ANY_LIVE, |_| {
+        let bytes = &saved(&STATES, FMUState, F)?.bytes;
+        if size < bytes.len() {
+            return error(format!("{F}: size = {size} is smaller than the state ({} bytes, see fmi3SerializedFMUStateSize)", bytes.len()));
+        }
+        // SAFETY: the host passes an array of this length; NULL and impossible lengths are refused inside.
+        let dst = unsafe { slice_mut(serializedState, bytes.len(), F, "serializedState") }?;
+        dst.copy_from_slice(bytes);
+        Ok(())
+    })
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3DeserializeFMUState(c: fmi3Instance, serializedState: *const fmi3Byte, size: usize, FMUState: *mut fmi3FMUState) -> fmi3Status {
+    const F: &str = "fmi3DeserializeFMUState";
+    call(c, F, allowed::ANY_LIVE, |inst| {
+        let p = out(FMUState, F, "FMUState")?;
+        // SAFETY: the host passes an array of this length; NULL and impossible lengths are refused inside.
+        let src = unsafe { slice(serializedState, size, F, "serializedState") }?;
+        if let Err(m) = crate::fmi::saved_state::read(inst.unit, Api::Fmi3, src) {
+            return error(format!("{F}: {m}"));
+        }
+        let s = Box::into_raw(Box::new(SavedState { bytes: src.to_vec() }));
+        STATES.register(s as usize);
+        // SAFETY: an output argument of the host, checked non-NULL by `out` above.
+        unsafe { *p = s as fmi3FMUState };
+        Ok(())
+    })
+}
+
+// ---------------------------------------------------------------------------------------------------
+// Event Mode (both interfaces)
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3UpdateDiscreteStates(
+    c: fmi3Instance,
+    discreteStatesNeedUpdate: *mut fmi3Boolean,
+    terminateSimulation: *mut fmi3Boolean,
+    nominalsOfContinuousStatesChanged: *mut fmi3Boolean,
+    valuesOfContinuousStatesChanged: *mut fmi3Boolean,
+    nextEventTimeDefined: *mut fmi3Boolean,
+    nextEventTime: *mut fmi3Float64,
+) -> fmi3Status {
+    const F: &str = "fmi3UpdateDiscreteStates";
+    call(c, F, allowed::NEW_DISCRETE_STATES, |inst| {
+        // All outputs are checked before anything changes.
+        for (p, name) in [
+            (discreteStatesNeedUpdate, "discreteStatesNeedUpdate"),
+            (terminateSimulation, "terminateSimulation"),
+            (nominalsOfContinuousStatesChanged, "nominalsOfContinuousStatesChanged"),
+            (valuesOfContinuousStatesChanged, "valuesOfContinuousStatesChanged"),
+            (nextEventTimeDefined, "nextEventTimeDefined"),
+        ] {
+            out(p, F, name)?;
+        }
+        out(nextEventTime, F, "nextEventTime")?;
+        // Model Exchange: the history accepts the state of the event (the accepted-branch rule). In
+        // Co-Simulation the step already accepted it where it returned; inputs set in Event Mode are
+        // followed at the start of the next step, as between any two steps.
+        if inst.kind == Kind::ModelExchange {
+            inst.accept();
+        }
+        // SAFETY: the host's output arguments, each checked non-NULL above.
+        unsafe {
+            *discreteStatesNeedUpdate = false;
+            *terminateSimulation = false;
+            *nominalsOfContinuousStatesChanged = false;
+            *valuesOfContinuousStatesChanged = false;
+            *nextEventTimeDefined = false;
+            *nextEventTime = 0.0;
+        }
+        Ok(())
+    })
+}
+
+// ---------------------------------------------------------------------------------------------------
+// Model Exchange
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3EnterContinuousTimeMode(c: fmi3Instance) -> fmi3Status {
+    me(c, "fmi3EnterContinuousTimeMode", allowed::ENTER_CONTINUOUS_TIME, |inst| {
+        inst.mode = Mode::ContinuousTimeMode;
+        Ok(())
+    })
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3CompletedIntegratorStep(
+    c: fmi3Instance,
+    _noSetFMUStatePriorToCurrentPoint: fmi3Boolean,
+    enterEventMode: *mut fmi3Boolean,
+    terminateSimulation: *mut fmi3Boolean,
+) -> fmi3Status {
+    const F: &str = "fmi3CompletedIntegratorStep";
+    me(c, F, allowed::COMPLETED_INTEGRATOR_STEP, |_| {
+        out(enterEventMode, F, "enterEventMode")?;
+        out(terminateSimulation, F, "terminateSimulation")?;
+        // Nothing to do: between events the units stay on the branch of the last event (DESIGN 6).
+        // SAFETY: the host's output arguments, checked non-NULL above.
+        unsafe {
+            *enterEventMode = false;
+            *terminateSimulation = false;
+        }
+        Ok(())
+    })
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3SetTime(c: fmi3Instance, time: fmi3Float64) -> fmi3Status {
+    me(c, "fmi3SetTime", allowed::SET_TIME, |inst| inst.set_time(time))
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3SetContinuousStates(c: fmi3Instance, continuousStates: *const fmi3Float64, nContinuousStates: usize) -> fmi3Status {
+    const F: &str = "fmi3SetContinuousStates";
+    me(c, F, allowed::SET_CONTINUOUS_STATES, |inst| {
+        // SAFETY: the host passes an array of this length; NULL and impossible lengths are refused inside.
+        let x = unsafe { slice(continuousStates, nContinuousStates, F, "continuousStates") }?;
+        inst.set_continuous_states(x)
+    })
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3GetContinuousStateDerivatives(c: fmi3Instance, derivatives: *mut fmi3Float64, nContinuousStates: usize) -> fmi3Status {
+    const F: &str = "fmi3GetContinuousStateDerivatives";
+    me(c, F, allowed::GET_DERIVATIVES, |inst| {
+        // SAFETY: the host passes an array of this length; NULL and impossible lengths are refused inside.
+        let dx = unsafe { slice_mut(derivatives, nContinuousStates, F, "derivatives") }?;
+        inst.get_derivatives(dx)
+    })
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3GetEventIndicators(c: fmi3Instance, eventIndicators: *mut fmi3Float64, nEventIndicators: usize) -> fmi3Status {
+    const F: &str = "fmi3GetEventIndicators";
+    me(c, F, allowed::GET_DERIVATIVES, |inst| {
+        // SAFETY: the host passes an array of this length; NULL and impossible lengths are refused inside.
+        let z = unsafe { slice_mut(eventIndicators, nEventIndicators, F, "eventIndicators") }?;
+        inst.get_event_indicators(z)
+    })
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3GetContinuousStates(c: fmi3Instance, continuousStates: *mut fmi3Float64, nContinuousStates: usize) -> fmi3Status {
+    const F: &str = "fmi3GetContinuousStates";
+    me(c, F, allowed::GET_DERIVATIVES, |inst| {
+        // SAFETY: the host passes an array of this length; NULL and impossible lengths are refused inside.
+        let x = unsafe { slice_mut(continuousStates, nContinuousStates, F, "continuousStates") }?;
+        inst.get_continuous_states(x)
+    })
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3GetNominalsOfContinuousStates(c: fmi3Instance, nominals: *mut fmi3Float64, nContinuousStates: usize) -> fmi3Status {
+    const F: &str = "fmi3GetNominalsOfContinuousStates";
+    me(c, F, allowed::GET_NOMINALS, |inst| {
+        // SAFETY: the host passes an array of this length; NULL and impossible lengths are refused inside.
+        let x = unsafe { slice_mut(nominals, nContinuousStates, F, "nominals") }?;
+        inst.get_nominals(x)
+    })
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3GetNumberOfEventIndicators(c: fmi3Instance, nEventIndicators: *mut usize) -> fmi3Status {
+    const F: &str = "fmi3GetNumberOfEventIndicators";
+    // SAFETY: the host's output argument; NULL is refused inside.
+    me(c, F, allowed::ANY_LIVE, |inst| unsafe { put(nEventIndicators, inst.unit.n_event_indicators, F, "nEventIndicators") })
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3GetNumberOfContinuousStates(c: fmi3Instance, nContinuousStates: *mut usize) -> fmi3Status {
+    const F: &str = "fmi3GetNumberOfContinuousStates";
+    // SAFETY: the host's output argument; NULL is refused inside.
+    me(c, F, allowed::ANY_LIVE, |inst| unsafe { put(nContinuousStates, inst.unit.n_states, F, "nContinuousStates") })
+}
+
+// ---------------------------------------------------------------------------------------------------
+// Co-Simulation
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3EnterStepMode(c: fmi3Instance) -> fmi3Status {
+    cs(c, "fmi3EnterStepMode", allowed::ENTER_STEP_MODE, |inst| {
+        inst.mode = Mode::StepComplete;
+        Ok(())
+    })
+}
+
+/// A step of at most `communicationStepSize`. With earlyReturnAllowed (and a unit with events inside a
+/// step), it ends at the first change of the contact state: `earlyReturn` and `lastSuccessfulTime` say
+/// where, and with eventModeUsed `eventHandlingNeeded` asks the master into Event Mode there.
+#[no_mangle]
+pub unsafe extern "C" fn fmi3DoStep(
+    c: fmi3Instance,
+    currentCommunicationPoint: fmi3Float64,
+    communicationStepSize: fmi3Float64,
+    _noSetFMUStatePriorToCurrentPoint: fmi3Boolean,
+    eventHandlingNeeded: *mut fmi3Boolean,
+    terminateSimulation: *mut fmi3Boolean,
+    earlyReturn: *mut fmi3Boolean,
+    lastSuccessfulTime: *mut fmi3Float64,
+) -> fmi3Status {
+    const F: &str = "fmi3DoStep";
+    cs(c, F, allowed::DO_STEP, |inst| {
+        out(eventHandlingNeeded, F, "eventHandlingNeeded")?;
+        out(terminateSimulation, F, "terminateSimulation")?;
+        out(earlyReturn, F, "earlyReturn")?;
+        out(lastSuccessfulTime, F, "lastSuccessfulTime")?;
+        let result = inst.step(currentCommunicationPoint, communicationStepSize, inst.early_return_allowed);
+        let event = result.as_ref().ok().copied().flatten();
+        // SAFETY: the host's output arguments, checked non-NULL above.
+        unsafe {
+            *eventHandlingNeeded = event.is_some() && inst.event_mode_used;
+            *terminateSimulation = false;
+            *earlyReturn = event.is_some();
+            *lastSuccessfulTime = inst.time;
+        }
+        result.map(|_| ())
+    })
+}
