@@ -73,8 +73,12 @@ fn every_export_matches_the_official_fmi3_headers() {
     let text = std::fs::read_to_string(&ours).unwrap();
     // Every function the standard names (fmi3Functions.h declares each as `FMI3_Export fmi3XTYPE fmi3X;`).
     let official = std::fs::read_to_string(headers().join("fmi3Functions.h")).unwrap();
-    let mut standard: Vec<String> =
-        official.lines().filter_map(|l| l.strip_prefix("FMI3_Export ")).filter_map(|l| l.split_whitespace().nth(1)).map(|n| n.trim_end_matches(';').to_string()).collect();
+    let mut standard: Vec<String> = official
+        .lines()
+        .filter_map(|l| l.strip_prefix("FMI3_Export "))
+        .filter_map(|l| l.split_whitespace().nth(1))
+        .map(|n| n.trim_end_matches(';').to_string())
+        .collect();
     standard.sort();
     assert_eq!(standard.len(), 75, "fmi3Functions.h declares 75 functions");
     assert_eq!(declared_functions(&text), standard, "we export exactly the standard's functions");

@@ -90,7 +90,7 @@ pub mod allowed {
     pub const SET_INPUT_DERIVATIVES: u32 = m(&[Instantiated, InitializationMode, StepComplete]);
     pub const CS_STATUS: u32 = m(&[StepComplete, Terminated]);
     /// FMI 3.0: Event Mode is entered from Continuous-Time Mode (ME) and from Step Mode (CS, eventModeUsed).
-    pub const ENTER_EVENT_MODE_3: u32 = m(&[EventMode, ContinuousTimeMode, StepComplete]);
+    pub const ENTER_EVENT_MODE_3: u32 = m(&[ContinuousTimeMode, StepComplete]);
     pub const ENTER_STEP_MODE: u32 = m(&[EventMode]);
 }
 

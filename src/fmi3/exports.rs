@@ -55,7 +55,12 @@ pub extern "C" fn fmi3GetVersion() -> *const c_char {
 }
 
 #[no_mangle]
-pub unsafe extern "C" fn fmi3SetDebugLogging(c: fmi3Instance, loggingOn: fmi3Boolean, nCategories: usize, categories: *const fmi3String) -> fmi3Status {
+pub unsafe extern "C" fn fmi3SetDebugLogging(
+    c: fmi3Instance,
+    loggingOn: fmi3Boolean,
+    nCategories: usize,
+    categories: *const fmi3String,
+) -> fmi3Status {
     const F: &str = "fmi3SetDebugLogging";
     call(c, F, allowed::ANY_LIVE, |inst| {
         // SAFETY: the host passes an array of this length (FMI 3.0 Sec. 2.2.5); NULL and impossible lengths are refused inside.
@@ -124,7 +129,8 @@ unsafe fn instantiate(
         };
         let Some(unit) = units::all().iter().find(|u| u.instantiation_token() == token) else {
             let known: Vec<String> = units::all().iter().map(|u| format!("{} {}", u.model_identifier, u.instantiation_token())).collect();
-            let fmi2 = units::all().iter().find(|u| u.guid() == token).map(|u| format!(" ({token} is the GUID of the FMI 2.0 {})", u.model_identifier));
+            let fmi2 =
+                units::all().iter().find(|u| u.guid() == token).map(|u| format!(" ({token} is the GUID of the FMI 2.0 {})", u.model_identifier));
             return fail(
                 &name,
                 format!(
@@ -239,7 +245,12 @@ pub unsafe extern "C" fn fmi3InstantiateScheduledExecution(
         // SAFETY: the host passes NULL or a NUL-terminated string.
         let name = unsafe { c_str(instanceName, "fmi3InstantiateScheduledExecution", "instanceName") }.unwrap_or_default();
         let n = CString::new(name.replace('\0', " ")).unwrap_or_default();
-        logger.log(&n, Status::Error, "logStatusError", "fmi3InstantiateScheduledExecution: the units offer Model Exchange and Co-Simulation, not Scheduled Execution");
+        logger.log(
+            &n,
+            Status::Error,
+            "logStatusError",
+            "fmi3InstantiateScheduledExecution: the units offer Model Exchange and Co-Simulation, not Scheduled Execution",
+        );
     }));
     std::ptr::null_mut()
 }
@@ -287,7 +298,11 @@ pub unsafe extern "C" fn fmi3EnterEventMode(c: fmi3Instance) -> fmi3Status {
             (Kind::ModelExchange, Mode::StepComplete) => unreachable!("a Model Exchange instance is never in Step Mode"),
             (Kind::CoSimulation, Mode::ContinuousTimeMode) => unreachable!("a Co-Simulation instance is never in Continuous-Time Mode"),
             (Kind::CoSimulation, _) if !inst.event_mode_used => {
-                let why = if inst.unit.returns_early { "the master instantiated it with eventModeUsed = false" } else { "this unit has no events inside a step (hasEventMode is false)" };
+                let why = if inst.unit.returns_early {
+                    "the master instantiated it with eventModeUsed = false"
+                } else {
+                    "this unit has no events inside a step (hasEventMode is false)"
+                };
                 return error(format!("{F}: Co-Simulation's Event Mode is not used: {why}"));
             }
             _ => {}
@@ -381,7 +396,14 @@ unsafe fn set_from<T: Copy>(
 ///
 /// # Safety
 /// `vr` must be the host's array of `nvr` references (or NULL with `nvr` = 0).
-unsafe fn other_type(c: fmi3Instance, function: &'static str, modes: u32, type_name: &'static str, vr: *const fmi3ValueReference, nvr: usize) -> fmi3Status {
+unsafe fn other_type(
+    c: fmi3Instance,
+    function: &'static str,
+    modes: u32,
+    type_name: &'static str,
+    vr: *const fmi3ValueReference,
+    nvr: usize,
+) -> fmi3Status {
     call(c, function, modes, |inst| {
         // SAFETY: the host promises an array of this length; NULL and huge lengths are refused first.
         let vrs = unsafe { slice(vr, nvr, function, "valueReferences")? };
@@ -400,25 +422,49 @@ unsafe fn other_type(c: fmi3Instance, function: &'static str, modes: u32, type_n
 }
 
 #[no_mangle]
-pub unsafe extern "C" fn fmi3GetFloat64(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, values: *mut fmi3Float64, nValues: usize) -> fmi3Status {
+pub unsafe extern "C" fn fmi3GetFloat64(
+    c: fmi3Instance,
+    vr: *const fmi3ValueReference,
+    nvr: usize,
+    values: *mut fmi3Float64,
+    nValues: usize,
+) -> fmi3Status {
     // SAFETY: the host's arguments of this FMI function, passed on as they came.
     unsafe { get_into(c, "fmi3GetFloat64", vr, nvr, values, nValues, VarType::Real, Value::as_real) }
 }
 
 #[no_mangle]
-pub unsafe extern "C" fn fmi3GetInt32(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, values: *mut fmi3Int32, nValues: usize) -> fmi3Status {
+pub unsafe extern "C" fn fmi3GetInt32(
+    c: fmi3Instance,
+    vr: *const fmi3ValueReference,
+    nvr: usize,
+    values: *mut fmi3Int32,
+    nValues: usize,
+) -> fmi3Status {
     // SAFETY: the host's arguments of this FMI function, passed on as they came.
     unsafe { get_into(c, "fmi3GetInt32", vr, nvr, values, nValues, VarType::Integer, |v| if let Value::Integer(i) = v { *i } else { 0 }) }
 }
 
 #[no_mangle]
-pub unsafe extern "C" fn fmi3GetBoolean(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, values: *mut fmi3Boolean, nValues: usize) -> fmi3Status {
+pub unsafe extern "C" fn fmi3GetBoolean(
+    c: fmi3Instance,
+    vr: *const fmi3ValueReference,
+    nvr: usize,
+    values: *mut fmi3Boolean,
+    nValues: usize,
+) -> fmi3Status {
     // SAFETY: the host's arguments of this FMI function, passed on as they came.
     unsafe { get_into(c, "fmi3GetBoolean", vr, nvr, values, nValues, VarType::Boolean, |v| matches!(v, Value::Boolean(true))) }
 }
 
 #[no_mangle]
-pub unsafe extern "C" fn fmi3GetString(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, values: *mut fmi3String, nValues: usize) -> fmi3Status {
+pub unsafe extern "C" fn fmi3GetString(
+    c: fmi3Instance,
+    vr: *const fmi3ValueReference,
+    nvr: usize,
+    values: *mut fmi3String,
+    nValues: usize,
+) -> fmi3Status {
     const F: &str = "fmi3GetString";
     call(c, F, allowed::GET, |inst| {
         scalar_count(F, nvr, nValues)?;
@@ -436,25 +482,49 @@ pub unsafe extern "C" fn fmi3GetString(c: fmi3Instance, vr: *const fmi3ValueRefe
 }
 
 #[no_mangle]
-pub unsafe extern "C" fn fmi3SetFloat64(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, values: *const fmi3Float64, nValues: usize) -> fmi3Status {
+pub unsafe extern "C" fn fmi3SetFloat64(
+    c: fmi3Instance,
+    vr: *const fmi3ValueReference,
+    nvr: usize,
+    values: *const fmi3Float64,
+    nValues: usize,
+) -> fmi3Status {
     // SAFETY: the host's arguments of this FMI function, passed on as they came.
     unsafe { set_from(c, "fmi3SetFloat64", allowed::SET_REAL, vr, nvr, values, nValues, VarType::Real, Value::Real) }
 }
 
 #[no_mangle]
-pub unsafe extern "C" fn fmi3SetInt32(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, values: *const fmi3Int32, nValues: usize) -> fmi3Status {
+pub unsafe extern "C" fn fmi3SetInt32(
+    c: fmi3Instance,
+    vr: *const fmi3ValueReference,
+    nvr: usize,
+    values: *const fmi3Int32,
+    nValues: usize,
+) -> fmi3Status {
     // SAFETY: the host's arguments of this FMI function, passed on as they came.
     unsafe { set_from(c, "fmi3SetInt32", allowed::SET_OTHER, vr, nvr, values, nValues, VarType::Integer, Value::Integer) }
 }
 
 #[no_mangle]
-pub unsafe extern "C" fn fmi3SetBoolean(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, values: *const fmi3Boolean, nValues: usize) -> fmi3Status {
+pub unsafe extern "C" fn fmi3SetBoolean(
+    c: fmi3Instance,
+    vr: *const fmi3ValueReference,
+    nvr: usize,
+    values: *const fmi3Boolean,
+    nValues: usize,
+) -> fmi3Status {
     // SAFETY: the host's arguments of this FMI function, passed on as they came.
     unsafe { set_from(c, "fmi3SetBoolean", allowed::SET_OTHER, vr, nvr, values, nValues, VarType::Boolean, Value::Boolean) }
 }
 
 #[no_mangle]
-pub unsafe extern "C" fn fmi3SetString(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, values: *const fmi3String, nValues: usize) -> fmi3Status {
+pub unsafe extern "C" fn fmi3SetString(
+    c: fmi3Instance,
+    vr: *const fmi3ValueReference,
+    nvr: usize,
+    values: *const fmi3String,
+    nValues: usize,
+) -> fmi3Status {
     const F: &str = "fmi3SetString";
     call(c, F, allowed::SET_OTHER, |inst| {
         scalar_count(F, nvr, nValues)?;
@@ -544,8 +614,17 @@ fn unsupported(c: fmi3Instance, function: &'static str, why: &'static str) -> fm
     call(c, function, allowed::ANY_LIVE, |_| error(format!("{function} is not supported ({why})")))
 }
 
+/// `unsupported` for a Co-Simulation function: on a Model Exchange instance it is refused as such.
+fn unsupported_cs(c: fmi3Instance, function: &'static str, why: &'static str) -> fmi3Status {
+    cs(c, function, allowed::ANY_LIVE, |_| error(format!("{function} is not supported ({why})")))
+}
+
 #[no_mangle]
-pub unsafe extern "C" fn fmi3GetNumberOfVariableDependencies(c: fmi3Instance, _valueReference: fmi3ValueReference, _nDependencies: *mut usize) -> fmi3Status {
+pub unsafe extern "C" fn fmi3GetNumberOfVariableDependencies(
+    c: fmi3Instance,
+    _valueReference: fmi3ValueReference,
+    _nDependencies: *mut usize,
+) -> fmi3Status {
     unsupported(c, "fmi3GetNumberOfVariableDependencies", "providesPerElementDependencies is false; ModelStructure lists the unknowns")
 }
 
@@ -644,7 +723,12 @@ pub unsafe extern "C" fn fmi3GetShiftFraction(
 }
 
 #[no_mangle]
-pub unsafe extern "C" fn fmi3SetIntervalDecimal(c: fmi3Instance, _vr: *const fmi3ValueReference, _nvr: usize, _intervals: *const fmi3Float64) -> fmi3Status {
+pub unsafe extern "C" fn fmi3SetIntervalDecimal(
+    c: fmi3Instance,
+    _vr: *const fmi3ValueReference,
+    _nvr: usize,
+    _intervals: *const fmi3Float64,
+) -> fmi3Status {
     unsupported(c, "fmi3SetIntervalDecimal", NO_CLOCKS)
 }
 
@@ -660,7 +744,12 @@ pub unsafe extern "C" fn fmi3SetIntervalFraction(
 }
 
 #[no_mangle]
-pub unsafe extern "C" fn fmi3SetShiftDecimal(c: fmi3Instance, _vr: *const fmi3ValueReference, _nvr: usize, _shifts: *const fmi3Float64) -> fmi3Status {
+pub unsafe extern "C" fn fmi3SetShiftDecimal(
+    c: fmi3Instance,
+    _vr: *const fmi3ValueReference,
+    _nvr: usize,
+    _shifts: *const fmi3Float64,
+) -> fmi3Status {
     unsupported(c, "fmi3SetShiftDecimal", NO_CLOCKS)
 }
 
@@ -676,7 +765,11 @@ pub unsafe extern "C" fn fmi3SetShiftFraction(
 }
 
 #[no_mangle]
-pub unsafe extern "C" fn fmi3ActivateModelPartition(c: fmi3Instance, _clockReference: fmi3ValueReference, _activationTime: fmi3Float64) -> fmi3Status {
+pub unsafe extern "C" fn fmi3ActivateModelPartition(
+    c: fmi3Instance,
+    _clockReference: fmi3ValueReference,
+    _activationTime: fmi3Float64,
+) -> fmi3Status {
     unsupported(c, "fmi3ActivateModelPartition", "the units offer no Scheduled Execution")
 }
 
@@ -694,7 +787,7 @@ pub unsafe extern "C" fn fmi3GetOutputDerivatives(
     _values: *mut fmi3Float64,
     _nValues: usize,
 ) -> fmi3Status {
-    unsupported(c, "fmi3GetOutputDerivatives", "maxOutputDerivativeOrder is 0")
+    unsupported_cs(c, "fmi3GetOutputDerivatives", "maxOutputDerivativeOrder is 0")
 }
 
 // ---------------------------------------------------------------------------------------------------
@@ -776,7 +869,12 @@ pub unsafe extern "C" fn fmi3SerializeFMUState(c: fmi3Instance, FMUState: fmi3FM
 }
 
 #[no_mangle]
-pub unsafe extern "C" fn fmi3DeserializeFMUState(c: fmi3Instance, serializedState: *const fmi3Byte, size: usize, FMUState: *mut fmi3FMUState) -> fmi3Status {
+pub unsafe extern "C" fn fmi3DeserializeFMUState(
+    c: fmi3Instance,
+    serializedState: *const fmi3Byte,
+    size: usize,
+    FMUState: *mut fmi3FMUState,
+) -> fmi3Status {
     const F: &str = "fmi3DeserializeFMUState";
     call(c, F, allowed::ANY_LIVE, |inst| {
         let p = out(FMUState, F, "FMUState")?;

@@ -42,7 +42,16 @@ pub type fmi3IntervalQualifier = c_int;
 pub type fmi3LogMessageCallback = Option<unsafe extern "C" fn(fmi3InstanceEnvironment, fmi3Status, fmi3String, fmi3String)>;
 pub type fmi3ClockUpdateCallback = Option<unsafe extern "C" fn(fmi3InstanceEnvironment)>;
 pub type fmi3IntermediateUpdateCallback = Option<
-    unsafe extern "C" fn(fmi3InstanceEnvironment, fmi3Float64, fmi3Boolean, fmi3Boolean, fmi3Boolean, fmi3Boolean, *mut fmi3Boolean, *mut fmi3Float64),
+    unsafe extern "C" fn(
+        fmi3InstanceEnvironment,
+        fmi3Float64,
+        fmi3Boolean,
+        fmi3Boolean,
+        fmi3Boolean,
+        fmi3Boolean,
+        *mut fmi3Boolean,
+        *mut fmi3Float64,
+    ),
 >;
 pub type fmi3LockPreemptionCallback = Option<unsafe extern "C" fn()>;
 pub type fmi3UnlockPreemptionCallback = Option<unsafe extern "C" fn()>;

@@ -67,7 +67,8 @@ pub fn xml(unit: &UnitInfo, token: &str) -> String {
         x.push_str(&variable_xml(unit, vr, v));
     }
     x.push_str("  </ModelVariables>\n  <ModelStructure>\n");
-    let refs = |pred: &dyn Fn(&Variable) -> bool| -> Vec<usize> { unit.variables.iter().enumerate().filter(|(_, v)| pred(v)).map(|(i, _)| i).collect() };
+    let refs =
+        |pred: &dyn Fn(&Variable) -> bool| -> Vec<usize> { unit.variables.iter().enumerate().filter(|(_, v)| pred(v)).map(|(i, _)| i).collect() };
     let outputs = refs(&|v| v.causality == Causality::Output);
     // In the order of the states (the derivative of state k is the k-th), as FMI 3.0 orders them.
     let mut derivatives = refs(&|v| matches!(v.role, Role::Derivative(_)));
@@ -78,7 +79,9 @@ pub fn xml(unit: &UnitInfo, token: &str) -> String {
     initial.dedup();
     let mut indicators = refs(&|v| matches!(v.role, Role::Indicator(_)));
     indicators.sort_by_key(|&i| if let Role::Indicator(k) = unit.variables[i].role { k } else { usize::MAX });
-    for (tag, list) in [("Output", &outputs), ("ContinuousStateDerivative", &derivatives), ("InitialUnknown", &initial), ("EventIndicator", &indicators)] {
+    for (tag, list) in
+        [("Output", &outputs), ("ContinuousStateDerivative", &derivatives), ("InitialUnknown", &initial), ("EventIndicator", &indicators)]
+    {
         if tag == "EventIndicator" && !unit.model_exchange {
             continue;
         }

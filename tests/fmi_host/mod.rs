@@ -55,6 +55,8 @@ pub fn callbacks(log: &Log) -> fmi2CallbackFunctions {
     }
 }
 
+pub mod fmi3;
+
 pub struct Api<'a> {
     pub lib: &'a Library,
 }
