@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Runs every test of the project: the Rust tests (crate and packaging tool, including the importer test
-# and the check of every FMI signature against the official headers), then builds the .fmu files and runs
+# and the check of every FMI 2.0 and 3.0 signature against the official headers), then builds the .fmu files and runs
 # the fmpy suite (tests/python) against them; cargo clippy with warnings as errors runs in between.
 # Installs what it needs: the project's Python virtual environment (.venv, pinned fmpy, numpy,
 # matplotlib, pytest) and the Windows toolchain of the win64 binaries and their test under wine (the Rust
@@ -30,7 +30,7 @@ trap 'rm -f "$log" "$pylog"' EXIT
 status=0
 
 echo "== Rust tests (workspace: powderfmu, fmu_build)"
-FMI2_HEADERS="$headers" cargo test --workspace --locked 2>&1 | tee "$log" || status=$?
+FMI2_HEADERS="$headers" FMI3_HEADERS="$headers" cargo test --workspace --locked 2>&1 | tee "$log" || status=$?
 rust_passed=$(awk '/^test result:/ {s += $4} END {print s + 0}' "$log")
 rust_failed=$(awk '/^test result:/ {s += $6} END {print s + 0}' "$log")
 

@@ -16,6 +16,15 @@ fn checked_in_model_descriptions_match_the_variable_tables() {
 }
 
 #[test]
+fn checked_in_fmi3_model_descriptions_match_the_variable_tables() {
+    for unit in units::all() {
+        let path = interface::model_description_fmi3_path(unit);
+        let checked_in = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}; {FIX}", path.display()));
+        assert!(checked_in == unit.model_description_fmi3(), "{} differs from the variable table of {}; {FIX}", path.display(), unit.model_identifier);
+    }
+}
+
+#[test]
 fn docs_tables_match_the_variable_tables() {
     for unit in units::all() {
         let path = interface::docs_path(unit);
@@ -52,4 +61,8 @@ fn guids_differ_between_units_and_change_with_the_interface() {
     let mut changed = units::particle_wall_impact::info();
     changed.variables[0].description.push('!');
     assert_ne!(changed.guid(), before);
+    // The FMI 3.0 token: its own hash, changed by the same edit, never the GUID.
+    let token = units::particle_wall_impact::info().instantiation_token();
+    assert_ne!(token, before);
+    assert_ne!(changed.instantiation_token(), token);
 }

@@ -35,21 +35,25 @@ def second_build(tmp_path_factory):
     return out
 
 
-@pytest.mark.parametrize("unit", UNITS)
-def test_two_builds_give_byte_identical_fmus(second_build, unit):
-    first = fmu_dir() / f"{unit}.fmu"
-    again = second_build / f"{unit}.fmu"
+# Each unit's FMI 2.0 archive and its FMI 3.0 one (fmi3/), with the folder of its Linux binary.
+ARCHIVES = [(f"{u}.fmu", f"binaries/linux64/{u}.so") for u in UNITS] + [(f"fmi3/{u}.fmu", f"binaries/x86_64-linux/{u}.so") for u in UNITS]
+
+
+@pytest.mark.parametrize("archive", [a for a, _ in ARCHIVES])
+def test_two_builds_give_byte_identical_fmus(second_build, archive):
+    first = fmu_dir() / archive
+    again = second_build / archive
     assert first.is_file() and again.is_file()
-    assert sha256(first) == sha256(again), f"{unit}.fmu differs between two packagings of the same build"
+    assert sha256(first) == sha256(again), f"{archive} differs between two packagings of the same build"
 
 
-@pytest.mark.parametrize("unit", UNITS)
-def test_archives_have_fixed_times_and_sorted_entries(unit):
-    with zipfile.ZipFile(fmu_dir() / f"{unit}.fmu") as z:
+@pytest.mark.parametrize("archive,binary", ARCHIVES)
+def test_archives_have_fixed_times_and_sorted_entries(archive, binary):
+    with zipfile.ZipFile(fmu_dir() / archive) as z:
         names = z.namelist()
         assert names == sorted(names)
         assert "modelDescription.xml" in names
-        assert f"binaries/linux64/{unit}.so" in names
+        assert binary in names
         for info in z.infolist():
             assert info.date_time == (1980, 1, 1, 0, 0, 0), (info.filename, info.date_time)
             assert (info.external_attr >> 16) & 0o777 == 0o644, info.filename

@@ -13,8 +13,11 @@ import os
 import re
 import shutil
 import subprocess
+import tempfile
 import zipfile
+from pathlib import Path
 
+import fmpy
 import pytest
 
 from fmu_support import REPO, fmu_dir
@@ -71,6 +74,29 @@ def test_every_fmu_carries_both_platforms(unit):
         names = z.namelist()
     assert f"binaries/linux64/{unit}.so" in names
     assert f"binaries/win64/{unit}.dll" in names
+
+
+@pytest.mark.parametrize("unit", UNITS)
+def test_the_fmi3_fmu_carries_the_same_windows_binary_with_every_fmi3_export(unit):
+    """The FMI 3.0 archive's x86_64-windows DLL is the win64 one the wine runs below check, and its
+    export table names the 75 functions of fmi3Functions.h (the PE export table, read with mingw's objdump)."""
+    with zipfile.ZipFile(fmu_dir() / f"{unit}.fmu") as z2, zipfile.ZipFile(fmu_dir() / "fmi3" / f"{unit}.fmu") as z3:
+        dll2 = z2.read(f"binaries/win64/{unit}.dll")
+        dll3 = z3.read(f"binaries/x86_64-windows/{unit}.dll")
+        assert f"binaries/x86_64-linux/{unit}.so" in z3.namelist()
+    assert dll3 == dll2
+    objdump = shutil.which("x86_64-w64-mingw32-objdump")
+    if objdump is None:
+        pytest.skip("x86_64-w64-mingw32-objdump (Debian's binutils-mingw-w64-x86-64) is not installed")
+    header = (Path(fmpy.__file__).parent / "c-code" / "fmi3Functions.h").read_text()
+    standard = set(re.findall(r"^FMI3_Export fmi3\w+TYPE\s+(fmi3\w+);", header, re.M))
+    assert len(standard) == 75
+    with tempfile.NamedTemporaryFile(suffix=".dll") as f:
+        f.write(dll3)
+        f.flush()
+        table = subprocess.run([objdump, "-p", f.name], capture_output=True, text=True, check=True).stdout
+    exported = set(re.findall(r"\b(fmi3\w+)\b", table))
+    assert standard <= exported, sorted(standard - exported)
 
 
 @pytest.mark.parametrize("unit", UNITS)
