@@ -54,7 +54,7 @@ def finals(text: str) -> dict[str, dict[str, float]]:
     """{'CS final': {name: value}, 'ME final': {...}} from fmu_check's lines."""
     out = {}
     for line in text.splitlines():
-        m = re.match(r"(CS final|CS saved|CS restored|ME final)(?: \((\d+) events\))? (.*)", line)
+        m = re.match(r"(CS final|CS saved|CS restored|ME final|CS3 final|CS3 saved|CS3 restored)(?: \((\d+) (?:events|early returns)\))? (.*)", line)
         if m:
             values = dict(kv.split("=") for kv in m.group(3).split())
             out[m.group(1)] = {k: float(v) for k, v in values.items()}
@@ -129,3 +129,27 @@ def test_a_state_saved_on_linux_restores_on_windows(checkers, unit, tmp_path):
     assert restored["CS restored"] == native["CS saved"], "the state reads back to the same outputs"
     rel = 0.0 if unit == "BallIndentation" else 1e-12
     assert not close(native["CS final"], restored["CS final"], rel), "; ".join(close(native["CS final"], restored["CS final"], rel))
+
+
+@pytest.mark.parametrize("unit", UNITS)
+def test_the_fmi3_windows_binary_runs_under_wine_as_the_linux_one_with_early_return(checkers, unit, tmp_path):
+    """fmu_check's FMI 3.0 run (Co-Simulation with early return at contact events), natively and under
+    wine, and a state saved by the Linux binary restored by the Windows one."""
+    linux, windows, env = checkers
+    fmu = fmu_dir() / "fmi3" / f"{unit}.fmu"
+    state = tmp_path / "linux3.state"
+    native = run([str(linux), str(fmu), "--state-out", str(state)])
+    wine = run(["wine", str(windows), str(fmu)], env=env)
+    restored = finals(run(["wine", str(windows), str(fmu), "--state-in", str(state)], env=env))
+    assert "binaries/x86_64-windows" in wine.replace("\\", "/"), wine
+    n, w = finals(native), finals(wine)
+    assert "CS3 final" in n and "CS3 final" in w, f"{native}\n{wine}"
+    rel = 0.0 if unit == "BallIndentation" else 1e-12
+    assert not close(n["CS3 final"], w["CS3 final"], rel), "; ".join(close(n["CS3 final"], w["CS3 final"], rel))
+    assert n["CS3 final"]["events"] == w["CS3 final"]["events"], "the same early returns"
+    if unit == "ParticleWallImpact":
+        assert n["CS3 final"]["events"] >= 2, "the impact's contact and separation at least"
+    assert restored["CS3 restored"] == n["CS3 saved"]
+    # The restored run starts halfway, after the impact's early returns: its count is its own.
+    without = lambda d: {k: v for k, v in d.items() if k != "events"}  # noqa: E731
+    assert not close(without(n["CS3 final"]), without(restored["CS3 final"]), rel)

@@ -11,6 +11,11 @@ use std::sync::Mutex;
 pub const PLATFORM: &str = "win64";
 #[cfg(not(windows))]
 pub const PLATFORM: &str = "linux64";
+/// FMI 3.0's name of the same platform (FMI 3.0 Sec. 2.5.1.1).
+#[cfg(windows)]
+pub const PLATFORM_FMI3: &str = "x86_64-windows";
+#[cfg(not(windows))]
+pub const PLATFORM_FMI3: &str = "x86_64-linux";
 #[cfg(windows)]
 const EXTENSION: &str = "dll";
 #[cfg(not(windows))]
@@ -43,7 +48,7 @@ pub struct EventInfo {
 }
 
 /// The last message the FMU logged (one instance at a time in this program).
-static LAST_MESSAGE: Mutex<String> = Mutex::new(String::new());
+pub(crate) static LAST_MESSAGE: Mutex<String> = Mutex::new(String::new());
 
 /// The logger the FMU calls. Stable Rust cannot define a C variadic function; the FMU passes its text
 /// already formatted and no variadic arguments, and on x86-64 (System V and Windows alike) such a call
@@ -76,7 +81,8 @@ impl Unpacked {
         archive.extract(&dir).map_err(|e| format!("cannot unzip {}: {e}", fmu.display()))?;
         let xml = std::fs::read_to_string(dir.join("modelDescription.xml")).map_err(|e| format!("modelDescription.xml: {e}"))?;
         let model_description = ModelDescription::parse(&xml)?;
-        let binary = dir.join("binaries").join(PLATFORM).join(format!("{}.{EXTENSION}", model_description.model_identifier));
+        let platform = if model_description.fmi3 { PLATFORM_FMI3 } else { PLATFORM };
+        let binary = dir.join("binaries").join(platform).join(format!("{}.{EXTENSION}", model_description.model_identifier));
         // SAFETY: the FMU's binary; loading runs its initialisers, which a host must trust.
         let library = unsafe { Library::new(&binary) }.map_err(|e| format!("cannot load {}: {e}", binary.display()))?;
         Ok(Unpacked { dir, binary, model_description, library })
@@ -95,8 +101,8 @@ impl Unpacked {
         }
     }
 
-    fn symbol<T: Copy>(&self, name: &str) -> Result<T, String> {
-        // SAFETY: each caller names an FMI 2.0 function with the signature T of the standard's header.
+    pub(crate) fn symbol<T: Copy>(&self, name: &str) -> Result<T, String> {
+        // SAFETY: each caller names an FMI function with the signature T of the standard's header.
         unsafe { self.library.get::<T>(name.as_bytes()).map(|s| *s).map_err(|e| format!("{name} not exported: {e}")) }
     }
 }
@@ -113,7 +119,7 @@ pub struct Instance<'a> {
     pub c: Component,
 }
 
-fn check(function: &str, status: Status) -> Result<(), String> {
+pub(crate) fn check(function: &str, status: Status) -> Result<(), String> {
     if status == OK {
         Ok(())
     } else {

@@ -1,7 +1,8 @@
-//! `fmu_check`: a small FMI 2.0 importer, independent of the powderfmu crate, that does what a host on
-//! another platform does with a `.fmu`: unzip it, read `modelDescription.xml`, load the binary of its
-//! platform (`binaries/win64/*.dll` when built for Windows and run under wine, `linux64/*.so` on Linux),
-//! and run the unit in Co-Simulation and, where offered, Model Exchange. It prints one line per run with
+//! `fmu_check`: a small FMI 2.0 and 3.0 importer, independent of the powderfmu crate, that does what a
+//! host on another platform does with a `.fmu`: unzip it, read `modelDescription.xml`, load the binary of
+//! its platform (`binaries/win64/*.dll` or `x86_64-windows` when built for Windows and run under wine,
+//! `linux64/*.so` or `x86_64-linux` on Linux), and run the unit in Co-Simulation and, where offered (FMI
+//! 2.0), Model Exchange; an FMI 3.0 FMU in Co-Simulation with early return. It prints one line per run with
 //! the final outputs in full precision, so that two platforms' lines can be compared.
 //!
 //! Usage: fmu_check UNIT.fmu [--state-out FILE] [--state-in FILE]
@@ -10,6 +11,7 @@
 //!                     platform) at halfway, and go on to the end
 
 mod fmi;
+mod fmi3;
 mod model_description;
 mod runs;
 
@@ -45,7 +47,11 @@ fn run() -> Result<(), String> {
     let fmu = fmu.ok_or("give the .fmu file")?;
     let unpacked = fmi::Unpacked::open(&fmu)?;
     let md = &unpacked.model_description;
-    println!("{} {} ({})", md.model_identifier, fmi::PLATFORM, unpacked.binary.display());
+    let platform = if md.fmi3 { fmi::PLATFORM_FMI3 } else { fmi::PLATFORM };
+    println!("{} {} ({})", md.model_identifier, platform, unpacked.binary.display());
+    if md.fmi3 {
+        return runs::co_simulation_fmi3(&unpacked, state_out.as_deref(), state_in.as_deref());
+    }
     runs::co_simulation(&unpacked, state_out.as_deref(), state_in.as_deref())?;
     if md.model_exchange && state_in.is_none() {
         runs::model_exchange(&unpacked)?;

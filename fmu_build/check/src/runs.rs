@@ -1,9 +1,11 @@
 //! The runs of each unit: a short scenario per unit in Co-Simulation (with a saved state halfway; for
 //! ParticleWallImpact a vibrating wall given by its acceleration, an input derivative) and in
-//! Model Exchange (explicit Euler at a fixed step with event handling). Each prints its final outputs
-//! with `{:e}` (the shortest text that reads back to the same f64), to be compared across platforms.
+//! Model Exchange (explicit Euler at a fixed step with event handling); for an FMI 3.0 FMU, Co-Simulation
+//! with early return (FMI 3.0 has no input derivatives: the wall stands still). Each prints its final
+//! outputs with `{:e}` (the shortest text that reads back to the same f64), to be compared across platforms.
 
 use crate::fmi::{Instance, Unpacked, CO_SIMULATION, MODEL_EXCHANGE};
+use crate::fmi3::Instance3;
 use std::path::Path;
 
 /// A unit's scenario: start values, the steps, the inputs at a time, and the outputs to print.
@@ -86,7 +88,31 @@ fn scenario(id: &str) -> Result<Scenario, String> {
     }
 }
 
-fn line(what: &str, i: &Instance, s: &Scenario, t: f64) -> Result<(), String> {
+/// Reading outputs, in either version.
+trait Reads {
+    fn real(&self, name: &str) -> Result<f64, String>;
+    fn integer(&self, name: &str) -> Result<i32, String>;
+}
+
+impl Reads for Instance<'_> {
+    fn real(&self, name: &str) -> Result<f64, String> {
+        Instance::real(self, name)
+    }
+    fn integer(&self, name: &str) -> Result<i32, String> {
+        Instance::integer(self, name)
+    }
+}
+
+impl Reads for Instance3<'_> {
+    fn real(&self, name: &str) -> Result<f64, String> {
+        Instance3::real(self, name)
+    }
+    fn integer(&self, name: &str) -> Result<i32, String> {
+        Instance3::integer(self, name)
+    }
+}
+
+fn line(what: &str, i: &impl Reads, s: &Scenario, t: f64) -> Result<(), String> {
     let mut text = format!("{what} t={t:e}");
     for name in s.outputs {
         text += &format!(" {name}={:e}", i.real(name)?);
@@ -194,4 +220,57 @@ pub fn model_exchange(fmu: &Unpacked) -> Result<(), String> {
     }
     line(&format!("ME final ({events} events)"), &i, &s, n as f64 * h)?;
     i.call("fmi2Terminate")
+}
+
+/// FMI 3.0 Co-Simulation with early return: the scenario's grid, each step ending early at a contact
+/// event and the next going on from there to the grid; the state saved or restored halfway as in
+/// `co_simulation`. Prints the final outputs and the number of early returns.
+pub fn co_simulation_fmi3(fmu: &Unpacked, state_out: Option<&Path>, state_in: Option<&Path>) -> Result<(), String> {
+    let s = scenario(&fmu.model_description.model_identifier)?;
+    let i = Instance3::new(fmu, true)?;
+    i.enter_initialization(0.0)?;
+    for (name, value) in s.strings {
+        i.set_string(name, value)?;
+    }
+    for (name, value) in s.reals {
+        i.set_real(name, *value)?;
+    }
+    for (name, value) in (s.inputs)(0.0) {
+        i.set_real(name, value)?;
+    }
+    i.call("fmi3ExitInitializationMode")?;
+    let half = s.steps / 2;
+    let (mut k, mut t, mut early_returns) = (0, 0.0, 0);
+    if let Some(path) = state_in {
+        let bytes = std::fs::read(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+        i.restore_state(&bytes)?;
+        (k, t) = (half, half as f64 * s.step);
+        line("CS3 restored", &i, &s, t)?;
+    }
+    let mut saved = state_in.is_some();
+    while k < s.steps {
+        if k == half && !saved {
+            saved = true;
+            if let Some(path) = state_out {
+                std::fs::write(path, i.serialize_state()?).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+                line("CS3 saved", &i, &s, t)?;
+            }
+        }
+        for (name, value) in (s.inputs)(t) {
+            i.set_real(name, value)?;
+        }
+        // On the grid: a step of the scenario; after an early return: to the next grid point.
+        let on_grid = t == k as f64 * s.step;
+        let h = if on_grid { s.step } else { (k + 1) as f64 * s.step - t };
+        let (early, last) = i.do_step(t, h)?;
+        if early {
+            early_returns += 1;
+            t = last;
+        } else {
+            k += 1;
+            t = k as f64 * s.step;
+        }
+    }
+    line(&format!("CS3 final ({early_returns} early returns)"), &i, &s, t)?;
+    i.call("fmi3Terminate")
 }
