@@ -20,7 +20,7 @@ from fmpy import extract, read_model_description
 from fmpy.fmi3 import FMU3Model, FMU3Slave, fmi3LogMessageCallback
 from fmpy.validation import validate_fmu
 
-from fmu_support import fmu_dir
+from fmu_support import StrictCVode, fmu_dir
 
 UNITS = ["ParticleWallImpact", "ContactElement", "BallIndentation"]
 
@@ -126,6 +126,25 @@ def test_the_contact_element_under_a_triangle_wave_is_the_fmi2_one_to_the_bit(ki
     r2 = fmpy.simulate_fmu(str(path2("ContactElement")), fmi_type=kind, input=signal, output=out, output_interval=1e-2)
     _same(r3, r2)
     assert r3["plastic_overlap"].max() > 0, "loaded into plastic"
+
+
+def test_model_exchange_under_a_strict_cvode_is_the_fmi2_one_to_the_bit():
+    """The hard case of the strict-CVode suite (test_strict_cvode.py): a damped sphere on a 20 kHz wall
+    sampled 4000 times, CVode with a minimum step of 1e-12 s, through FMI 3.0 and FMI 2.0."""
+    amplitude, stop, omega = 2e-8, 2e-4, 2 * np.pi * 2e4
+    t = np.linspace(0.0, stop, 4001)
+    signal = np.array(list(zip(t, amplitude * np.sin(omega * t), amplitude * omega * np.cos(omega * t))),
+                      dtype=[("time", float), ("wall_displacement", float), ("wall_velocity", float)])
+    start = {"initial_velocity": 0.0, "gravity": 9.81, "initial_gap": 0.0, "restitution_coefficient": 0.5}
+    out = ["force", "overlap", "contact_state", "max_overlap", "dissipated_energy"]
+    runs = {}
+    for version, path in [(3, path3("ParticleWallImpact")), (2, path2("ParticleWallImpact"))]:
+        with StrictCVode() as cvode:
+            runs[version] = fmpy.simulate_fmu(str(path), fmi_type="ModelExchange", start_values=start, input=signal, stop_time=stop, output_interval=5e-8, output=out)
+            runs[version, "events"] = cvode.root_returns
+    _same(runs[3], runs[2])
+    assert runs[3]["time"][-1] == pytest.approx(stop) and {1, 2} <= set(runs[3]["contact_state"])
+    assert runs[3, "events"] == runs[2, "events"] > 0
 
 
 def test_the_default_indentation_is_the_fmi2_one_to_the_bit():
