@@ -388,3 +388,64 @@ fn a_wrong_token_or_resource_path_is_refused_at_instantiation() {
     assert!(!c.is_null());
     api.free(c);
 }
+
+/// What the callback below needs: the library's fmi3FreeInstance and the instance.
+struct Freer {
+    free: unsafe extern "C" fn(Comp),
+    instance: Comp,
+    calls: usize,
+}
+
+/// An intermediate-update callback that frees the instance it is called for: a master's bug the step
+/// must survive.
+unsafe extern "C" fn free_in_callback(
+    env: fmi3InstanceEnvironment,
+    _t: f64,
+    _set: bool,
+    _get: bool,
+    _finished: bool,
+    _early: bool,
+    _req: *mut bool,
+    _time: *mut f64,
+) {
+    let freer = &mut *(env as *mut Freer);
+    freer.calls += 1;
+    (freer.free)(freer.instance);
+}
+
+#[test]
+fn an_instance_freed_inside_its_intermediate_update_ends_the_step_with_an_error() {
+    let lib = library();
+    let api = Api3 { lib: &lib };
+    let unit = units::by_identifier(PWI).unwrap();
+    let name = CString::new("freed").unwrap();
+    let token = CString::new(unit.instantiation_token()).unwrap();
+    let free = *api.sym::<unsafe extern "C" fn(Comp)>(b"fmi3FreeInstance");
+    let mut freer = Freer { free, instance: null_mut(), calls: 0 };
+    let env = &mut freer as *mut Freer as *mut c_void;
+    let c = unsafe {
+        api.sym::<fmi_host::fmi3::InstantiateCs>(b"fmi3InstantiateCoSimulation")(
+            name.as_ptr(),
+            token.as_ptr(),
+            null(),
+            false,
+            false,
+            false,
+            false,
+            null(),
+            0,
+            env,
+            None,
+            Some(free_in_callback),
+        )
+    };
+    assert!(!c.is_null());
+    freer.instance = c;
+    assert_eq!(api.enter_initialization(c), fmi3OK);
+    assert_eq!(api.call0(b"fmi3ExitInitializationMode", c), fmi3OK);
+    // The default impact has its contact inside the first microsecond.
+    let (status, _, _, _) = api.do_step(c, 0.0, 1e-6);
+    assert_eq!(status, fmi3Error, "the step cannot go on with a freed instance");
+    assert_eq!(freer.calls, 1, "called once, at the first event; the freed instance is not followed");
+    assert_eq!(api.call0(b"fmi3Terminate", c), fmi3Error, "and it stays refused");
+}

@@ -24,6 +24,9 @@ pub enum Mode {
     Terminated,
     Error,
     Fatal,
+    /// FMI 3.0 Co-Simulation: inside the master's intermediate-update callback, at an event within a step
+    /// (last, so that the numbers of the other modes in saved states stay as they were).
+    IntermediateUpdate,
 }
 
 impl Mode {
@@ -43,10 +46,11 @@ impl Mode {
             Mode::Terminated => "Terminated",
             Mode::Error => "Error",
             Mode::Fatal => "Fatal",
+            Mode::IntermediateUpdate => "Intermediate Update Mode",
         }
     }
 
-    pub const ALL: [Mode; 8] = [
+    pub const ALL: [Mode; 9] = [
         Mode::Instantiated,
         Mode::InitializationMode,
         Mode::EventMode,
@@ -55,6 +59,7 @@ impl Mode {
         Mode::Terminated,
         Mode::Error,
         Mode::Fatal,
+        Mode::IntermediateUpdate,
     ];
 }
 
@@ -75,7 +80,7 @@ pub mod allowed {
     pub const ENTER_INITIALIZATION: u32 = m(&[Instantiated]);
     pub const EXIT_INITIALIZATION: u32 = m(&[InitializationMode]);
     pub const TERMINATE: u32 = m(&[EventMode, ContinuousTimeMode, StepComplete]);
-    pub const GET: u32 = m(&[InitializationMode, EventMode, ContinuousTimeMode, StepComplete, Terminated, Error]);
+    pub const GET: u32 = m(&[InitializationMode, EventMode, ContinuousTimeMode, StepComplete, Terminated, Error, IntermediateUpdate]);
     pub const SET_REAL: u32 = m(&[Instantiated, InitializationMode, EventMode, ContinuousTimeMode, StepComplete]);
     pub const SET_OTHER: u32 = m(&[Instantiated, InitializationMode, EventMode, StepComplete]);
     pub const ENTER_EVENT_MODE: u32 = m(&[EventMode, ContinuousTimeMode]);
@@ -92,6 +97,7 @@ pub mod allowed {
     /// FMI 3.0: Event Mode is entered from Continuous-Time Mode (ME) and from Step Mode (CS, eventModeUsed).
     pub const ENTER_EVENT_MODE_3: u32 = m(&[ContinuousTimeMode, StepComplete]);
     pub const ENTER_STEP_MODE: u32 = m(&[EventMode]);
+    pub const INTERMEDIATE_UPDATE: u32 = m(&[IntermediateUpdate]);
 }
 
 /// Which interface the instance was made for.
@@ -203,9 +209,11 @@ pub struct Instance {
     model_ready: bool,
     /// The unzipped `resources` folder the host named (fmuResourceLocation), if any.
     resources: Option<std::path::PathBuf>,
-    /// FMI 3.0 Co-Simulation: whether the master uses Event Mode and lets a step return early.
+    /// FMI 3.0 Co-Simulation: whether the master uses Event Mode and lets a step return early, and its
+    /// intermediate-update callback (called at the events inside a step).
     pub event_mode_used: bool,
     pub early_return_allowed: bool,
+    pub intermediate_update: crate::fmi3::types::fmi3IntermediateUpdateCallback,
 }
 
 impl Instance {
@@ -227,6 +235,7 @@ impl Instance {
             resources,
             event_mode_used: false,
             early_return_allowed: false,
+            intermediate_update: None,
         }
     }
 
@@ -244,7 +253,9 @@ impl Instance {
         if allowed & self.mode.bit() != 0 {
             return Ok(());
         }
-        let modes: Vec<&str> = Mode::ALL.iter().filter(|m| allowed & m.bit() != 0).map(|m| m.name(self.api)).collect();
+        // Intermediate Update Mode exists only for FMI 3.0 Co-Simulation.
+        let has = |m: &Mode| *m != Mode::IntermediateUpdate || (self.api == Api::Fmi3 && self.kind == Kind::CoSimulation);
+        let modes: Vec<&str> = Mode::ALL.iter().filter(|m| allowed & m.bit() != 0 && has(m)).map(|m| m.name(self.api)).collect();
         error(format!("{function} must not be called in {}; allowed in: {}", self.mode.name(self.api), modes.join(", ")))
     }
 
@@ -354,6 +365,12 @@ impl Instance {
 
     pub fn get(&mut self, function: &str, vrs: &[u32], var_type: VarType) -> Call<Vec<Value>> {
         self.check_refs(function, vrs, var_type)?;
+        if self.mode == Mode::IntermediateUpdate {
+            // FMI 3.0 Sec. 4.2.5: only the variables marked intermediateUpdate, the outputs.
+            if let Some(v) = vrs.iter().map(|&vr| &self.unit.variables[vr as usize]).find(|v| v.causality != Causality::Output) {
+                return error(format!("{function}: `{}` is not an output; in Intermediate Update Mode only the outputs (intermediateUpdate) can be read", v.name));
+            }
+        }
         self.refresh(function)?;
         Ok(vrs.iter().map(|&vr| self.values[vr as usize].clone()).collect())
     }
@@ -553,7 +570,7 @@ impl Instance {
         if kind != self.kind {
             return error("FMU state rejected: it was saved by an instance of the other interface (Model Exchange vs Co-Simulation)");
         }
-        let mode = Mode::ALL.get(s.mode as usize).copied().filter(|m| !matches!(m, Mode::Error | Mode::Fatal));
+        let mode = Mode::ALL.get(s.mode as usize).copied().filter(|m| !matches!(m, Mode::Error | Mode::Fatal | Mode::IntermediateUpdate));
         let Some(mode) = mode else { return error("FMU state rejected: it records an invalid mode") };
         // Model first: if it refuses, nothing of this instance has changed.
         let mut model = (self.unit.new_model)(self.unit, self.resources.as_deref());

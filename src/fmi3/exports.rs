@@ -204,7 +204,7 @@ pub unsafe extern "C" fn fmi3InstantiateCoSimulation(
     _nRequiredIntermediateVariables: usize,
     instanceEnvironment: fmi3InstanceEnvironment,
     logMessage: fmi3LogMessageCallback,
-    _intermediateUpdate: fmi3IntermediateUpdateCallback,
+    intermediateUpdate: fmi3IntermediateUpdateCallback,
 ) -> fmi3Instance {
     // SAFETY: the host's arguments, passed on as they came (FMI 3.0 Sec. 2.3.1).
     unsafe {
@@ -222,6 +222,7 @@ pub unsafe extern "C" fn fmi3InstantiateCoSimulation(
                 // Event Mode, whatever the master asks.
                 inst.event_mode_used = eventModeUsed && inst.unit.returns_early;
                 inst.early_return_allowed = earlyReturnAllowed && inst.unit.returns_early;
+                inst.intermediate_update = if inst.unit.returns_early { intermediateUpdate } else { None };
             },
         )
     }
@@ -1048,9 +1049,13 @@ pub unsafe extern "C" fn fmi3EnterStepMode(c: fmi3Instance) -> fmi3Status {
     })
 }
 
-/// A step of at most `communicationStepSize`. With earlyReturnAllowed (and a unit with events inside a
-/// step), it ends at the first change of the contact state: `earlyReturn` and `lastSuccessfulTime` say
-/// where, and with eventModeUsed `eventHandlingNeeded` asks the master into Event Mode there.
+/// A step of at most `communicationStepSize`, in pieces that end at the contact events inside it (a unit
+/// with `returns_early`). At each event the master's intermediate-update callback, if it gave one, hears
+/// of it and may read the outputs there (Intermediate Update Mode) and, with earlyReturnAllowed, ask the
+/// step to end; without a callback, earlyReturnAllowed ends the step at the first event. `earlyReturn`
+/// and `lastSuccessfulTime` say where the step ended; with eventModeUsed `eventHandlingNeeded` asks the
+/// master into Event Mode there. The callback calls back into this library, so no borrow of the instance
+/// is held while it runs: each piece is its own `call_on`.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3DoStep(
     c: fmi3Instance,
@@ -1063,20 +1068,66 @@ pub unsafe extern "C" fn fmi3DoStep(
     lastSuccessfulTime: *mut fmi3Float64,
 ) -> fmi3Status {
     const F: &str = "fmi3DoStep";
-    cs(c, F, allowed::DO_STEP, |inst| {
-        out(eventHandlingNeeded, F, "eventHandlingNeeded")?;
-        out(terminateSimulation, F, "terminateSimulation")?;
-        out(earlyReturn, F, "earlyReturn")?;
-        out(lastSuccessfulTime, F, "lastSuccessfulTime")?;
-        let result = inst.step(currentCommunicationPoint, communicationStepSize, inst.early_return_allowed);
-        let event = result.as_ref().ok().copied().flatten();
-        // SAFETY: the host's output arguments, checked non-NULL above.
-        unsafe {
-            *eventHandlingNeeded = event.is_some() && inst.event_mode_used;
-            *terminateSimulation = false;
-            *earlyReturn = event.is_some();
-            *lastSuccessfulTime = inst.time;
+    let end = currentCommunicationPoint + communicationStepSize;
+    let mut from = currentCommunicationPoint;
+    let mut first = true;
+    loop {
+        // One piece: from `from` to the step's end or the next event. What the rest of the loop needs.
+        let mut piece = None;
+        let status = cs(c, F, allowed::DO_STEP, |inst| {
+            out(eventHandlingNeeded, F, "eventHandlingNeeded")?;
+            out(terminateSimulation, F, "terminateSimulation")?;
+            out(earlyReturn, F, "earlyReturn")?;
+            out(lastSuccessfulTime, F, "lastSuccessfulTime")?;
+            // The first piece is the master's step as given (bit for bit the step of a run without events).
+            let h = if first { communicationStepSize } else { end - from };
+            let callback = inst.intermediate_update;
+            let result = inst.step(from, h, inst.early_return_allowed || callback.is_some());
+            let event = result.as_ref().ok().copied().flatten();
+            piece = Some((event, callback, inst.logger.environment, inst.early_return_allowed, inst.event_mode_used, inst.time));
+            result.map(|_| ())
+        });
+        let Some((event, callback, environment, early_allowed, event_mode, time)) = piece else { return status };
+        let finish = |early: bool| {
+            // SAFETY: the host's output arguments, checked non-NULL in the piece above.
+            unsafe {
+                *eventHandlingNeeded = early && event_mode;
+                *terminateSimulation = false;
+                *earlyReturn = early;
+                *lastSuccessfulTime = time;
+            }
+            status
+        };
+        if status != fmi3OK {
+            return finish(false);
         }
-        result.map(|_| ())
-    })
+        let Some(t_event) = event else { return finish(false) };
+        let Some(update) = callback else { return finish(true) };
+        // The master hears of the event, reads the outputs there if it likes, and may end the step.
+        if cs(c, F, allowed::DO_STEP, |inst| {
+            inst.mode = Mode::IntermediateUpdate;
+            Ok(())
+        }) != fmi3OK
+        {
+            return fmi3Error;
+        }
+        let (mut requested, mut requested_time) = (false, t_event);
+        // SAFETY: the host's callback with the arguments FMI 3.0 Sec. 4.2.2 gives it; no borrow of the
+        // instance is held across it.
+        unsafe { update(environment, t_event, false, true, true, early_allowed, &mut requested, &mut requested_time) };
+        // Back to Step Mode; an instance the master freed or broke meanwhile is refused here.
+        let back = ffi::call_on(&INSTANCES, c, F, Some(Kind::CoSimulation), allowed::INTERMEDIATE_UPDATE, |inst| {
+            inst.mode = Mode::StepComplete;
+            Ok(())
+        });
+        if back != Status::Ok {
+            return back as fmi3Status;
+        }
+        if (early_allowed && requested) || !(end - t_event > 4.0 * f64::EPSILON * end.abs()) {
+            // Ended at the event: asked for, or the event is the step's end.
+            return finish(early_allowed && requested);
+        }
+        from = t_event;
+        first = false;
+    }
 }

@@ -36,7 +36,12 @@ pub fn xml(unit: &UnitInfo, token: &str) -> String {
     }
     // Early return and Event Mode where a step has events inside it: the sphere's contact (the other
     // units' contacts change only where the master changes their inputs, at communication points).
-    let events = if unit.returns_early { " mightReturnEarlyFromDoStep=\"true\" hasEventMode=\"true\"" } else { "" };
+    // With intermediate updates at those events: the master reads the outputs there and may end the step.
+    let events = if unit.returns_early {
+        " mightReturnEarlyFromDoStep=\"true\" hasEventMode=\"true\" providesIntermediateUpdate=\"true\" canReturnEarlyAfterIntermediateUpdate=\"true\""
+    } else {
+        ""
+    };
     let _ = writeln!(
         x,
         "  <CoSimulation modelIdentifier=\"{id}\" canHandleVariableCommunicationStepSize=\"true\" canGetAndSetFMUState=\"true\" canSerializeFMUState=\"true\"{events}/>"
@@ -108,6 +113,9 @@ fn variable_xml(unit: &UnitInfo, vr: usize, v: &Variable) -> String {
         if !(v.causality == Causality::Parameter || v.causality == Causality::Input) {
             let _ = write!(s, " initial=\"{init}\"");
         }
+    }
+    if unit.returns_early && v.causality == Causality::Output {
+        s.push_str(" intermediateUpdate=\"true\"");
     }
     if v.var_type == VarType::Real {
         if !v.unit.is_empty() {

@@ -233,6 +233,79 @@ def test_early_return_and_event_mode_through_the_c_calls(unzipped):
     fmu.freeInstance()
 
 
+def _instance_with_callback(unzipped, early_return, on_event):
+    """A ParticleWallImpact CS instance (the linear impact) whose intermediate-update callback is
+    `on_event(fmu, vr, time) -> bool` (True: end the step here)."""
+    log = Log()
+    d, md = unzipped["ParticleWallImpact"]
+    fmu = FMU3Slave(guid=md.guid, unzipDirectory=d, modelIdentifier="ParticleWallImpact", instanceName="iu")
+    vr = {v.name: v.valueReference for v in md.modelVariables}
+
+    def callback(_env, t, set_requested, get_allowed, step_finished, can_return_early, early_requested, early_time):
+        assert get_allowed and not set_requested and step_finished
+        assert bool(can_return_early) == early_return
+        if on_event(fmu, vr, t):
+            early_requested[0] = True
+            early_time[0] = t
+
+    fmu.instantiate(logMessage=log.callback, earlyReturnAllowed=early_return, intermediateUpdate=callback)
+    values, t_contact, t_separation = _linear_impact()
+    for name, value in values.items():
+        if isinstance(value, str):
+            fmu.setString([vr[name]], [value])
+        else:
+            fmu.setFloat64([vr[name]], [value])
+    fmu.enterInitializationMode()
+    fmu.exitInitializationMode()
+    return fmu, vr, log, t_contact, t_separation
+
+
+def test_intermediate_updates_tell_the_master_of_each_event_inside_a_1_ms_step(unzipped):
+    seen = []
+
+    def on_event(fmu, vr, t):
+        # Intermediate Update Mode: the outputs at the event can be read, the parameters cannot.
+        seen.append((t, fmu.getInt32([vr["contact_state"]])[0]))
+        try:
+            fmu.getFloat64([vr["particle_radius"]])
+            seen.append("a parameter was readable")
+        except Exception:
+            pass
+        try:
+            fmu.doStep(t, 1e-3)
+            seen.append("doStep inside the callback was accepted")
+        except Exception:
+            pass
+        return False
+
+    fmu, vr, log, t_contact, t_separation = _instance_with_callback(unzipped, False, on_event)
+    _, _, early, t_last = fmu.doStep(0.0, 1e-3)
+    assert not early and t_last == pytest.approx(1e-3, rel=1e-15), "the step went to its end"
+    assert [x for x in seen if isinstance(x, str)] == [], seen
+    events = [x for x in seen if not isinstance(x, str)]
+    assert [state for _, state in events] == [1, 0], "contact, then separation"
+    assert events[0][0] == pytest.approx(t_contact, rel=4e-16, abs=0)
+    assert events[1][0] == pytest.approx(t_separation, rel=1e-14, abs=0)
+    assert any("Intermediate Update Mode only the outputs" in m for m in log.errors())
+    assert any("fmi3DoStep must not be called in Intermediate Update Mode" in m for m in log.errors())
+    assert fmu.getFloat64([vr["sphere_velocity"]]) == pytest.approx([1.0], rel=1e-12)
+    fmu.terminate()
+    fmu.freeInstance()
+
+
+def test_an_intermediate_update_can_end_the_step_at_its_event(unzipped):
+    # End the step at the second event (separation), not at the first.
+    fmu, vr, log, t_contact, t_separation = _instance_with_callback(unzipped, True, lambda fmu, vr, t: t > 2 * t_contact)
+    _, _, early, t_last = fmu.doStep(0.0, 1e-3)
+    assert early and t_last == pytest.approx(t_separation, rel=1e-14, abs=0)
+    assert fmu.getInt32([vr["contact_state"]]) == [0]
+    # The next step goes on from there.
+    _, _, early, t_last = fmu.doStep(t_last, 1e-3 - t_last)
+    assert not early and t_last == pytest.approx(1e-3)
+    fmu.terminate()
+    fmu.freeInstance()
+
+
 # ---------------------------------------------------------------------------------------------------
 # Bad input, calls out of order, saved states
 
