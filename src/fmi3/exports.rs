@@ -295,18 +295,10 @@ pub unsafe extern "C" fn fmi3ExitInitializationMode(c: fmi3Instance) -> fmi3Stat
 pub unsafe extern "C" fn fmi3EnterEventMode(c: fmi3Instance) -> fmi3Status {
     const F: &str = "fmi3EnterEventMode";
     call(c, F, allowed::ENTER_EVENT_MODE_3, |inst| {
-        match (inst.kind, inst.mode) {
-            (Kind::ModelExchange, Mode::StepComplete) => unreachable!("a Model Exchange instance is never in Step Mode"),
-            (Kind::CoSimulation, Mode::ContinuousTimeMode) => unreachable!("a Co-Simulation instance is never in Continuous-Time Mode"),
-            (Kind::CoSimulation, _) if !inst.event_mode_used => {
-                let why = if inst.unit.returns_early {
-                    "the master instantiated it with eventModeUsed = false"
-                } else {
-                    "this unit has no events inside a step (hasEventMode is false)"
-                };
-                return error(format!("{F}: Co-Simulation's Event Mode is not used: {why}"));
-            }
-            _ => {}
+        // Model Exchange comes from Continuous-Time Mode; Co-Simulation from Step Mode, with Event Mode used.
+        if inst.kind == Kind::CoSimulation && !inst.event_mode_used {
+            let why = if inst.unit.returns_early { "the master instantiated it with eventModeUsed = false" } else { "this unit has no events inside a step (hasEventMode is false)" };
+            return error(format!("{F}: Co-Simulation's Event Mode is not used: {why}"));
         }
         inst.mode = Mode::EventMode;
         Ok(())

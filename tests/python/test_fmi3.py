@@ -148,13 +148,23 @@ def test_model_exchange_under_a_strict_cvode_is_the_fmi2_one_to_the_bit():
 
 
 def test_the_default_indentation_is_the_fmi2_one_to_the_bit():
+    """The first 2 ms of the default test on the shipped bed (29000 spheres)."""
     md = read_model_description(str(path3("BallIndentation")))
     out = [v.name for v in md.modelVariables if v.causality == "output"]
-    # The default test, with the stand-in bed of the suite's indentation tests: 2 ms at 0.1 ms steps.
     r3 = fmpy.simulate_fmu(str(path3("BallIndentation")), output=out, stop_time=2e-3)
     r2 = fmpy.simulate_fmu(str(path2("BallIndentation")), output=out, stop_time=2e-3)
     _same(r3, r2)
     assert r3["indenter_force"].max() > 0
+
+
+def test_a_whole_indentation_test_is_the_fmi2_one_to_the_bit(indentation):
+    """The whole test (load, unload, hardness) on the suite's stand-in bed (800 spheres)."""
+    out = [v.name for v in indentation.md.modelVariables if v.causality == "output"]
+    runs = {}
+    for version, path in [(3, path3("BallIndentation")), (2, path2("BallIndentation"))]:
+        runs[version] = fmpy.simulate_fmu(str(path), start_values=indentation.defaults, output=out, **indentation.experiment)
+    _same(runs[3], runs[2])
+    assert runs[3]["test_state"][-1] == 2 and runs[3]["hardness"][-1] > 0, "loaded, unloaded, a hardness"
 
 
 # ---------------------------------------------------------------------------------------------------
