@@ -533,32 +533,103 @@ pub unsafe extern "C" fn fmi3SetString(
     })
 }
 
-/// The getters and setters of the types no variable of the units has (`other_type`).
-macro_rules! other_type_functions {
-    ($($get:ident, $set:ident, $t:ty, $name:literal;)*) => {$(
-        #[no_mangle]
-        pub unsafe extern "C" fn $get(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, _values: *mut $t, _nValues: usize) -> fmi3Status {
-            // SAFETY: the host's arguments of this FMI function, passed on as they came.
-            unsafe { other_type(c, stringify!($get), allowed::GET, $name, vr, nvr) }
-        }
+// The getters and setters of the types no variable of the units has (`other_type`), written out one by
+// one so that the header check (cbindgen, which does not expand macros) sees every prototype.
 
-        #[no_mangle]
-        pub unsafe extern "C" fn $set(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, _values: *const $t, _nValues: usize) -> fmi3Status {
-            // SAFETY: the host's arguments of this FMI function, passed on as they came.
-            unsafe { other_type(c, stringify!($set), allowed::SET_OTHER, $name, vr, nvr) }
-        }
-    )*};
+#[no_mangle]
+pub unsafe extern "C" fn fmi3GetFloat32(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, _values: *mut fmi3Float32, _nValues: usize) -> fmi3Status {
+    // SAFETY: the host's arguments of this FMI function, passed on as they came.
+    unsafe { other_type(c, "fmi3GetFloat32", allowed::GET, "Float32", vr, nvr) }
 }
 
-other_type_functions! {
-    fmi3GetFloat32, fmi3SetFloat32, fmi3Float32, "Float32";
-    fmi3GetInt8, fmi3SetInt8, fmi3Int8, "Int8";
-    fmi3GetUInt8, fmi3SetUInt8, fmi3UInt8, "UInt8";
-    fmi3GetInt16, fmi3SetInt16, fmi3Int16, "Int16";
-    fmi3GetUInt16, fmi3SetUInt16, fmi3UInt16, "UInt16";
-    fmi3GetUInt32, fmi3SetUInt32, fmi3UInt32, "UInt32";
-    fmi3GetInt64, fmi3SetInt64, fmi3Int64, "Int64";
-    fmi3GetUInt64, fmi3SetUInt64, fmi3UInt64, "UInt64";
+#[no_mangle]
+pub unsafe extern "C" fn fmi3SetFloat32(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, _values: *const fmi3Float32, _nValues: usize) -> fmi3Status {
+    // SAFETY: the host's arguments of this FMI function, passed on as they came.
+    unsafe { other_type(c, "fmi3SetFloat32", allowed::SET_OTHER, "Float32", vr, nvr) }
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3GetInt8(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, _values: *mut fmi3Int8, _nValues: usize) -> fmi3Status {
+    // SAFETY: the host's arguments of this FMI function, passed on as they came.
+    unsafe { other_type(c, "fmi3GetInt8", allowed::GET, "Int8", vr, nvr) }
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3SetInt8(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, _values: *const fmi3Int8, _nValues: usize) -> fmi3Status {
+    // SAFETY: the host's arguments of this FMI function, passed on as they came.
+    unsafe { other_type(c, "fmi3SetInt8", allowed::SET_OTHER, "Int8", vr, nvr) }
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3GetUInt8(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, _values: *mut fmi3UInt8, _nValues: usize) -> fmi3Status {
+    // SAFETY: the host's arguments of this FMI function, passed on as they came.
+    unsafe { other_type(c, "fmi3GetUInt8", allowed::GET, "UInt8", vr, nvr) }
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3SetUInt8(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, _values: *const fmi3UInt8, _nValues: usize) -> fmi3Status {
+    // SAFETY: the host's arguments of this FMI function, passed on as they came.
+    unsafe { other_type(c, "fmi3SetUInt8", allowed::SET_OTHER, "UInt8", vr, nvr) }
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3GetInt16(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, _values: *mut fmi3Int16, _nValues: usize) -> fmi3Status {
+    // SAFETY: the host's arguments of this FMI function, passed on as they came.
+    unsafe { other_type(c, "fmi3GetInt16", allowed::GET, "Int16", vr, nvr) }
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3SetInt16(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, _values: *const fmi3Int16, _nValues: usize) -> fmi3Status {
+    // SAFETY: the host's arguments of this FMI function, passed on as they came.
+    unsafe { other_type(c, "fmi3SetInt16", allowed::SET_OTHER, "Int16", vr, nvr) }
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3GetUInt16(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, _values: *mut fmi3UInt16, _nValues: usize) -> fmi3Status {
+    // SAFETY: the host's arguments of this FMI function, passed on as they came.
+    unsafe { other_type(c, "fmi3GetUInt16", allowed::GET, "UInt16", vr, nvr) }
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3SetUInt16(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, _values: *const fmi3UInt16, _nValues: usize) -> fmi3Status {
+    // SAFETY: the host's arguments of this FMI function, passed on as they came.
+    unsafe { other_type(c, "fmi3SetUInt16", allowed::SET_OTHER, "UInt16", vr, nvr) }
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3GetUInt32(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, _values: *mut fmi3UInt32, _nValues: usize) -> fmi3Status {
+    // SAFETY: the host's arguments of this FMI function, passed on as they came.
+    unsafe { other_type(c, "fmi3GetUInt32", allowed::GET, "UInt32", vr, nvr) }
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3SetUInt32(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, _values: *const fmi3UInt32, _nValues: usize) -> fmi3Status {
+    // SAFETY: the host's arguments of this FMI function, passed on as they came.
+    unsafe { other_type(c, "fmi3SetUInt32", allowed::SET_OTHER, "UInt32", vr, nvr) }
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3GetInt64(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, _values: *mut fmi3Int64, _nValues: usize) -> fmi3Status {
+    // SAFETY: the host's arguments of this FMI function, passed on as they came.
+    unsafe { other_type(c, "fmi3GetInt64", allowed::GET, "Int64", vr, nvr) }
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3SetInt64(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, _values: *const fmi3Int64, _nValues: usize) -> fmi3Status {
+    // SAFETY: the host's arguments of this FMI function, passed on as they came.
+    unsafe { other_type(c, "fmi3SetInt64", allowed::SET_OTHER, "Int64", vr, nvr) }
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3GetUInt64(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, _values: *mut fmi3UInt64, _nValues: usize) -> fmi3Status {
+    // SAFETY: the host's arguments of this FMI function, passed on as they came.
+    unsafe { other_type(c, "fmi3GetUInt64", allowed::GET, "UInt64", vr, nvr) }
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi3SetUInt64(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, _values: *const fmi3UInt64, _nValues: usize) -> fmi3Status {
+    // SAFETY: the host's arguments of this FMI function, passed on as they came.
+    unsafe { other_type(c, "fmi3SetUInt64", allowed::SET_OTHER, "UInt64", vr, nvr) }
 }
 
 #[no_mangle]
