@@ -449,3 +449,68 @@ fn an_instance_freed_inside_its_intermediate_update_ends_the_step_with_an_error(
     assert_eq!(freer.calls, 1, "called once, at the first event; the freed instance is not followed");
     assert_eq!(api.call0(b"fmi3Terminate", c), fmi3Error, "and it stays refused");
 }
+
+/// What the re-entrant logger below needs.
+struct Reentrant {
+    get: unsafe extern "C" fn(Comp, *const u32, usize, *mut f64, usize) -> fmi3Status,
+    free: unsafe extern "C" fn(Comp),
+    instance: Comp,
+    force: u32,
+    /// Free the instance from inside the logger (else: read an output of it).
+    free_it: bool,
+    statuses: Vec<fmi3Status>,
+}
+
+/// A host logger that calls back into the library for the instance it logs about.
+unsafe extern "C" fn reentrant_logger(env: fmi3InstanceEnvironment, _status: fmi3Status, _category: fmi3String, _message: fmi3String) {
+    let r = &mut *(env as *mut Reentrant);
+    if r.instance.is_null() {
+        return;
+    }
+    if r.free_it {
+        (r.free)(r.instance);
+        r.instance = null_mut();
+    } else {
+        let mut v = 0.0;
+        let s = (r.get)(r.instance, &r.force, 1, &mut v, 1);
+        r.statuses.push(s);
+    }
+}
+
+#[test]
+fn a_logger_that_calls_back_in_or_frees_the_instance_finds_it_consistent() {
+    let lib = library();
+    let api = Api3 { lib: &lib };
+    let unit = units::by_identifier(PWI).unwrap();
+    let token = CString::new(unit.instantiation_token()).unwrap();
+    let name = CString::new("reentrant").unwrap();
+    for free_it in [false, true] {
+        let mut r = Reentrant {
+            get: *api.sym::<unsafe extern "C" fn(Comp, *const u32, usize, *mut f64, usize) -> fmi3Status>(b"fmi3GetFloat64"),
+            free: *api.sym::<unsafe extern "C" fn(Comp)>(b"fmi3FreeInstance"),
+            instance: null_mut(),
+            force: unit.vr("force").unwrap() as u32,
+            free_it,
+            statuses: Vec::new(),
+        };
+        let env = &mut r as *mut Reentrant as *mut c_void;
+        let c = unsafe {
+            api.sym::<fmi_host::fmi3::InstantiateMe>(b"fmi3InstantiateModelExchange")(name.as_ptr(), token.as_ptr(), null(), false, false, env, Some(reentrant_logger))
+        };
+        assert!(!c.is_null());
+        assert_eq!(api.enter_initialization(c), fmi3OK);
+        assert_eq!(api.call0(b"fmi3ExitInitializationMode", c), fmi3OK);
+        r.instance = c;
+        // A refused call logs an error (logging off: errors only, so the getter inside the logger logs
+        // nothing and does not recurse): the logger runs after the call, with the instance consistent.
+        assert_eq!(api.call0(b"fmi3EnterStepMode", c), fmi3Error);
+        if free_it {
+            assert!(r.instance.is_null(), "the logger freed the instance");
+            assert_eq!(api.call0(b"fmi3Terminate", c), fmi3Error, "a freed instance is refused");
+        } else {
+            assert!(!r.statuses.is_empty() && r.statuses.iter().all(|&s| s == fmi3OK), "{:?}", r.statuses);
+            r.instance = null_mut();
+            api.free(c);
+        }
+    }
+}

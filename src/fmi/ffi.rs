@@ -88,7 +88,7 @@ pub fn call_on(
         }
         f(inst)
     }));
-    match result {
+    let status = match result {
         Ok(Ok(())) => Status::Ok,
         Ok(Err(Failure { status, message, enters_error_state })) => {
             let category = if status == Status::Fatal { "logStatusFatal" } else { "logStatusError" };
@@ -111,7 +111,14 @@ pub fn call_on(
             inst.log(Status::Fatal, "logStatusFatal", &format!("{function}: internal error ({what}); the instance cannot continue"));
             Status::Fatal
         }
+    };
+    // The messages go to the host only now: from here on the instance is not touched, so a logger that
+    // calls back into the library (or frees the instance) meets no borrow of it.
+    let (logger, name, messages) = inst.take_log();
+    for (s, category, message) in messages {
+        logger.log(&name, s, &category, &message);
     }
+    status
 }
 
 /// A C array as a slice; NULL is allowed only for an empty array.

@@ -137,6 +137,7 @@ pub enum LogCallback {
 }
 
 /// The host's logger and which categories are switched on.
+#[derive(Clone)]
 pub struct Logger {
     pub callback: LogCallback,
     /// The host's environment pointer (fmi2ComponentEnvironment, fmi3InstanceEnvironment).
@@ -204,6 +205,8 @@ pub struct Instance {
     pub logger: Logger,
     /// The strings handed out by the last fmi2GetString (valid until the next call, FMI 2.0 Sec. 2.1.7).
     pub strings: Vec<CString>,
+    /// Messages for the host's logger, passed on after the call (`log`).
+    pending_log: Vec<(Status, String, String)>,
     /// Whether the model's state reflects the current parameters (false after a parameter changes
     /// before the end of initialization).
     model_ready: bool,
@@ -231,6 +234,7 @@ impl Instance {
             stop_time: None,
             logger,
             strings: Vec::new(),
+            pending_log: Vec::new(),
             model_ready: false,
             resources,
             event_mode_used: false,
@@ -244,8 +248,18 @@ impl Instance {
         self.unit.token(self.api)
     }
 
-    pub fn log(&self, status: Status, category: &str, message: &str) {
-        self.logger.log(&self.name, status, category, message);
+    /// Keeps a message for the host's logger; `ffi::call_on` passes the messages on when the call is
+    /// done and the instance no longer borrowed, so that a logger that calls back into the library (or
+    /// frees the instance) finds it in a consistent state.
+    pub fn log(&mut self, status: Status, category: &str, message: &str) {
+        if self.logger.enabled(category) {
+            self.pending_log.push((status, category.to_string(), message.to_string()));
+        }
+    }
+
+    /// The logger, the instance's name and the messages kept since the last call.
+    pub fn take_log(&mut self) -> (Logger, CString, Vec<(Status, String, String)>) {
+        (self.logger.clone(), self.name.clone(), std::mem::take(&mut self.pending_log))
     }
 
     /// The calling-sequence check of one function.

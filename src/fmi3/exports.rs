@@ -506,8 +506,10 @@ pub unsafe extern "C" fn fmi3SetBoolean(
     values: *const fmi3Boolean,
     nValues: usize,
 ) -> fmi3Status {
-    // SAFETY: the host's arguments of this FMI function, passed on as they came.
-    unsafe { set_from(c, "fmi3SetBoolean", allowed::SET_OTHER, vr, nvr, values, nValues, VarType::Boolean, Value::Boolean) }
+    // The host's C bools read as bytes: a value other than 0 or 1 from a host that is not C must not
+    // become an invalid Rust bool.
+    // SAFETY: the host's arguments of this FMI function, passed on as they came (fmi3Boolean is one byte).
+    unsafe { set_from(c, "fmi3SetBoolean", allowed::SET_OTHER, vr, nvr, values.cast::<u8>(), nValues, VarType::Boolean, |b| Value::Boolean(b != 0)) }
 }
 
 #[no_mangle]
@@ -1151,12 +1153,14 @@ pub unsafe extern "C" fn fmi3DoStep(
             result.map(|_| ())
         });
         let Some((event, callback, environment, early_allowed, event_mode, time)) = piece else { return status };
-        let finish = |early: bool| {
+        // A piece that ended at an event: before the step's end it is an early return; at the end the step
+        // is complete, and with Event Mode the master is asked to handle the event there too.
+        let finish = |at_event: bool| {
             // SAFETY: the host's output arguments, checked non-NULL in the piece above.
             unsafe {
-                *eventHandlingNeeded = early && event_mode;
+                *eventHandlingNeeded = at_event && event_mode;
                 *terminateSimulation = false;
-                *earlyReturn = early;
+                *earlyReturn = at_event && end - time > 4.0 * f64::EPSILON * end.abs();
                 *lastSuccessfulTime = time;
             }
             status
@@ -1165,6 +1169,11 @@ pub unsafe extern "C" fn fmi3DoStep(
             return finish(false);
         }
         let Some(t_event) = event else { return finish(false) };
+        if !(t_event > from) {
+            // The integrators report only events after a piece's start; a master must never be handed a
+            // step that ends where it began.
+            return fmi3Error;
+        }
         let Some(update) = callback else { return finish(true) };
         // The master hears of the event, reads the outputs there if it likes, and may end the step.
         if cs(c, F, allowed::DO_STEP, |inst| {
@@ -1174,10 +1183,12 @@ pub unsafe extern "C" fn fmi3DoStep(
         {
             return fmi3Error;
         }
-        let (mut requested, mut requested_time) = (false, t_event);
+        // A C bool the host writes: read as a byte, so that a host writing another value than 0 or 1
+        // cannot make an invalid Rust bool.
+        let (mut requested, mut requested_time) = (0u8, t_event);
         // SAFETY: the host's callback with the arguments FMI 3.0 Sec. 4.2.2 gives it; no borrow of the
-        // instance is held across it.
-        unsafe { update(environment, t_event, false, true, true, early_allowed, &mut requested, &mut requested_time) };
+        // instance is held across it; `requested` is one byte, as a C bool.
+        unsafe { update(environment, t_event, false, true, true, early_allowed, (&mut requested as *mut u8).cast(), &mut requested_time) };
         // Back to Step Mode; an instance the master freed or broke meanwhile is refused here.
         let back = ffi::call_on(&INSTANCES, c, F, Some(Kind::CoSimulation), allowed::INTERMEDIATE_UPDATE, |inst| {
             inst.mode = Mode::StepComplete;
@@ -1186,9 +1197,9 @@ pub unsafe extern "C" fn fmi3DoStep(
         if back != Status::Ok {
             return back as fmi3Status;
         }
-        if (early_allowed && requested) || !(end - t_event > 4.0 * f64::EPSILON * end.abs()) {
-            // Ended at the event: asked for, or the event is the step's end.
-            return finish(early_allowed && requested);
+        let at_end = !(end - t_event > 4.0 * f64::EPSILON * end.abs());
+        if (early_allowed && requested != 0) || at_end {
+            return finish(true);
         }
         from = t_event;
         first = false;

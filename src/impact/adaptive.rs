@@ -55,9 +55,10 @@ impl Sphere {
     }
 
     /// Advances the state from `t` to `t_end` with the wall moving as `wall`, landing on branch switches.
-    /// With `stop_at_event`, stops at the first located switch that changes the contact state and returns its time.
+    /// With `stop_at_event`, stops at the first located switch after `t` that changes the contact state and
+    /// returns its time.
     pub(super) fn advance_adaptive(&mut self, wall: &WallMotion, t: f64, t_end: f64, y: &mut State, stop_at_event: bool) -> Result<Option<f64>, StepError> {
-        let start_state = self.contact_state();
+        let (t_start, mut start_state) = (t, self.contact_state());
         let mut t = t;
         let mut h = if self.last_step > 0.0 { self.last_step } else { self.initial_step(y) };
         let mut steps = 0u64;
@@ -105,7 +106,9 @@ impl Sphere {
             *y = y_new;
             t = t_new;
             self.accept(wall, t, y);
-            if stop_at_event && any_crossed && self.contact_state() != start_state {
+            if any_crossed && t == t_start {
+                start_state = self.contact_state();
+            } else if stop_at_event && any_crossed && self.contact_state() != start_state {
                 return Ok(Some(t));
             }
             // The shortened last step of a communication step says nothing about the step size the

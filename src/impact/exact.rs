@@ -200,14 +200,17 @@ const MAX_STALLS: u32 = 16;
 impl Sphere {
     /// Advances by closed-form segments from branch switch to branch switch. The contact work is the
     /// energy the sphere lost in the wall's frame: W = m g (x_1 - x_0) - m (x_1'^2 - x_0'^2) / 2.
-    /// With `stop_at_event`, stops at the first branch switch that changes the contact state and returns its time.
+    /// With `stop_at_event`, stops at the first branch switch after `t` that changes the contact state and
+    /// returns its time (switches at `t` itself are where the step starts: a master returning there would
+    /// make no progress).
     pub(super) fn advance_exact(&mut self, wall: &WallMotion, t: f64, t_end: f64, y: &mut State, stop_at_event: bool) -> Result<Option<f64>, StepError> {
+        let t_start = t;
         let u = wall.velocity;
         let mut t = t;
         let mut x = [wall.at(t) - y.bottom, u - y.velocity];
         // The branch the motion goes into now: the master may have turned the wall around.
         self.contact.accept(x[0], x[1]);
-        let start_state = self.contact_state();
+        let mut start_state = self.contact_state();
         let mut event = None;
         let (mut segments, mut stalls) = (0u64, 0u32);
         // A rounding leftover of the communication step is no step at all.
@@ -230,9 +233,11 @@ impl Sphere {
             x = x1;
             self.steps += 1;
             if crossing.is_some() {
+                let before = t;
                 t += tau;
                 self.events += 1;
-                stalls = if tau == 0.0 { stalls + 1 } else { 0 };
+                // No progress: a switch at tau 0, or at a tau too small to move the time.
+                stalls = if t == before { stalls + 1 } else { 0 };
                 if stalls > MAX_STALLS {
                     return Err(StepError::NoProgress { t });
                 }
@@ -242,7 +247,9 @@ impl Sphere {
                 t += horizon;
             }
             self.contact.accept(x[0], x[1]);
-            if stop_at_event && crossing.is_some() && self.contact_state() != start_state {
+            if crossing.is_some() && t == t_start {
+                start_state = self.contact_state();
+            } else if stop_at_event && crossing.is_some() && self.contact_state() != start_state {
                 event = Some(t);
                 break;
             }

@@ -6,7 +6,8 @@
 use super::sphere::{Sphere, State, StepError, WallMotion, MAX_STEPS};
 
 impl Sphere {
-    /// With `stop_at_event`, stops after the first step that changes the contact state and returns its end.
+    /// With `stop_at_event`, stops after the first step that changes the contact state and returns its end
+    /// (the communication step's end when it is the last).
     pub(super) fn advance_verlet(
         &mut self,
         step: f64,
@@ -45,8 +46,8 @@ impl Sphere {
             self.steps += 1;
             f = f1;
             alpha = alpha1;
-            if stop_at_event && self.contact_state() != start_state && i + 1 < n as u64 {
-                return Ok(Some(t1));
+            if stop_at_event && self.contact_state() != start_state {
+                return Ok(Some(if i + 1 == n as u64 { t_end } else { t1 }));
             }
         }
         Ok(None)

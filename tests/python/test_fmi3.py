@@ -203,6 +203,53 @@ def test_a_1_ms_step_returns_early_at_contact_and_separation_at_the_closed_forms
     assert np.allclose(t[-3:], [1e-3, 2e-3, 3e-3], rtol=1e-15, atol=0)
 
 
+@pytest.mark.parametrize("solver", ["adaptive", "verlet"])
+def test_every_integrator_returns_early_at_contact_and_separation(solver):
+    """adaptive locates the events as it locates every branch switch; verlet ends the step after the
+    fixed step in which the state changed (its own resolution, rayleigh_fraction of the Rayleigh step)."""
+    values, t_contact, t_separation = _linear_impact()
+    r = fmpy.simulate_fmu(str(path3("ParticleWallImpact")), start_values={**values, "solver": solver}, stop_time=2e-3,
+                          output_interval=1e-3, early_return_allowed=True, output=["contact_state"])
+    t, state = r["time"], r["contact_state"]
+    formed, separated = t[np.argmax(state == 1)], t[np.flatnonzero(state == 1)[-1] + 1]
+    tol = 1e-9 if solver == "adaptive" else 0.2 * (t_separation - t_contact)
+    assert formed == pytest.approx(t_contact, abs=tol * (1 if solver != "adaptive" else t_contact))
+    assert separated == pytest.approx(t_separation, abs=tol * (1 if solver != "adaptive" else t_separation))
+    assert list(state[t > 1e-6]) == [0] * int(np.sum(t > 1e-6)), "no event after separation"
+
+
+def test_an_event_at_the_step_end_asks_for_event_mode_without_an_early_return(unzipped):
+    """A master whose communication point is the contact time itself: the step completes (no early
+    return) and, with Event Mode, is asked to handle the event there."""
+    values, _, _ = _linear_impact()
+
+    def started():
+        fmu, vr = slave(unzipped, "ParticleWallImpact", Log(), eventModeUsed=True, earlyReturnAllowed=True)
+        for name, value in values.items():
+            if isinstance(value, str):
+                fmu.setString([vr[name]], [value])
+            else:
+                fmu.setFloat64([vr[name]], [value])
+        fmu.enterInitializationMode()
+        fmu.exitInitializationMode()
+        fmu.updateDiscreteStates()
+        fmu.enterStepMode()
+        return fmu, vr
+
+    fmu, vr = started()
+    event, _, early, t_contact = fmu.doStep(0.0, 1e-3)
+    assert early and event
+    fmu.terminate()
+    fmu.freeInstance()
+    # A second run whose step ends exactly there.
+    fmu, vr = started()
+    event, _, early, t_last = fmu.doStep(0.0, t_contact)
+    assert event and not early and t_last == t_contact
+    assert fmu.getInt32([vr["contact_state"]]) == [1]
+    fmu.terminate()
+    fmu.freeInstance()
+
+
 def test_without_early_return_a_1_ms_step_sees_no_contact():
     values, _, _ = _linear_impact()
     r = fmpy.simulate_fmu(str(path3("ParticleWallImpact")), start_values=values, stop_time=2e-3, output_interval=1e-3, output=["contact_state", "sphere_velocity"])
