@@ -42,28 +42,7 @@ pub fn xml(unit: &UnitInfo, guid: &str) -> String {
         x,
         "  <CoSimulation modelIdentifier=\"{id}\" canHandleVariableCommunicationStepSize=\"true\"{interpolate} canGetAndSetFMUstate=\"true\" canSerializeFMUstate=\"true\"/>"
     );
-    x.push_str("  <UnitDefinitions>\n");
-    for u in UNITS.iter().filter(|u| unit.variables.iter().any(|v| v.unit == u.name)) {
-        let mut attrs = String::new();
-        for (name, e) in [("kg", u.kg), ("m", u.m), ("s", u.s)] {
-            if e != 0 {
-                let _ = write!(attrs, " {name}=\"{e}\"");
-            }
-        }
-        let _ = writeln!(x, "    <Unit name=\"{}\">\n      <BaseUnit{attrs}/>\n    </Unit>", escape(u.name));
-    }
-    x.push_str("  </UnitDefinitions>\n");
-    x.push_str("  <LogCategories>\n");
-    for (name, doc) in super::LOG_CATEGORIES {
-        let _ = writeln!(x, "    <Category name=\"{name}\" description=\"{}\"/>", escape(doc));
-    }
-    x.push_str("  </LogCategories>\n");
-    let _ = writeln!(
-        x,
-        "  <DefaultExperiment startTime=\"0\" stopTime=\"{}\" tolerance=\"1e-06\" stepSize=\"{}\"/>",
-        super::variables::format_real(unit.stop_time),
-        super::variables::format_real(unit.step_size)
-    );
+    x.push_str(&units_categories_experiment(unit));
     x.push_str("  <ModelVariables>\n");
     for (i, v) in unit.variables.iter().enumerate() {
         let _ = writeln!(x, "    <!-- index {} -->", i + 1);
@@ -89,6 +68,32 @@ pub fn xml(unit: &UnitInfo, guid: &str) -> String {
         let _ = writeln!(x, "    </{tag}>");
     }
     x.push_str("  </ModelStructure>\n</fmiModelDescription>\n");
+    x
+}
+
+/// `UnitDefinitions`, `LogCategories` and `DefaultExperiment`: the same text in FMI 2.0 and 3.0.
+pub fn units_categories_experiment(unit: &UnitInfo) -> String {
+    let mut x = String::from("  <UnitDefinitions>\n");
+    for u in UNITS.iter().filter(|u| unit.variables.iter().any(|v| v.unit == u.name)) {
+        let mut attrs = String::new();
+        for (name, e) in [("kg", u.kg), ("m", u.m), ("s", u.s)] {
+            if e != 0 {
+                let _ = write!(attrs, " {name}=\"{e}\"");
+            }
+        }
+        let _ = writeln!(x, "    <Unit name=\"{}\">\n      <BaseUnit{attrs}/>\n    </Unit>", escape(u.name));
+    }
+    x.push_str("  </UnitDefinitions>\n  <LogCategories>\n");
+    for (name, doc) in super::LOG_CATEGORIES {
+        let _ = writeln!(x, "    <Category name=\"{name}\" description=\"{}\"/>", escape(doc));
+    }
+    x.push_str("  </LogCategories>\n");
+    let _ = writeln!(
+        x,
+        "  <DefaultExperiment startTime=\"0\" stopTime=\"{}\" tolerance=\"1e-06\" stepSize=\"{}\"/>",
+        super::variables::format_real(unit.stop_time),
+        super::variables::format_real(unit.step_size)
+    );
     x
 }
 

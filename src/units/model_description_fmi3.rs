@@ -5,8 +5,8 @@
 //! `guid`, the Co-Simulation capabilities of FMI 3.0 (Event Mode, early return), and a `ModelStructure`
 //! that names unknowns by value reference and lists the event indicators (FMI 3.0 Sec. 2.4.8).
 
-use super::model_description::escape;
-use super::variables::{format_real, Causality, Role, VarType, Variable, UNITS};
+use super::model_description::{escape, units_categories_experiment};
+use super::variables::{format_real, Causality, Role, VarType, Variable};
 use super::UnitInfo;
 use std::fmt::Write;
 
@@ -46,27 +46,7 @@ pub fn xml(unit: &UnitInfo, token: &str) -> String {
         x,
         "  <CoSimulation modelIdentifier=\"{id}\" canHandleVariableCommunicationStepSize=\"true\" canGetAndSetFMUState=\"true\" canSerializeFMUState=\"true\"{events}/>"
     );
-    x.push_str("  <UnitDefinitions>\n");
-    for u in UNITS.iter().filter(|u| unit.variables.iter().any(|v| v.unit == u.name)) {
-        let mut attrs = String::new();
-        for (name, e) in [("kg", u.kg), ("m", u.m), ("s", u.s)] {
-            if e != 0 {
-                let _ = write!(attrs, " {name}=\"{e}\"");
-            }
-        }
-        let _ = writeln!(x, "    <Unit name=\"{}\">\n      <BaseUnit{attrs}/>\n    </Unit>", escape(u.name));
-    }
-    x.push_str("  </UnitDefinitions>\n  <LogCategories>\n");
-    for (name, doc) in super::LOG_CATEGORIES {
-        let _ = writeln!(x, "    <Category name=\"{name}\" description=\"{}\"/>", escape(doc));
-    }
-    x.push_str("  </LogCategories>\n");
-    let _ = writeln!(
-        x,
-        "  <DefaultExperiment startTime=\"0\" stopTime=\"{}\" tolerance=\"1e-06\" stepSize=\"{}\"/>",
-        format_real(unit.stop_time),
-        format_real(unit.step_size)
-    );
+    x.push_str(&units_categories_experiment(unit));
     x.push_str("  <ModelVariables>\n");
     for (vr, v) in unit.variables.iter().enumerate() {
         x.push_str(&variable_xml(unit, vr, v));
