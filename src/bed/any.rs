@@ -71,8 +71,30 @@ pub fn interactions<L: BedLaw>(scene: &BedScene, walls: &[Wall]) -> Result<Inter
             pairs.push(Interaction::particle_pair(&particle, r1, m1, r2, m2, scene.rolling_friction)?);
         }
     }
-    let wall_pairs = walls.iter().map(|w| wall_row(scene, &wall, w)).collect::<Result<_, _>>()?;
+    let wall_pairs = walls
+        .iter()
+        .map(|w| if w.is_mirror() { mirror_row(scene, &particle) } else { wall_row(scene, &wall, w) })
+        .collect::<Result<_, _>>()?;
     Ok((pairs, wall_pairs))
+}
+
+/// A mirror plane's interaction with each species: the particle-particle law of a sphere with its own
+/// image (R* = r/2, m* = m/2, at the pair's overlap that `Shape::Mirror` gives). The image moves as the
+/// mirror of the sphere, so the two surfaces never slide past each other (no friction) and approach at
+/// twice the sphere's normal speed: the damping coefficient is doubled, as the kernel sees the
+/// sphere's own speed.
+fn mirror_row<L: BedLaw>(scene: &BedScene, particle: &ContactTemplate) -> Result<Vec<Interaction<L>>, ParamError> {
+    scene
+        .species()
+        .iter()
+        .map(|&(r, m)| {
+            let mut it = Interaction::particle_pair(particle, r, m, r, m, scene.rolling_friction)?;
+            it.friction = 0.0;
+            it.damping_elastic *= 2.0;
+            it.damping_plastic *= 2.0;
+            Ok(it)
+        })
+        .collect()
 }
 
 /// One wall's interaction with each species, from the bed's particle-wall template.

@@ -12,6 +12,8 @@
 //! - Hydrostatic and deviatoric stress (Eqs. 5.2-5.3) of Bagi's tensor (Eq. 5.1) in the dynamic bin:
 //!   5.2 x 5.2 x 4.2 mean diameters (5.2 x 5.2 x 4.2 mm for the seed's 1 mm spheres), directly below the
 //!   indenter, its top at the indenter's lowest point, moving with it (Sec. 5.2, Fig. 5.18).
+//! - On a die sector (`BedScene::die_sector`) every output is the whole die's: the sector's force,
+//!   contacts and kinetic energy over die_sector, the bin's stress from the sector's share of its spheres.
 //!
 //! The engine steps with its own time step whatever the communication step: the time not yet stepped is
 //! carried to the next call, and every decision (turning at max_penetration, the end of the test, the
@@ -267,14 +269,15 @@ impl Indentation {
         self.record.touch - (w.position[2] - 0.5 * self.setup.indenter_diameter)
     }
 
-    /// Force of the bed on the indenter, upward [N].
+    /// Force of the bed on the indenter, upward [N]: on a die sector, the sector's times the number of
+    /// its images (each sphere stands for 1 / die_sector spheres of the whole die).
     pub fn force(&self) -> f64 {
-        self.indenter().force[2]
+        self.indenter().force[2] / self.scene.die_sector
     }
 
-    /// Spheres touching the indenter.
+    /// Spheres touching the indenter (on a die sector, with their mirror images).
     pub fn contacts(&self) -> usize {
-        self.engine.wall_touching(self.indenter)
+        (self.engine.wall_touching(self.indenter) as f64 / self.scene.die_sector).round() as usize
     }
 
     /// Advances the test by `h` seconds. With `Motion::Input`, `input` = (depth, rate) at the start of
@@ -415,7 +418,7 @@ impl Indentation {
         let mean = self.scene.size_distribution.mean_diameter();
         let bottom = self.indenter().position[2] - 0.5 * d;
         let bin = Cuboid { width_x: BIN[0] * mean, width_y: BIN[1] * mean, z_low: bottom - BIN[2] * mean, z_high: bottom };
-        let stress = bagi(&mut self.engine, &bin);
+        let stress = bagi(&mut self.engine, &bin).of_whole_die(self.scene.die_sector);
         debug_assert!(bin.volume() > 0.0);
         Reading {
             force: f,
@@ -427,7 +430,7 @@ impl Indentation {
             hydrostatic_stress: stress.hydrostatic(),
             deviatoric_stress: stress.deviatoric(),
             contacts: self.contacts(),
-            kinetic_energy: self.engine.particles().kinetic_energy(),
+            kinetic_energy: self.engine.particles().kinetic_energy() / self.scene.die_sector,
             state: self.record.state,
             contact_depth: self.record.contact_depth.unwrap_or(0.0),
             plateau_hardness: self.record.plateau_hardness(),

@@ -69,7 +69,7 @@ pub fn fill(scene: &BedScene) -> Result<Particles, BedError> {
             allowed: format!("above twice the largest sphere diameter, {:.4e} m", 2.0 * d_max),
         }));
     }
-    let height = psd.solid_volume(n) / (scene.fill_solid_fraction * PI * die_r * die_r) + d_max;
+    let height = psd.solid_volume(n) / (scene.fill_solid_fraction * scene.sector_area()) + d_max;
     if height > scene.die_height {
         return Err(BedError::Setup(format!(
             "insertion impossible: {n} spheres at fill_solid_fraction {} need a column {:.4} m high, above die_height = {} m; lower particle_count, or raise die_diameter or die_height",
@@ -95,8 +95,12 @@ pub fn fill(scene: &BedScene) -> Result<Particles, BedError> {
             let mut ok = false;
             for _attempt in 0..5000 {
                 let rho = (die_r - r) * rng.uniform().sqrt();
-                let th = 2.0 * PI * rng.uniform();
+                let th = 2.0 * PI * scene.die_sector * rng.uniform();
                 let x = Vec3::new(rho * th.cos(), rho * th.sin(), r + (height - 2.0 * r) * rng.uniform());
+                // Clear of the sector's mirror planes (y = 0 for a half, also x = 0 for a quarter).
+                if (scene.die_sector < 1.0 && x[1] < r) || (scene.die_sector < 0.5 && x[0] < r) {
+                    continue;
+                }
                 let (cx, cy, cz) = key(x);
                 let mut free = true;
                 'search: for z in cz.saturating_sub(1)..(cz + 2).min(nz) {
@@ -143,13 +147,21 @@ pub fn fill(scene: &BedScene) -> Result<Particles, BedError> {
     Ok(p)
 }
 
-/// The die: floor at z = 0, the cylinder, and the piston parked at the top of the die.
+/// The die: floor at z = 0, the cylinder, and the piston parked at the top of the die; for a sector,
+/// its mirror planes after them (y = 0 for a half, and x = 0 for a quarter).
 pub fn die(scene: &BedScene) -> Vec<Wall> {
-    vec![
+    let mut walls = vec![
         Wall::plane("floor", ZERO, Vec3::z()),
         Wall::cylinder("die", ZERO, 0.5 * scene.die_diameter),
         Wall::plane("piston", Vec3::new(0.0, 0.0, scene.die_height), Vec3::new(0.0, 0.0, -1.0)),
-    ]
+    ];
+    if scene.die_sector < 1.0 {
+        walls.push(Wall::mirror("mirror_y", ZERO, Vec3::y()));
+    }
+    if scene.die_sector < 0.5 {
+        walls.push(Wall::mirror("mirror_x", ZERO, Vec3::x()));
+    }
+    walls
 }
 
 pub const FLOOR: usize = 0;
@@ -205,7 +217,7 @@ fn calm(e: &mut AnyEngine, scene: &BedScene, phase: &'static str, min_time: f64,
 
 /// The piston's stress on the bed [Pa] (compressive positive).
 pub fn piston_stress(e: &AnyEngine, scene: &BedScene) -> f64 {
-    e.walls()[PISTON].force[2] / (PI * 0.25 * scene.die_diameter * scene.die_diameter)
+    e.walls()[PISTON].force[2] / scene.sector_area()
 }
 
 /// The phases, in order.
@@ -254,7 +266,7 @@ pub fn resume(e: AnyEngine, scene: &BedScene, last: &str, progress: &mut dyn FnM
     let done = phase_done(&e, scene);
     // The fill column's height, as `fill` makes it: the scale of the settling and relaxation times.
     let psd = &scene.size_distribution;
-    let fill_height = psd.solid_volume(scene.particle_count) / (scene.fill_solid_fraction * PI * 0.25 * scene.die_diameter * scene.die_diameter) + psd.max_diameter();
+    let fill_height = psd.solid_volume(scene.particle_count) / (scene.fill_solid_fraction * scene.sector_area()) + psd.max_diameter();
     run_phases(e, scene, done, last, fill_height, progress)
 }
 
@@ -308,7 +320,7 @@ fn run_phases(mut e: AnyEngine, scene: &BedScene, done: &str, last: &str, fill_h
                 report.consolidation_stress = mean;
                 let top = e.walls()[PISTON].position[2];
                 let region = Region { radius: 0.5 * scene.die_diameter, z_low: 0.25 * top, z_high: 0.75 * top };
-                report.stress_at_target = Some(bagi(&mut e, &region));
+                report.stress_at_target = Some(bagi(&mut e, &region).of_whole_die(scene.die_sector));
                 break;
             }
             let travel = h0 - e.walls()[PISTON].position[2];

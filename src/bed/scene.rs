@@ -28,6 +28,10 @@ pub struct BedScene {
     pub particle_count: usize,
     pub die_diameter: f64,
     pub die_height: f64,
+    /// The part of the die simulated: 1 (whole), 0.5 (half: y >= 0, mirror plane y = 0) or 0.25 (a
+    /// quarter: x, y >= 0, mirror planes x = 0 and y = 0). The mirror planes stand for the spheres'
+    /// images, so every output is the whole die's.
+    pub die_sector: f64,
     pub gravity: f64,
     /// Fixed step [s], or None to derive it from `rayleigh_fraction`.
     pub time_step: Option<f64>,
@@ -45,7 +49,7 @@ pub struct BedScene {
 }
 
 /// The keys of a bed scene, with their defaults and units, for the docs and for typo hints.
-pub const BED_KEYS: [(&str, &str, &str); 20] = [
+pub const BED_KEYS: [(&str, &str, &str); 21] = [
     ("particle_particle", "-", "scene keys of the particle-particle law (004 Tables 5.2-5.3, column 1)"),
     ("particle_wall", "-", "scene keys that differ against the die, floor and piston (Table 5.3, column 2)"),
     ("rolling_friction", "-", "particle-particle rolling friction coefficient mu_r (Table 5.3: 0.1)"),
@@ -55,6 +59,7 @@ pub const BED_KEYS: [(&str, &str, &str); 20] = [
     ("particle_count", "-", "number of spheres (default 16000, 004 Sec. 5.1.3)"),
     ("die_diameter", "m", "inner diameter of the die (default 0.039)"),
     ("die_height", "m", "height of the die: the loose fill must fit in it (default 0.06)"),
+    ("die_sector", "-", "part of the die simulated, with mirror planes for the rest: 1 (default), 0.5 or 0.25; particle_count is the sector's"),
     ("gravity", "m/s^2", "gravitational acceleration, downward (default 9.81)"),
     ("time_step", "s", "fixed time step; 0 derives rayleigh_fraction x the Rayleigh time of the smallest sphere"),
     ("rayleigh_fraction", "-", "time step as a fraction of the Rayleigh time, 000 Eq. 71 (default 0.2)"),
@@ -181,6 +186,10 @@ impl BedScene {
         check_closed_low("time_step", time_step, 0.0, 1.0, "s")?;
         let skin = num("skin", 0.0)?;
         check_closed_low("skin", skin, 0.0, 1.0, "m")?;
+        let die_sector = num("die_sector", 1.0)?;
+        if ![1.0, 0.5, 0.25].contains(&die_sector) {
+            return Err(ParamError::OutOfRange { name: "die_sector", value: die_sector, allowed: "1 (the whole die), 0.5 (half) or 0.25 (a quarter)".into() });
+        }
         let threads = num("threads", 1.0)?;
         check_closed_low("threads", threads, 1.0, 257.0, "")?;
         Ok(BedScene {
@@ -196,6 +205,7 @@ impl BedScene {
             particle_count: count as usize,
             die_diameter: check_open("die_diameter", num("die_diameter", 0.039)?, 0.0, 100.0, "m")?,
             die_height: check_open("die_height", num("die_height", 0.06)?, 0.0, 100.0, "m")?,
+            die_sector,
             gravity: check_closed_low("gravity", num("gravity", 9.81)?, 0.0, 1e6, "m/s^2")?,
             time_step: if time_step > 0.0 { Some(time_step) } else { None },
             rayleigh_fraction: check_open("rayleigh_fraction", num("rayleigh_fraction", 0.2)?, 0.0, 1.0 + 1e-12, "-")?,
@@ -221,6 +231,7 @@ impl BedScene {
             "particle_count": self.particle_count,
             "die_diameter": self.die_diameter,
             "die_height": self.die_height,
+            "die_sector": self.die_sector,
             "gravity": self.gravity,
             "time_step": self.time_step.unwrap_or(0.0),
             "rayleigh_fraction": self.rayleigh_fraction,
@@ -232,6 +243,11 @@ impl BedScene {
             "seed": self.seed,
             "threads": self.threads,
         })
+    }
+
+    /// The cross-section of the die the bed fills: the sector's share of pi D^2 / 4 [m^2].
+    pub fn sector_area(&self) -> f64 {
+        self.die_sector * std::f64::consts::PI * 0.25 * self.die_diameter * self.die_diameter
     }
 
     /// Radius [m] and mass [kg] of each species (size class).

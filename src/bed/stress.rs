@@ -57,6 +57,12 @@ impl Volume for Cuboid {
 pub struct Stress(pub Tensor);
 
 impl Stress {
+    /// The whole die's stress from a sector bed's: a volume about the die axis holds only the sector's
+    /// share of the spheres (their mirror images the rest), with the same stress.
+    pub fn of_whole_die(self, die_sector: f64) -> Stress {
+        Stress(self.0 / die_sector)
+    }
+
     pub fn get(&self, i: usize, j: usize) -> f64 {
         self.0[(i, j)]
     }

@@ -1,6 +1,6 @@
-//! Walls: a plane (the die's floor), a cylinder (the die), a sphere (the indenter) and the piston (a
-//! plane that moves). Each has a prescribed velocity, set by whoever drives the bed, and measures the
-//! force the particles exert on it.
+//! Walls: a plane (the die's floor), a cylinder (the die), a sphere (the indenter), the piston (a
+//! plane that moves) and the mirror planes of a die sector. Each has a prescribed velocity, set by
+//! whoever drives the bed, and measures the force the particles exert on it.
 
 use super::{Vec3, ZERO};
 
@@ -12,6 +12,10 @@ pub enum Shape {
     Cylinder { radius: f64 },
     /// Sphere of this radius centred at `position`; particles stay outside.
     Sphere { radius: f64 },
+    /// Mirror plane of a die sector through `position` with unit `normal` into the sector: a particle
+    /// meets its own mirror image there. The overlap is the pair's, 2 (r - distance); the interaction
+    /// is the particle-particle law of the particle with its image (`any::mirror_row`).
+    Mirror { normal: Vec3 },
 }
 
 #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -44,6 +48,15 @@ impl Wall {
         Wall { name: name.into(), shape: Shape::Cylinder { radius }, position: axis_point, velocity: ZERO, force: ZERO }
     }
 
+    pub fn mirror(name: &str, point: Vec3, normal: Vec3) -> Wall {
+        let l = normal.norm();
+        Wall { name: name.into(), shape: Shape::Mirror { normal: normal * (1.0 / l) }, position: point, velocity: ZERO, force: ZERO }
+    }
+
+    pub fn is_mirror(&self) -> bool {
+        matches!(self.shape, Shape::Mirror { .. })
+    }
+
     pub fn sphere(name: &str, centre: Vec3, radius: f64) -> Wall {
         Wall { name: name.into(), shape: Shape::Sphere { radius }, position: centre, velocity: ZERO, force: ZERO }
     }
@@ -62,6 +75,7 @@ impl Wall {
         let d = x - self.position;
         match self.shape {
             Shape::Plane { normal } => WallTouch { overlap: r - d.dot(&normal), normal: -normal },
+            Shape::Mirror { normal } => WallTouch { overlap: 2.0 * (r - d.dot(&normal)), normal: -normal },
             Shape::Cylinder { radius } => {
                 let rho = d.xy().norm();
                 let n = if rho > 0.0 { Vec3::new(d.x / rho, d.y / rho, 0.0) } else { Vec3::x() };
@@ -94,5 +108,10 @@ mod tests {
         let t = ball.touch(Vec3::new(0.0, 0.0, 0.01 - 5.5e-3), 1e-3);
         assert!((t.overlap - 0.5e-3).abs() < 1e-15);
         assert_eq!(t.normal, Vec3::z());
+        // A sphere 0.9 r from a mirror plane overlaps its image by 2 x 0.1 r.
+        let m = Wall::mirror("mirror_x", ZERO, Vec3::x());
+        let t = m.touch(Vec3::new(0.9e-3, 0.004, 0.01), 1e-3);
+        assert!((t.overlap - 0.2e-3).abs() < 1e-15);
+        assert_eq!(t.normal, -Vec3::x());
     }
 }

@@ -316,10 +316,14 @@ fn describe(engine: &mut AnyEngine, scene: &BedScene) {
     let n = p.len();
     let height = prepare::bed_height(p);
     let solid: f64 = p.radius.iter().map(|r| 4.0 / 3.0 * std::f64::consts::PI * r.powi(3)).sum();
-    let die_area = std::f64::consts::PI * 0.25 * scene.die_diameter * scene.die_diameter;
+    let die_area = scene.sector_area();
     let (contacts, mean_overlap) = with_engine!(&*engine, e => e.contact_statistics());
     let mean_d = 2.0 * p.radius.iter().sum::<f64>() / n.max(1) as f64;
-    println!("particles:            {n}");
+    if scene.die_sector < 1.0 {
+        println!("particles:            {n} in {} of the die (mirror planes; the whole die would hold {:.0})", scene.die_sector, n as f64 / scene.die_sector);
+    } else {
+        println!("particles:            {n}");
+    }
     println!("contact model:        {:?}", scene.model);
     println!("bed height:           {height:.5e} m ({:.1} mean diameters)", height / mean_d);
     println!("solid fraction:       {:.4}", solid / (die_area * height));
@@ -331,7 +335,7 @@ fn describe(engine: &mut AnyEngine, scene: &BedScene) {
     println!("memory:               {:.0} bytes per particle (the engine on one thread, as loaded from the file)", engine.memory_bytes() as f64 / n.max(1) as f64);
     // Bagi's stress in the middle of the bed, a die radius wide minus two diameters.
     let region = Region { radius: 0.5 * scene.die_diameter - 2.0 * mean_d, z_low: 0.25 * height, z_high: 0.75 * height };
-    let s = bagi(engine, &region);
+    let s = bagi(engine, &region).of_whole_die(scene.die_sector);
     println!(
         "stress, middle half:  sigma_zz {:.4e} Pa, sigma_xx {:.4e} Pa, hydrostatic {:.4e} Pa, deviatoric {:.4e} Pa (004 Eqs. 5.1-5.3)",
         s.get(2, 2),
