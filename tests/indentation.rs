@@ -117,6 +117,30 @@ fn saved_test_continues_bit_for_bit(setup: Setup) {
     assert_eq!(test.reading(), back.reading());
 }
 
+#[test]
+fn a_saved_test_keeps_its_own_indenter_and_die_walls() {
+    // An indenter ten times softer than the bed's walls and die walls five times softer: the bed file
+    // alone would bring both back with the bed's own keys.
+    let (engine, scene) = engine();
+    let mut soft = scene.particle_wall.clone();
+    soft.insert("wall_youngs_modulus".into(), serde_json::json!(1.82e10));
+    let mut die = scene.particle_wall.clone();
+    die.insert("wall_youngs_modulus".into(), serde_json::json!(3.64e10));
+    let mut test = Indentation::new(engine, scene, setup(), 0.0, Some(&soft)).unwrap();
+    test.set_die_walls(&die).unwrap();
+    for _ in 0..20 {
+        test.advance(1e-4, None).unwrap();
+    }
+    assert!(test.reading().force > 0.0, "the indenter must be in the bed when the state is saved");
+    let mut back = Indentation::restore(&test.save(), None).unwrap();
+    for _ in 0..20 {
+        test.advance(1e-4, None).unwrap();
+        back.advance(1e-4, None).unwrap();
+    }
+    assert_eq!(test.engine.particles().position, back.engine.particles().position);
+    assert_eq!(test.reading(), back.reading());
+}
+
 /// The hardness after unloading, F_max / A(h_c).
 fn final_hardness(test: &mut Indentation) -> f64 {
     run(test, 2e-4).last().unwrap().hardness

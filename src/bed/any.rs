@@ -194,6 +194,33 @@ impl AnyEngine {
         })
     }
 
+    /// Gives wall `w` of a running bed its interactions from the particle-wall scene keys `pair`, every
+    /// contact keeping its memory: the indenter's own keys when a saved test is restored, or the die's
+    /// for a test (`Indentation::set_die_walls`). Refused for a mirror plane (its interaction is the
+    /// particles' own), when the wall would need a shorter time step than the bed's, or a law other
+    /// than the bed's.
+    pub fn set_wall_pair(&mut self, scene: &BedScene, w: usize, pair: &serde_json::Map<String, serde_json::Value>) -> Result<(), BedError> {
+        with_engine!(self, e => {
+            let wall = &e.walls[w];
+            if wall.is_mirror() {
+                return Err(BedError::Setup(format!("wall `{}` is a mirror plane: its contacts are the particles' own", wall.name)));
+            }
+            let r0 = scene.species().first().map_or(0.5e-3, |s| s.0);
+            let template = ContactTemplate::wall(pair, r0, scene.density)?;
+            let row = wall_row(scene, &template, wall)?;
+            let limit = stability_limit(scene, &[], std::slice::from_ref(&row));
+            if e.dt > limit {
+                return Err(BedError::Param(ParamError::OutOfRange {
+                    name: "time_step",
+                    value: e.dt,
+                    allowed: format!("(0, {limit:.4e}] s with wall `{}`: its contacts are stiffer than the bed's (000 Eq. 68)", wall.name),
+                }));
+            }
+            e.set_wall_row(w, row)?;
+            Ok(())
+        })
+    }
+
     /// Spheres touching wall `w` now. Only the wall's contact list is searched: every sphere that can
     /// touch it before the next list rebuild is on it.
     pub fn wall_touching(&self, w: usize) -> usize {

@@ -172,6 +172,10 @@ pub struct Indentation {
     pub record: Record,
     /// The indenter's index among the walls.
     indenter: usize,
+    /// The particle-indenter scene keys, and the die's, floor's and piston's for this test if not the
+    /// bed's own (`set_die_walls`): a saved state carries them, as the bed file holds only the bed's.
+    indenter_pair: Map<String, Value>,
+    die_pair: Option<Map<String, Value>>,
 }
 
 /// A(h) = pi (d h - h^2) (004 Eq. 2.9), 0 outside the indenter.
@@ -233,8 +237,8 @@ impl Indentation {
         let touch = first_touch_height(engine.particles(), r_i)
             .ok_or_else(|| BedError::Setup("no sphere of the bed lies under the indenter: nothing to indent".into()))?;
         let bottom = touch - start_depth;
-        let pair = indenter_pair.unwrap_or(&scene.particle_wall);
-        engine.add_wall(&scene, Wall::sphere("indenter", Vec3::new(0.0, 0.0, bottom + r_i), r_i), pair)?;
+        let pair = indenter_pair.unwrap_or(&scene.particle_wall).clone();
+        engine.add_wall(&scene, Wall::sphere("indenter", Vec3::new(0.0, 0.0, bottom + r_i), r_i), &pair)?;
         let indenter = engine.walls().len() - 1;
         if let Some(Shortcut { zone, release }) = setup.shortcut {
             if !(zone > 0.0 && zone.is_finite()) {
@@ -247,11 +251,24 @@ impl Indentation {
             engine.hold(&held);
         }
         let record = Record { state: TestState::Loading, f_max: 0.0, h_max: 0.0, unloading: vec![], contact_depth: None, touch, time_debt: 0.0, steps: 0, plateau_sum: 0.0, plateau_samples: 0 };
-        let mut test = Indentation { engine, scene, setup, record, indenter };
+        let mut test = Indentation { engine, scene, setup, record, indenter, indenter_pair: pair, die_pair: None };
         if setup.motion == Motion::Prescribed {
             test.set_indenter_velocity(-setup.indentation_speed);
         }
         Ok(test)
+    }
+
+    /// Gives the die, its floor and the piston the particle-wall scene keys `pair` for this test (a
+    /// mirror plane keeps the particles' own law), every contact keeping its memory. A shortcut: softer
+    /// walls allow a longer time step (docs/indentation.md measures what it costs).
+    pub fn set_die_walls(&mut self, pair: &Map<String, Value>) -> Result<(), BedError> {
+        for w in 0..self.engine.walls().len() {
+            if w != self.indenter && !self.engine.walls()[w].is_mirror() {
+                self.engine.set_wall_pair(&self.scene, w, pair)?;
+            }
+        }
+        self.die_pair = Some(pair.clone());
+        Ok(())
     }
 
     fn indenter(&self) -> &Wall {
@@ -448,6 +465,8 @@ impl Indentation {
             time_step: self.engine.dt(),
             held: self.engine.particles().held.clone(),
             held_reference: self.engine.held_reference(),
+            indenter_pair: Value::Object(self.indenter_pair.clone()).to_string(),
+            die_pair: self.die_pair.as_ref().map(|m| Value::Object(m.clone()).to_string()),
         };
         crate::codec::to_bytes(&saved).expect("an indentation state serializes")
     }
@@ -458,6 +477,28 @@ impl Indentation {
             crate::codec::from_bytes(bytes).map_err(|e| BedError::Setup(format!("the saved indentation state cannot be read: {e}")))?;
         let file: BedFile = file::decode(&saved.bed)?;
         let (mut engine, scene) = AnyEngine::from_file(&file, threads)?;
+        let indenter = saved.indenter as usize;
+        if indenter >= engine.walls().len() {
+            return Err(BedError::Setup("the saved indentation state has no indenter".into()));
+        }
+        // The bed file rebuilds every wall with the bed's particle-wall keys: the test's own go back on
+        // before the step they allow.
+        let object = |text: &str| -> Result<Map<String, Value>, BedError> {
+            match serde_json::from_str(text) {
+                Ok(Value::Object(m)) => Ok(m),
+                _ => Err(BedError::Setup("the saved indentation state holds unreadable wall keys".into())),
+            }
+        };
+        let indenter_pair = object(&saved.indenter_pair)?;
+        engine.set_wall_pair(&scene, indenter, &indenter_pair)?;
+        let die_pair = saved.die_pair.as_deref().map(object).transpose()?;
+        if let Some(pair) = &die_pair {
+            for w in 0..engine.walls().len() {
+                if w != indenter && !engine.walls()[w].is_mirror() {
+                    engine.set_wall_pair(&scene, w, pair)?;
+                }
+            }
+        }
         engine.set_time_step(&scene, saved.time_step)?;
         if saved.held.len() != engine.particles().len() {
             return Err(BedError::Setup("the saved indentation state holds a different number of spheres than its bed".into()));
@@ -468,11 +509,7 @@ impl Indentation {
             }
             engine.restore_held(saved.held, saved.held_reference);
         }
-        let indenter = saved.indenter as usize;
-        if indenter >= engine.walls().len() {
-            return Err(BedError::Setup("the saved indentation state has no indenter".into()));
-        }
-        Ok(Indentation { engine, scene, setup: saved.setup, record: saved.record, indenter })
+        Ok(Indentation { engine, scene, setup: saved.setup, record: saved.record, indenter, indenter_pair, die_pair })
     }
 }
 
@@ -487,6 +524,9 @@ struct Saved {
     /// The spheres held by the shortcut, and the force on each when it was held.
     held: Vec<bool>,
     held_reference: Vec<Vec3>,
+    /// The particle-indenter keys and the test's die keys (JSON objects).
+    indenter_pair: String,
+    die_pair: Option<String>,
 }
 
 /// h_c = h_0 - F_0 / S: where the tangent to the unloading curve at its start (h_0, F_0) = `points[0]`

@@ -105,6 +105,10 @@ pub struct IndentArgs {
     /// Scene keys of the particle-indenter contact over the bed's walls' (a JSON object)
     #[arg(long, value_name = "JSON")]
     indenter: Option<String>,
+    /// Scene keys of the die's, floor's and piston's contacts for this test, over the bed's walls' (a
+    /// JSON object): softer walls allow a longer time step
+    #[arg(long, value_name = "JSON")]
+    walls: Option<String>,
     /// A fixed time step [s] (refused above the bed's stability limit)
     #[arg(long, value_name = "S", value_parser = options::positive("s"))]
     time_step: Option<f64>,
@@ -479,17 +483,20 @@ fn indent_cmd(a: IndentArgs) -> Result<(), String> {
         shortcut,
     };
     let every = a.every;
-    let indenter = match &a.indenter {
-        None => None,
-        Some(text) => {
-            let overlay: serde_json::Map<String, serde_json::Value> =
-                serde_json::from_str(text).map_err(|e| format!("--indenter must be a JSON object of scene keys: {e}"))?;
-            let mut pair = scene.particle_wall.clone();
-            pair.extend(overlay);
-            Some(pair)
-        }
+    let over_walls = |option: &str, text: &Option<String>| -> Result<Option<serde_json::Map<String, serde_json::Value>>, String> {
+        let Some(text) = text else { return Ok(None) };
+        let overlay: serde_json::Map<String, serde_json::Value> =
+            serde_json::from_str(text).map_err(|e| format!("{option} must be a JSON object of scene keys: {e}"))?;
+        let mut pair = scene.particle_wall.clone();
+        pair.extend(overlay);
+        Ok(Some(pair))
     };
+    let indenter = over_walls("--indenter", &a.indenter)?;
+    let walls = over_walls("--walls", &a.walls)?;
     let mut test = Indentation::new(engine, scene, setup, 0.0, indenter.as_ref()).map_err(|e| e.to_string())?;
+    if let Some(pair) = &walls {
+        test.set_die_walls(pair).map_err(|e| format!("--walls: {e}"))?;
+    }
     if let Some(dt) = a.time_step {
         test.engine.set_time_step(&test.scene, dt).map_err(|e| format!("--time-step: {e}"))?;
     }

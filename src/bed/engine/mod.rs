@@ -156,6 +156,19 @@ impl<L: BedLaw> Engine<L> {
         Ok(())
     }
 
+    /// Gives wall `w` new interactions (the test's own walls, or a restored indenter's), keeping every
+    /// contact's memory. Refused when the wall's necks reach beyond the skin.
+    pub fn set_wall_row(&mut self, w: usize, row: Vec<Interaction<L>>) -> Result<(), String> {
+        assert_eq!(row.len(), self.species);
+        let reach = row.iter().map(|it| it.reach).fold(self.reach, f64::max);
+        if !(self.list.skin > reach) {
+            return Err(format!("wall `{}`: its adhesive necks reach {reach:e} m, beyond the bed's skin {:e} m", self.walls[w].name, self.list.skin));
+        }
+        self.reach = reach;
+        self.wall_pairs[w] = row;
+        Ok(())
+    }
+
     /// The forces of the last step.
     pub fn totals(&self) -> &Accum {
         &self.total
