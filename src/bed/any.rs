@@ -104,14 +104,15 @@ fn wall_row<L: BedLaw>(scene: &BedScene, template: &ContactTemplate, w: &Wall) -
 
 /// The largest stable step of velocity Verlet for these interactions: the Rayleigh time of the
 /// smallest sphere (000 Eq. 71), and for stiff linear springs 2 sqrt(m*/k) (000 Eq. 68) with k the
-/// loading stiffness at an overlap of 0.1 % of R*.
+/// stiffest of loading to an overlap of 0.1 % of R* and unloading from there (Pasha's laws unload
+/// along k_e, ten times their loading k_p in the seed's Ch. 6 bed).
 pub fn stability_limit<L: BedLaw>(scene: &BedScene, pairs: &[Interaction<L>], wall_pairs: &[Vec<Interaction<L>>]) -> f64 {
     let mut limit = scene.rayleigh_time();
     for it in pairs.iter().chain(wall_pairs.iter().flatten()) {
         let alpha = 1e-3 * it.radius;
         let mut h = it.initial;
         let mut k: f64 = 0.0;
-        for q in 1..=10 {
+        for q in (1..=10).chain([9]) {
             let ev = it.law.evaluate(alpha * q as f64 / 10.0, &h);
             h = ev.history;
             k = k.max(ev.stiffness.abs());
