@@ -3,18 +3,27 @@
 //! and that it was made with the scene the unit's parameters start from, and refuses it otherwise.
 
 use powderfmu::bed::{file, BedScene};
-use powderfmu::units::ball_indentation::{DEFAULT_BED_SCENE, SHIPPED_BED};
+use powderfmu::units::ball_indentation::{DEFAULT_BED_SCENE, QUARTER_BED_SCENE, SHIPPED_BED, SHIPPED_QUARTER_BED};
 use serde_json::Value;
 use std::path::Path;
 
 /// The bytes of the shipped bed file, refused if unreadable or made with a scene other than
 /// `DEFAULT_BED_SCENE` (the first differing key is named).
 pub fn shipped(root: &Path) -> Result<Vec<u8>, String> {
-    let path = root.join(SHIPPED_BED);
+    shipped_bed(root, SHIPPED_BED, DEFAULT_BED_SCENE)
+}
+
+/// The bytes of the shipped quarter bed (`fidelity = quarter`), checked against `QUARTER_BED_SCENE`.
+pub fn shipped_quarter(root: &Path) -> Result<Vec<u8>, String> {
+    shipped_bed(root, SHIPPED_QUARTER_BED, QUARTER_BED_SCENE)
+}
+
+fn shipped_bed(root: &Path, bed: &str, scene: &str) -> Result<Vec<u8>, String> {
+    let path = root.join(bed);
     let bytes = std::fs::read(&path).map_err(|e| format!("cannot read the shipped bed {}: {e} (beds/README.md says how to prepare it)", path.display()))?;
     let bed = file::decode(&bytes).map_err(|e| format!("the shipped bed {}: {e}", path.display()))?;
     let theirs = BedScene::from_json(&bed.scene).map_err(|e| format!("the shipped bed {}: its scene: {e}", path.display()))?;
-    let ours = BedScene::from_json(DEFAULT_BED_SCENE).map_err(|e| format!("the unit's bed scene: {e}"))?;
+    let ours = BedScene::from_json(scene).map_err(|e| format!("the unit's bed scene: {e}"))?;
     if let Some(key) = first_difference("", &ours.to_json(), &theirs.to_json()) {
         return Err(format!(
             "the shipped bed {} was not made with the unit's bed scene: `{key}` differs; prepare it again from that scene (beds/README.md)",
@@ -65,6 +74,10 @@ mod tests {
         let root = Path::new(env!("CARGO_MANIFEST_DIR")).parent().expect("the workspace root");
         let bytes = shipped(root).expect("the shipped bed is accepted");
         assert!(bytes.len() > 1_000_000, "the seed's bed of 29000 spheres");
+        let quarter = shipped_quarter(root).expect("the shipped quarter bed is accepted");
+        let (bed, scene) = file::load(&root.join(SHIPPED_QUARTER_BED), Some(1)).unwrap();
+        assert_eq!((scene.die_sector, bed.particles().len()), (0.25, 7250));
+        assert!(quarter.len() < bytes.len() / 2);
     }
 
     #[test]

@@ -174,6 +174,7 @@ fn entries(unit: &UnitInfo, binaries: &Binaries, root: &Path, version: Version) 
     if id == units::ball_indentation::MODEL_IDENTIFIER {
         let scene = units::ball_indentation::DEFAULT_BED_SCENE.as_bytes().to_vec();
         entries.push(Entry { name: format!("resources/{}", units::ball_indentation::RESOURCE_BED), data: beds::shipped(root)? });
+        entries.push(Entry { name: format!("resources/{}", units::ball_indentation::RESOURCE_QUARTER_BED), data: beds::shipped_quarter(root)? });
         entries.push(Entry { name: "resources/bed_scene.json".into(), data: scene });
         entries.push(Entry { name: "documentation/bed.md".into(), data: read(root, "docs/bed.md")? });
     } else {

@@ -30,6 +30,12 @@ pub const DEFAULT_BED_SCENE: &str = include_str!("../../scenes/bed_004_ch6.json"
 /// it if made with another scene).
 pub const SHIPPED_BED: &str = "beds/bed_004_ch6.pfbed";
 
+/// The quarter of the same bed's die (`die_sector` 0.25, mirror planes) that `fidelity = quarter` runs:
+/// its resource name, its scene and the repository path it is prepared to.
+pub const RESOURCE_QUARTER_BED: &str = "bed_quarter.pfbed";
+pub const QUARTER_BED_SCENE: &str = include_str!("../../scenes/bed_004_ch6_quarter.json");
+pub const SHIPPED_QUARTER_BED: &str = "beds/bed_004_ch6_quarter.pfbed";
+
 /// The default speed [m/s]: gamma* = (v/H)(d/g)^(1/2) = 0.08 on the shipped bed (`004` Eq. 7.1; H =
 /// 18.0 mm, d = 1.0 mm), the test in about 85 s on two cores. Chosen from the measured curve in
 /// docs/indentation.md: every speed that fits in 2 minutes (gamma* 0.08-0.16) reads the plateau 17-24 %
@@ -103,7 +109,7 @@ variable_table! {
     unconfined_yield_strength: Variable::output("unconfined_yield_strength", VarType::Real, "Pa", "hardness / constraint_factor (004 Eq. 2.10)"),
     hydrostatic_stress: Variable::output("hydrostatic_stress", VarType::Real, "Pa", "Bagi's hydrostatic stress in the dynamic bin under the indenter (004 Eqs. 5.1-5.2, Sec. 5.2), compression positive"),
     deviatoric_stress: Variable::output("deviatoric_stress", VarType::Real, "Pa", "Bagi's deviatoric stress in the dynamic bin under the indenter (004 Eq. 5.3)"),
-    indenter_contacts: Variable::output("indenter_contacts", VarType::Integer, "", "spheres touching the indenter"),
+    indenter_contacts: Variable::output("indenter_contacts", VarType::Integer, "", "spheres touching the indenter (on a quarter bed, with their mirror images: four per sphere)"),
     kinetic_energy: Variable::output("kinetic_energy", VarType::Real, "J", "kinetic energy of the bed's spheres, translation and rotation"),
     test_state: Variable::output("test_state", VarType::Integer, "", "0 loading, 1 unloading, 2 done (the indenter has left the bed)"),
     contact_depth: Variable::output("contact_depth", VarType::Real, "m", "h_c, where the tangent to the initial unloading curve meets zero force; 0 until known"),
@@ -121,7 +127,7 @@ variable_table! {
     threads: Variable::parameter("threads", Value::Integer(2), "", "threads of the bed engine's force loop, in [1, 256] (results differ from one thread's by round-off, which the bed's dynamics then grow)"),
     time_step: Variable::parameter("time_step", Value::Real(DEFAULT_TIME_STEP), "s", "the bed engine's time step, refused above the bed's stability limit; the default is half the shipped bed's limit (its error is in docs/indentation.md); 0 = the bed's own (its scene's time_step or rayleigh_fraction of its stability limit)")
         .with_range(Some(0.0), None),
-    fidelity: Variable::parameter("fidelity", Value::String("fast".into()), "", "fast (the spheres farther than 3 contact radii a_max from the deepest indentation are held where the bed left them until the force on one changes by 0.1 consolidation_stress x d^2; its error is measured in docs/indentation.md) or full (every sphere moves)"),
+    fidelity: Variable::parameter("fidelity", Value::String("fast".into()), "", "fast (the spheres farther than 3 contact radii a_max from the deepest indentation are held where the bed left them until the force on one changes by 0.1 consolidation_stress x d^2), quarter (the FMU's quarter of the same die, 7250 spheres between two mirror planes, every sphere moving; with an empty bed_file only) or full (the whole bed, every sphere moving); their errors are measured in docs/indentation.md"),
 }
 
 pub fn info() -> UnitInfo {
@@ -176,14 +182,22 @@ impl From<BedError> for UnitError {
 }
 
 impl BallIndentation {
-    /// The bed file the parameters name: `bed_file`, or the FMU's own.
+    /// The bed file the parameters name: `bed_file`, or the FMU's own (its quarter bed for `fidelity =
+    /// quarter`).
     fn bed_path(&self, values: &[Value]) -> Result<PathBuf, UnitError> {
         let given = values[REFS.bed_file].as_str();
+        let quarter = values[REFS.fidelity].as_str() == "quarter";
         if !given.is_empty() {
+            if quarter {
+                return Err(variable(
+                    "fidelity",
+                    format!("fidelity = \"quarter\" runs the FMU's own quarter bed, but bed_file is {given}: for a sector of your own bed prepare it with die_sector 0.25 and use fidelity full or fast"),
+                ));
+            }
             return Ok(PathBuf::from(given));
         }
         match &self.resources {
-            Some(dir) => Ok(dir.join(RESOURCE_BED)),
+            Some(dir) => Ok(dir.join(if quarter { RESOURCE_QUARTER_BED } else { RESOURCE_BED })),
             None => Err(variable("bed_file", "no bed_file given and the host named no resources folder (fmuResourceLocation) holding the FMU's bed".into())),
         }
     }
@@ -204,8 +218,8 @@ impl BallIndentation {
         };
         let shortcut = match values[REFS.fidelity].as_str() {
             "fast" => Some(FAST),
-            "full" => None,
-            other => return Err(variable("fidelity", format!("parameter `fidelity` = \"{other}\" is not known: allowed fast, full"))),
+            "full" | "quarter" => None,
+            other => return Err(variable("fidelity", format!("parameter `fidelity` = \"{other}\" is not known: allowed fast, quarter, full"))),
         };
         Ok(Setup {
             indenter_diameter: values[REFS.indenter_diameter].as_real(),
