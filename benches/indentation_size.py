@@ -1,8 +1,8 @@
-"""004 Ch. 5 on the soft beds: hardness against the indenter's size (three beds) and the bed's height.
+"""004 Ch. 5 on the soft beds: hardness against the indenter's size (three beds).
 
-Reads benches/indentation_size.sh's runs and prints two tables: per indenter diameter the plateau
-hardness (mean F/A(h) while loading at 0.1 <= h/r <= 0.2) and F_max/A(h_c) of each bed with their
-spread between the beds, (max - min) / mean; per bed height the same for one bed each.
+Reads benches/indentation_size.sh's runs and prints, per indenter diameter, the plateau hardness (mean
+F/A(h) while loading at 0.1 <= h/r <= 0.2) and F_max/A(h_c) of each bed with their spread between the
+beds, (max - min) / mean.
 
     python benches/indentation_size.py OUT_DIR [--plot FIGURE.png]
 """
@@ -38,35 +38,16 @@ def main():
         sizes[float(d)] = pl
         print(f"| {1e3 * float(d):.0f} | {float(d) / 1e-3:.0f} | {', '.join(f'{x:.0f}' for x in pl)} | {spread(pl):.0f} | "
               f"{', '.join(f'{x:.0f}' for x in tg)} | {spread(tg):.0f} |")
-    print()
-    print("| spheres | bed height [mm] | H / d | plateau hardness [Pa] | F_max/A(h_c) [Pa] |")
-    print("|---:|---:|---:|---:|---:|")
-    heights = []
-    for n in [2000, 4000, 6000]:
-        f = out / f"height_n{n}.csv"
-        if not f.exists():
-            continue
-        s = summary(load(f))
-        h = float(next(line.split()[2] for line in (out / f"prepare_n{n}.txt").read_text().splitlines() if line.startswith("bed height")))
-        heights.append((h, s["plateau"], s["tangent"]))
-        print(f"| {n} | {1e3 * h:.1f} | {h / 1e-3:.1f} | {s['plateau']:.0f} | {s['tangent']:.0f} |")
     if a.plot:
         import matplotlib
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
-        fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(9, 3.6))
+        fig, ax1 = plt.subplots(figsize=(5, 3.6))
         for d, pl in sizes.items():
             ax1.plot([1e3 * d] * len(pl), pl, "o", color="tab:blue")
         ax1.set_xlabel("indenter diameter [mm] (= d_i / d)")
         ax1.set_ylabel("plateau hardness [Pa]")
         ax1.set_title("the same three beds, each indenter size", fontsize=9)
-        if heights:
-            ax2.plot([1e3 * h for h, _, _ in heights], [p for _, p, _ in heights], "o-", label="plateau F/A(h)")
-            ax2.plot([1e3 * h for h, _, _ in heights], [t for _, _, t in heights], "s--", label="F_max/A(h_c)")
-            ax2.legend(fontsize=8)
-        ax2.set_xlabel("bed height [mm] (= H / d)")
-        ax2.set_ylabel("hardness [Pa]")
-        ax2.set_title("14 mm indenter, one bed per height", fontsize=9)
         fig.tight_layout()
         fig.savefig(a.plot, dpi=130)
         print(f"\nfigure: {a.plot}")

@@ -1,10 +1,8 @@
 #!/usr/bin/env bash
-# 004 Ch. 5 on the soft beds: the indenter's size and the bed's height.
+# 004 Ch. 5 on the soft beds: the indenter's size (the bed's height: indentation_height.sh).
 # - Indenter size: 4, 8 and 14 mm (4, 8, 14 d) in each of the three beds of indentation_shortcuts.sh, to
 #   h/r = 0.2 at gamma* = 0.02 with every sphere moving. The spread between the beds says how reliable a
 #   size is.
-# - Bed height: beds of 2000, 4000 and 6000 spheres in the same 20 mm die (about 6.5, 13 and 19.5 d
-#   high), the 14 mm indenter (the size whose hardness the beds agree on) at gamma* = 0.02.
 # Needs the beds of benches/indentation_shortcuts.sh in OUT_DIR. About 20 CPU minutes.
 #     bash benches/indentation_size.sh [OUT_DIR]
 set -euo pipefail
@@ -26,18 +24,5 @@ for seed in 1 2 3; do
     for d in 0.004 0.008 0.014; do
         indent "$out/bed_seed$seed.pfbed" "$height" "$d" "$out/size_seed${seed}_d$d"
     done
-done
-for n in 2000 6000; do
-    bed="$out/bed_n$n.pfbed"
-    if [ ! -f "$bed" ]; then
-        "$python" -c "import json,sys; s=json.load(open('scenes/bed_soft_4000.json')); s['particle_count']=$n; json.dump(s, open(sys.argv[1],'w'))" "$out/scene_n$n.json"
-        /usr/bin/time -f "%U" -o "$out/prepare_n$n.cpu" "$bin" bed prepare "$out/scene_n$n.json" --threads 1 -o "$bed" > "$out/prepare_n$n.txt"
-    fi
-done
-cp -n "$out/bed_seed1.pfbed" "$out/bed_n4000.pfbed"
-cp -n "$out/prepare_seed1.txt" "$out/prepare_n4000.txt"
-for n in 2000 4000 6000; do
-    height=$(grep "bed height" "$out/prepare_n$n.txt" | awk '{print $3}')
-    indent "$out/bed_n$n.pfbed" "$height" 0.014 "$out/height_n$n"
 done
 "$python" benches/indentation_size.py "$out" --plot docs/figures/indentation_size.png

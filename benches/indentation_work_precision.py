@@ -63,7 +63,7 @@ def main():
         groups = sorted({(float(r["time_step_s"]), r["fidelity"]) for r in runs})
         for k, (dt, fid) in enumerate(groups):
             pts = sorted((float(r["wall_s"]), r["error"], float(r["gamma"])) for r in runs if (float(r["time_step_s"]), r["fidelity"]) == (dt, fid))
-            ax.plot([x[0] for x in pts], [100 * x[1] for x in pts], marker="osD^"[k % 4], ls="-", label=f"time step {dt:.2g} s, {fid}")
+            ax.plot([x[0] for x in pts], [100 * x[1] for x in pts], marker="osD^"[k % 4], ls="-", label=f"time step {dt:.4g} s, {fid}")
             for w, e, g in pts:
                 ax.annotate(f"{g:g}", (w, 100 * e), textcoords="offset points", xytext=(4, 3), fontsize=7)
         ax.axhspan(-5, 5, color="C2", alpha=0.12, label="within 5 % of the reference")

@@ -208,9 +208,11 @@ def indentation(fmu, out):
     start = {v.name: v.start for v in md.modelVariables if v.causality == "parameter"}
     d, h_max, v = float(start["indenter_diameter"]), float(start["max_penetration"]), float(start["indentation_speed"])
     print(f"\nball indentation: {fmu}")
-    print(f"  the seed's bed (resources/bed.pfbed: 29000 spheres, 004 Ch. 6), indenter d = {d * 1e3:.1f} mm to h = {h_max * 1e3:.2f} mm "
+    bed = ("a quarter of the seed's bed (resources/bed_quarter.pfbed: 7250 spheres between two mirror planes, 29000 in the whole die, 004 Ch. 6)"
+           if start["fidelity"] == "quarter" else "the seed's bed (resources/bed.pfbed: 29000 spheres, 004 Ch. 6)")
+    print(f"  {bed}, indenter d = {d * 1e3:.1f} mm to h = {h_max * 1e3:.2f} mm "
           f"(h/r = {2 * h_max / d:.2f}) at {v} m/s, time step {float(start['time_step']):.2e} s, fidelity {start['fidelity']}, "
-          f"{start['threads']} threads; running (about a minute and a half on two cores)")
+          f"{start['threads']} threads; running (about 100 s on two cores)")
     t0 = time.perf_counter()
     r = simulate_fmu(fmu)
     wall = time.perf_counter() - t0

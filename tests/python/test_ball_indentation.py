@@ -132,9 +132,6 @@ def test_bad_input_is_refused_at_initialization_and_the_host_survives(indentatio
     _refused(indentation, {"indenter_motion": "input"}, "indenter_displacement", {"indenter_displacement": 1e-4, "indenter_velocity": 0.01})
     _refused(indentation, {"indenter_motion": "sideways"}, "indenter_motion")
     _refused(indentation, {"fidelity": "medium"}, "fidelity")
-    # The quarter bed is the FMU's own: with a bed_file of the user's, the message says what to do.
-    messages = _refused(indentation, {"fidelity": "quarter"}, "fidelity")
-    assert any("die_sector 0.25" in m for m in messages), messages
     _refused(indentation, {"time_step": 1e-3}, "time_step")
     # A bed prepared with other materials is another powder: the difference is named, for a changed
     # parameter and for another bed (the shipped one, under the stand-in's parameters).
