@@ -107,6 +107,8 @@ fn saved_test_continues_bit_for_bit(setup: Setup) {
     let bytes = test.save();
     let mut back = Indentation::restore(&bytes, None).unwrap();
     assert_eq!(back.engine.dt(), dt);
+    // What a host reads right after restoring is what it read when it saved.
+    assert_eq!(back.reading(), test.reading());
     for _ in 0..20 {
         test.advance(1e-4, None).unwrap();
         back.advance(1e-4, None).unwrap();

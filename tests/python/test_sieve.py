@@ -146,7 +146,9 @@ def test_a_sweep_command_stopped_with_ctrl_c_resumes_where_it_was(tmp_path):
     import signal
     import time
 
-    spec = {**GRID, "base": {"particles": 40, "periods": 10}, "grid": {"frequency": [2e4, 3e4, 4e4, 5e4], "acceleration": [1e6, 2e6, 3e6, 4e6]}}
+    # Tasks of about a second each (40 periods): with 10 periods all 16 could finish on an idle machine
+    # between the third row and the interrupt, and the test would see nothing to resume.
+    spec = {**GRID, "base": {"particles": 40, "periods": 40}, "grid": {"frequency": [2e4, 3e4, 4e4, 5e4], "acceleration": [1e6, 2e6, 3e6, 4e6]}}
     path = tmp_path / "spec.json"
     path.write_text(json.dumps(spec))
     out = tmp_path / "spec.csv"
