@@ -102,6 +102,23 @@ fn wall_row<L: BedLaw>(scene: &BedScene, template: &ContactTemplate, w: &Wall) -
     scene.species().iter().map(|&(r, m)| Interaction::particle_wall(template, r, m, w.curvature_radius(), scene.wall_rolling_friction)).collect()
 }
 
+/// A wall's interaction with each species from the particle-wall scene keys `pair`, refused when its
+/// contacts would need a shorter step than `dt` (`add_wall`, `set_wall_pair`).
+fn checked_wall_row<L: BedLaw>(scene: &BedScene, dt: f64, wall: &Wall, pair: &serde_json::Map<String, serde_json::Value>) -> Result<Vec<Interaction<L>>, BedError> {
+    let r0 = scene.species().first().map_or(0.5e-3, |s| s.0);
+    let template = ContactTemplate::wall(pair, r0, scene.density)?;
+    let row = wall_row(scene, &template, wall)?;
+    let limit = stability_limit(scene, &[], std::slice::from_ref(&row));
+    if dt > limit {
+        return Err(BedError::Param(ParamError::OutOfRange {
+            name: "time_step",
+            value: dt,
+            allowed: format!("(0, {limit:.4e}] s with wall `{}`: its contacts are stiffer than the bed's (000 Eq. 68)", wall.name),
+        }));
+    }
+    Ok(row)
+}
+
 /// The largest stable step of velocity Verlet for these interactions: the Rayleigh time of the
 /// smallest sphere (000 Eq. 71), and for stiff linear springs 2 sqrt(m*/k) (000 Eq. 68) with k the
 /// stiffest of loading to an overlap of 0.1 % of R* and unloading from there (Pasha's laws unload
@@ -179,17 +196,7 @@ impl AnyEngine {
     /// other than the bed's.
     pub fn add_wall(&mut self, scene: &BedScene, wall: Wall, pair: &serde_json::Map<String, serde_json::Value>) -> Result<(), BedError> {
         with_engine!(self, e => {
-            let r0 = scene.species().first().map_or(0.5e-3, |s| s.0);
-            let template = ContactTemplate::wall(pair, r0, scene.density)?;
-            let row = wall_row(scene, &template, &wall)?;
-            let limit = stability_limit(scene, &[], std::slice::from_ref(&row));
-            if e.dt > limit {
-                return Err(BedError::Param(ParamError::OutOfRange {
-                    name: "time_step",
-                    value: e.dt,
-                    allowed: format!("(0, {limit:.4e}] s with wall `{}`: its contacts are stiffer than the bed's (000 Eq. 68)", wall.name),
-                }));
-            }
+            let row = checked_wall_row(scene, e.dt, &wall, pair)?;
             e.add_wall(wall, row)?;
             Ok(())
         })
@@ -206,17 +213,7 @@ impl AnyEngine {
             if wall.is_mirror() {
                 return Err(BedError::Setup(format!("wall `{}` is a mirror plane: its contacts are the particles' own", wall.name)));
             }
-            let r0 = scene.species().first().map_or(0.5e-3, |s| s.0);
-            let template = ContactTemplate::wall(pair, r0, scene.density)?;
-            let row = wall_row(scene, &template, wall)?;
-            let limit = stability_limit(scene, &[], std::slice::from_ref(&row));
-            if e.dt > limit {
-                return Err(BedError::Param(ParamError::OutOfRange {
-                    name: "time_step",
-                    value: e.dt,
-                    allowed: format!("(0, {limit:.4e}] s with wall `{}`: its contacts are stiffer than the bed's (000 Eq. 68)", wall.name),
-                }));
-            }
+            let row = checked_wall_row(scene, e.dt, wall, pair)?;
             e.set_wall_row(w, row)?;
             Ok(())
         })

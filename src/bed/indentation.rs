@@ -262,11 +262,7 @@ impl Indentation {
     /// mirror plane keeps the particles' own law), every contact keeping its memory. A shortcut: softer
     /// walls allow a longer time step (docs/indentation.md measures what it costs).
     pub fn set_die_walls(&mut self, pair: &Map<String, Value>) -> Result<(), BedError> {
-        for w in 0..self.engine.walls().len() {
-            if w != self.indenter && !self.engine.walls()[w].is_mirror() {
-                self.engine.set_wall_pair(&self.scene, w, pair)?;
-            }
-        }
+        set_die_pair(&mut self.engine, &self.scene, self.indenter, pair)?;
         self.die_pair = Some(pair.clone());
         Ok(())
     }
@@ -493,11 +489,7 @@ impl Indentation {
         engine.set_wall_pair(&scene, indenter, &indenter_pair)?;
         let die_pair = saved.die_pair.as_deref().map(object).transpose()?;
         if let Some(pair) = &die_pair {
-            for w in 0..engine.walls().len() {
-                if w != indenter && !engine.walls()[w].is_mirror() {
-                    engine.set_wall_pair(&scene, w, pair)?;
-                }
-            }
+            set_die_pair(&mut engine, &scene, indenter, pair)?;
         }
         engine.set_time_step(&scene, saved.time_step)?;
         if saved.held.len() != engine.particles().len() {
@@ -511,6 +503,17 @@ impl Indentation {
         }
         Ok(Indentation { engine, scene, setup: saved.setup, record: saved.record, indenter, indenter_pair, die_pair })
     }
+}
+
+/// Gives every wall but the indenter and the mirror planes (the die, its floor, the piston) the
+/// particle-wall keys `pair`.
+fn set_die_pair(engine: &mut AnyEngine, scene: &BedScene, indenter: usize, pair: &Map<String, Value>) -> Result<(), BedError> {
+    for w in 0..engine.walls().len() {
+        if w != indenter && !engine.walls()[w].is_mirror() {
+            engine.set_wall_pair(scene, w, pair)?;
+        }
+    }
+    Ok(())
 }
 
 #[derive(serde::Serialize, serde::Deserialize)]

@@ -140,12 +140,7 @@ impl<L: BedLaw> Engine<L> {
     /// keeping every contact's memory: the bed goes on as it was, now with the wall. Refused when the
     /// wall's necks reach beyond the skin.
     pub fn add_wall(&mut self, wall: Wall, row: Vec<Interaction<L>>) -> Result<(), String> {
-        assert_eq!(row.len(), self.species);
-        let reach = row.iter().map(|it| it.reach).fold(self.reach, f64::max);
-        if !(self.list.skin > reach) {
-            return Err(format!("wall `{}`: its adhesive necks reach {reach:e} m, beyond the bed's skin {:e} m", wall.name, self.list.skin));
-        }
-        self.reach = reach;
+        self.reach_for(&wall.name, &row)?;
         self.wall_reference.push(wall.position);
         self.walls.push(wall);
         self.wall_pairs.push(row);
@@ -159,13 +154,21 @@ impl<L: BedLaw> Engine<L> {
     /// Gives wall `w` new interactions (the test's own walls, or a restored indenter's), keeping every
     /// contact's memory. Refused when the wall's necks reach beyond the skin.
     pub fn set_wall_row(&mut self, w: usize, row: Vec<Interaction<L>>) -> Result<(), String> {
+        let name = self.walls[w].name.clone();
+        self.reach_for(&name, &row)?;
+        self.wall_pairs[w] = row;
+        Ok(())
+    }
+
+    /// Widens the engine's reach to a wall's new interactions (one per species), refused when its
+    /// adhesive necks would reach beyond the skin.
+    fn reach_for(&mut self, wall: &str, row: &[Interaction<L>]) -> Result<(), String> {
         assert_eq!(row.len(), self.species);
         let reach = row.iter().map(|it| it.reach).fold(self.reach, f64::max);
         if !(self.list.skin > reach) {
-            return Err(format!("wall `{}`: its adhesive necks reach {reach:e} m, beyond the bed's skin {:e} m", self.walls[w].name, self.list.skin));
+            return Err(format!("wall `{wall}`: its adhesive necks reach {reach:e} m, beyond the bed's skin {:e} m", self.list.skin));
         }
         self.reach = reach;
-        self.wall_pairs[w] = row;
         Ok(())
     }
 
