@@ -213,3 +213,45 @@ fn accepted_branches_follow_the_papers_inequalities_within_1e_14() {
     assert_eq!(walk(&mut c, above(pts.alpha_fp)), Branch::Adhesive, "just above alpha_fp the contact holds");
     assert_eq!(walk(&mut c, below(pts.alpha_fp)), Branch::Separated, "below alpha_fp the contact detaches");
 }
+
+/// JKR under displacement control ends on a vertical tangent (000 App. B). Model Exchange's lead puts the
+/// detachment indicator 1 % of the zone (pull-off to detachment overlap) above the end; `accept_crossing`
+/// then crosses the rest in no time by its exact work. Checked against `JkrCurve::work`, the closed form.
+#[test]
+fn model_exchange_crosses_the_vertical_end_of_jkr_by_its_closed_form_work() {
+    use powderfmu::impact::contact::VERTICAL_END_LEAD;
+    use powderfmu::law::NormalLaw;
+    let s = scene(ModelKind::Jkr);
+    let (mut sp, mass) = sphere(&s, 1e-10);
+    sp.contact.lead_vertical_ends = true;
+    let AnyLaw::Jkr(jkr) = sp.contact.law.clone() else { panic!("a jkr scene") };
+    let curve = jkr.curve;
+    let (alpha_c, alpha_d) = (curve.pull_off_overlap(), curve.detach_overlap());
+    let wall = WallMotion { t0: 0.0, position: 0.0, velocity: 0.0 };
+    // Established and unloading on the adhesive branch, half-way between pull-off and detachment.
+    sp.contact.accept(0.5 * curve.zero_overlap_radius().powi(2) / curve.radius, -1.0);
+    sp.contact.accept(0.5 * (alpha_c + alpha_d), -1.0);
+    assert_eq!(sp.contact.accepted.branch, Branch::Adhesive);
+    let (end, lead) = sp.contact.vertical_end_ahead().expect("the lead is on above the vertical end");
+    assert_eq!(end, alpha_d);
+    assert!((lead / (VERTICAL_END_LEAD * (alpha_c - alpha_d)) - 1.0).abs() < 1e-12);
+    // The lower indicator crosses zero at the lead, not at the end.
+    let at = |alpha: f64| sp.contact.indicators(alpha, -1.0)[0];
+    assert!(at(end + 1.01 * lead) > 0.0 && at(end + 0.99 * lead) < 0.0);
+
+    // The state the event is located at: just inside the lead, leaving at 1 m/s.
+    let alpha = end + 0.999_999_9 * lead;
+    let mut y = State::new(-alpha, 1.0, 0.0);
+    let (switched, crossed) = sp.accept_crossing(&wall, 0.0, &mut y);
+    assert!(switched && crossed);
+    assert!(!sp.contact.accepted.branch.in_contact());
+    let work = curve.work(curve.contact_radius(alpha), curve.detach_radius());
+    assert!((y.work / work - 1.0).abs() < 1e-10, "work {} against the closed form {work}", y.work);
+    let v = (1.0 - 2.0 * work / mass).sqrt();
+    assert!((y.velocity / v - 1.0).abs() < 1e-12, "leaves at {} m/s, energy says {v}", y.velocity);
+    // The contact has ended and forgotten it was established: no force where it is, and no contact
+    // until the surfaces touch again at alpha = 0.
+    assert_eq!(sp.contact.force(alpha, -1.0).total(), 0.0);
+    assert!(sp.contact.indicators(alpha, -1.0).iter().all(|&g| g > 0.0));
+    assert_eq!(sp.contact.law.evaluate(alpha, sp.contact.history()).branch, Branch::Separated);
+}

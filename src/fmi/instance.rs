@@ -217,6 +217,12 @@ pub struct Instance {
     pub event_mode_used: bool,
     pub early_return_allowed: bool,
     pub intermediate_update: crate::fmi3::types::fmi3IntermediateUpdateCallback,
+    /// Model Exchange: an input was given a new value in Event Mode since the last event iteration.
+    inputs_changed_in_event_mode: bool,
+    /// Model Exchange: the event indicators at the last event or completed integrator step, against
+    /// which `completed_integrator_step` looks for a change of sign (None: not known, after a restored
+    /// state).
+    indicators_seen: Option<Vec<f64>>,
 }
 
 impl Instance {
@@ -238,6 +244,8 @@ impl Instance {
             model_ready: false,
             resources,
             event_mode_used: false,
+            inputs_changed_in_event_mode: false,
+            indicators_seen: None,
             early_return_allowed: false,
             intermediate_update: None,
         }
@@ -434,7 +442,11 @@ impl Instance {
             self.model_ready = false;
         }
         for (&vr, value) in vrs.iter().zip(new) {
-            self.values[vr as usize] = value;
+            let i = vr as usize;
+            if self.mode == Mode::EventMode && self.unit.variables[i].causality == Causality::Input && self.values[i] != value {
+                self.inputs_changed_in_event_mode = true;
+            }
+            self.values[i] = value;
         }
         Ok(())
     }
@@ -490,6 +502,31 @@ impl Instance {
         Ok(())
     }
 
+    /// fmi2CompletedIntegratorStep: whether the accepted branch has stopped holding at the current state
+    /// and inputs (an event indicator below zero) without the host having located it. A master that sets
+    /// its inputs in Continuous-Time Mode (sampled inputs held between samples) moves the overlap with no
+    /// zero crossing for its integrator to find; the FMI 2.0 calling sequence calls this after the inputs
+    /// of the new time are set, so the event is handled there instead of a step later.
+    ///
+    /// An event is a change of sign of an indicator since the last completed step or event, as a host
+    /// detects it (an indicator may stay below zero after its event: the overlap rate after a turning
+    /// point).
+    pub fn completed_integrator_step(&mut self) -> Call<bool> {
+        self.refresh(&self.api.name("CompletedIntegratorStep"))?;
+        self.model.completed_step(&self.values);
+        let z = self.indicators_now();
+        let event = self.indicators_seen.as_ref().is_some_and(|seen| seen.iter().zip(&z).any(|(a, b)| (*a >= 0.0) != (*b >= 0.0)));
+        self.indicators_seen = Some(z);
+        Ok(event)
+    }
+
+    /// The event indicators at the current state and inputs.
+    fn indicators_now(&mut self) -> Vec<f64> {
+        let mut z = vec![0.0; self.unit.n_event_indicators];
+        self.model.event_indicators(&self.values, &mut z);
+        z
+    }
+
     pub fn get_nominals(&mut self, x: &mut [f64]) -> Call {
         self.check_len(&self.api.name("GetNominalsOfContinuousStates"), "nx", x.len(), self.unit.n_states)?;
         if self.model_ready {
@@ -507,11 +544,18 @@ impl Instance {
         }
     }
 
-    /// Event iteration (fmi2NewDiscreteStates): the history accepts the current state.
-    pub fn accept(&mut self) {
-        if let Some(message) = self.model.accept(&self.values) {
-            self.log(Status::Ok, "logEvents", &message);
+    /// Event iteration (fmi2NewDiscreteStates): the history accepts the current state. Returns whether
+    /// the host's integrator must restart (valuesOfContinuousStatesChanged): the model's branch, history
+    /// or states changed, or an input changed in this Event Mode (a jump the integrator did not see).
+    pub fn accept(&mut self) -> bool {
+        let update = self.model.accept(&self.values);
+        if let Some(message) = &update.message {
+            self.log(Status::Ok, "logEvents", message);
         }
+        let restart = update.restart || self.inputs_changed_in_event_mode;
+        self.inputs_changed_in_event_mode = false;
+        self.indicators_seen = Some(self.indicators_now());
+        restart
     }
 
     pub fn do_step(&mut self, t: f64, h: f64) -> Call {
@@ -601,6 +645,8 @@ impl Instance {
         self.start_time = s.start_time;
         self.stop_time = s.stop_time;
         self.model_ready = s.model_ready;
+        self.indicators_seen = None;
+        self.inputs_changed_in_event_mode = false;
         Ok(())
     }
 
@@ -628,8 +674,8 @@ mod tests {
         fn derivatives(&mut self, _: &[Value], _: &mut [f64]) {}
         fn event_indicators(&mut self, _: &[Value], _: &mut [f64]) {}
         fn nominals(&self, _: &mut [f64]) {}
-        fn accept(&mut self, _: &[Value]) -> Option<String> {
-            None
+        fn accept(&mut self, _: &[Value]) -> crate::units::EventUpdate {
+            crate::units::EventUpdate::default()
         }
         fn do_step(&mut self, _: &[Value], _: f64, _: f64) -> Result<(), crate::units::UnitError> {
             Ok(())

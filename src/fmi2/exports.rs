@@ -370,22 +370,8 @@ pub unsafe extern "C" fn fmi2SetFMUstate(c: fmi2Component, FMUstate: fmi2FMUstat
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi2FreeFMUstate(c: fmi2Component, FMUstate: *mut fmi2FMUstate) -> fmi2Status {
-    call(c, "fmi2FreeFMUstate", allowed::ANY_LIVE, |_| {
-        let p = out(FMUstate, "fmi2FreeFMUstate", "FMUstate")?;
-        // SAFETY: an output argument of the host, checked non-NULL by `out` above.
-        let s = unsafe { *p };
-        if s.is_null() {
-            return Ok(());
-        }
-        if !STATES.unregister(s as usize) {
-            return error("fmi2FreeFMUstate: `*FMUstate` is not a live state of this library (already freed?)");
-        }
-        // SAFETY: just unregistered; it came from Box::into_raw of a SavedState.
-        drop(unsafe { Box::from_raw(s as *mut SavedState) });
-        // SAFETY: an output argument of the host, checked non-NULL by `out` above.
-        unsafe { *p = std::ptr::null_mut() };
-        Ok(())
-    })
+    // SAFETY: the host's argument, as `free_state` requires (a state pointer's address, or the state).
+    call(c, "fmi2FreeFMUstate", allowed::ANY_LIVE, |_| unsafe { ffi::free_state(&STATES, FMUstate as *mut *mut std::ffi::c_void, "fmi2FreeFMUstate", "FMUstate") })
 }
 
 #[no_mangle]
@@ -471,9 +457,9 @@ pub unsafe extern "C" fn fmi2EnterEventMode(c: fmi2Component) -> fmi2Status {
 pub unsafe extern "C" fn fmi2NewDiscreteStates(c: fmi2Component, fmi2eventInfo: *mut fmi2EventInfo) -> fmi2Status {
     me(c, "fmi2NewDiscreteStates", allowed::NEW_DISCRETE_STATES, |inst| {
         let p = out(fmi2eventInfo, "fmi2NewDiscreteStates", "fmi2eventInfo")?;
-        inst.accept();
+        let restart = inst.accept();
         // SAFETY: an output argument of the host, checked non-NULL by `out` above.
-        unsafe { *p = fmi2EventInfo::default() };
+        unsafe { *p = fmi2EventInfo { valuesOfContinuousStatesChanged: fmi2Boolean::from(restart), ..fmi2EventInfo::default() } };
         Ok(())
     })
 }
@@ -493,12 +479,14 @@ pub unsafe extern "C" fn fmi2CompletedIntegratorStep(
     enterEventMode: *mut fmi2Boolean,
     terminateSimulation: *mut fmi2Boolean,
 ) -> fmi2Status {
-    me(c, "fmi2CompletedIntegratorStep", allowed::COMPLETED_INTEGRATOR_STEP, |_inst| {
+    me(c, "fmi2CompletedIntegratorStep", allowed::COMPLETED_INTEGRATOR_STEP, |inst| {
         let e = out(enterEventMode, "fmi2CompletedIntegratorStep", "enterEventMode")?;
         let t = out(terminateSimulation, "fmi2CompletedIntegratorStep", "terminateSimulation")?;
-        // Nothing to do: between events the units stay on the branch of the last event (DESIGN 6).
+        // Between events the units stay on the branch of the last event; an input set in
+        // Continuous-Time Mode that left it asks for Event Mode here (`Instance::completed_integrator_step`).
+        let event = inst.completed_integrator_step()?;
         // SAFETY: an output argument of the host, checked non-NULL by `out` above.
-        unsafe { *e = fmi2False };
+        unsafe { *e = fmi2Boolean::from(event) };
         // SAFETY: an output argument of the host, checked non-NULL by `out` above.
         unsafe { *t = fmi2False };
         Ok(())

@@ -890,23 +890,8 @@ pub unsafe extern "C" fn fmi3SetFMUState(c: fmi3Instance, FMUState: fmi3FMUState
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi3FreeFMUState(c: fmi3Instance, FMUState: *mut fmi3FMUState) -> fmi3Status {
-    const F: &str = "fmi3FreeFMUState";
-    call(c, F, allowed::ANY_LIVE, |_| {
-        let p = out(FMUState, F, "FMUState")?;
-        // SAFETY: an output argument of the host, checked non-NULL by `out` above.
-        let s = unsafe { *p };
-        if s.is_null() {
-            return Ok(());
-        }
-        if !STATES.unregister(s as usize) {
-            return error(format!("{F}: `*FMUState` is not a live state of this library (already freed?)"));
-        }
-        // SAFETY: just unregistered; it came from Box::into_raw of a SavedState.
-        drop(unsafe { Box::from_raw(s as *mut SavedState) });
-        // SAFETY: an output argument of the host, checked non-NULL by `out` above.
-        unsafe { *p = std::ptr::null_mut() };
-        Ok(())
-    })
+    // SAFETY: the host's argument, as `free_state` requires (a state pointer's address, or the state).
+    call(c, "fmi3FreeFMUState", allowed::ANY_LIVE, |_| unsafe { ffi::free_state(&STATES, FMUState as *mut *mut std::ffi::c_void, "fmi3FreeFMUState", "FMUState") })
 }
 
 #[no_mangle]
@@ -986,15 +971,13 @@ pub unsafe extern "C" fn fmi3UpdateDiscreteStates(
         // Model Exchange: the history accepts the state of the event (the accepted-branch rule). In
         // Co-Simulation the step already accepted it where it returned; inputs set in Event Mode are
         // followed at the start of the next step, as between any two steps.
-        if inst.kind == Kind::ModelExchange {
-            inst.accept();
-        }
+        let restart = inst.kind == Kind::ModelExchange && inst.accept();
         // SAFETY: the host's output arguments, each checked non-NULL above.
         unsafe {
             *discreteStatesNeedUpdate = false;
             *terminateSimulation = false;
             *nominalsOfContinuousStatesChanged = false;
-            *valuesOfContinuousStatesChanged = false;
+            *valuesOfContinuousStatesChanged = restart;
             *nextEventTimeDefined = false;
             *nextEventTime = 0.0;
         }
@@ -1021,13 +1004,15 @@ pub unsafe extern "C" fn fmi3CompletedIntegratorStep(
     terminateSimulation: *mut fmi3Boolean,
 ) -> fmi3Status {
     const F: &str = "fmi3CompletedIntegratorStep";
-    me(c, F, allowed::COMPLETED_INTEGRATOR_STEP, |_| {
+    me(c, F, allowed::COMPLETED_INTEGRATOR_STEP, |inst| {
         out(enterEventMode, F, "enterEventMode")?;
         out(terminateSimulation, F, "terminateSimulation")?;
-        // Nothing to do: between events the units stay on the branch of the last event (DESIGN 6).
+        // Between events the units stay on the branch of the last event; an input set in
+        // Continuous-Time Mode that left it asks for Event Mode here (`Instance::completed_integrator_step`).
+        let event = inst.completed_integrator_step()?;
         // SAFETY: the host's output arguments, checked non-NULL above.
         unsafe {
-            *enterEventMode = false;
+            *enterEventMode = event;
             *terminateSimulation = false;
         }
         Ok(())

@@ -27,6 +27,10 @@ const BOUND_ULPS: f64 = 8.0;
 /// How close below the largest overlap an accepted point still counts as being at it (the turning-point
 /// indicator watches the rate there), in units of the nominal overlap.
 const AT_MAX_OVERLAP: f64 = 2e-9;
+/// Model Exchange's lead on a vertical branch end (`NormalLaw::vertical_end`), as a fraction of the
+/// zone's width: the lower indicator fires this far above the end, and the rest is crossed in Event Mode
+/// by its exact work (`Sphere::accept_crossing`). Measured with benches/me_all_laws.py (docs/models.md).
+pub const VERTICAL_END_LEAD: f64 = 1e-2;
 
 #[derive(Debug, Clone)]
 pub struct Contact {
@@ -43,6 +47,10 @@ pub struct Contact {
     pub accepted_alpha: f64,
     /// Largest overlap reached [m] (NEG_INFINITY before any).
     pub max_overlap: f64,
+    /// Model Exchange: the lower indicator of a branch that ends in a vertical tangent fires
+    /// `VERTICAL_END_LEAD` of its zone early (`vertical_end_ahead`). Off for the Co-Simulation
+    /// integrators and ContactElement, whose overlap is an input.
+    pub lead_vertical_ends: bool,
 }
 
 /// What a contact remembers beyond its parameters: the part of a saved FMU state.
@@ -108,7 +116,7 @@ impl Contact {
     pub fn new(law: AnyLaw, damping: NormalDamping, alpha_nominal: f64, rate_nominal: f64) -> Contact {
         // A placeholder until the unit accepts its initial state.
         let accepted = Evaluation::separated(f64::INFINITY, law.initial_history());
-        Contact { law, damping, alpha_nominal, rate_nominal, accepted, accepted_alpha: f64::NAN, max_overlap: f64::NEG_INFINITY }
+        Contact { law, damping, alpha_nominal, rate_nominal, accepted, accepted_alpha: f64::NAN, max_overlap: f64::NEG_INFINITY, lead_vertical_ends: false }
     }
 
     /// The history accepted so far.
@@ -292,6 +300,8 @@ impl Contact {
         let (a, r) = (1.0 / self.alpha_nominal, 1.0 / self.rate_nominal);
         let lower = if e.lower == self.accepted_alpha {
             Line { constant: 0.0, overlap: 0.0, rate: r }
+        } else if let Some((end, lead)) = self.vertical_end_ahead() {
+            Line { constant: -(end + lead) * a, overlap: a, rate: 0.0 }
         } else if e.lower.is_finite() {
             Line { constant: -e.lower * a, overlap: a, rate: 0.0 }
         } else {
@@ -318,6 +328,19 @@ impl Contact {
         [lower, upper, turning]
     }
 
+    /// Model Exchange's vertical branch end below the accepted point, when the lead is on: the end and
+    /// the lead above it [m]. None once the accepted point lies in the lead (a crossing refused for want
+    /// of energy, `Sphere::accept_crossing`): the indicator then watches the end itself.
+    pub fn vertical_end_ahead(&self) -> Option<(f64, f64)> {
+        if !self.lead_vertical_ends {
+            return None;
+        }
+        let e = &self.accepted;
+        let width = self.law.vertical_end(e.branch, &e.history)?;
+        let lead = VERTICAL_END_LEAD * width;
+        (e.lower.is_finite() && lead > 0.0 && self.accepted_alpha > e.lower + lead).then_some((e.lower, lead))
+    }
+
     /// The accepted branch as a straight line with linear damping: force = stiffness alpha + offset +
     /// damping rate. Exact for the piecewise-linear laws (`AnyLaw::is_piecewise_linear`); for the others it
     /// is the tangent at the accepted point.
@@ -331,6 +354,34 @@ impl Contact {
             0.0
         };
         BranchLine { stiffness: e.stiffness, offset: e.force - e.stiffness * alpha, damping }
+    }
+
+    /// Between events, at a completed integrator step: where the accepted branch's lower bound is the
+    /// accepted point itself (plastic loading, whose history grows with the overlap) and the overlap has
+    /// moved on along that branch, the history takes the point reached, as a delay buffer would (FMI 2.0
+    /// Sec. 3.2.2). The branch, its force and the indicators do not change; only the largest overlap is
+    /// kept. A master that holds sampled inputs lets the overlap jump up and back between two events,
+    /// and the peak it jumped to is then the peak of the history, as in Co-Simulation's walk. Returns the
+    /// law's work along the way [J] (0 where nothing is kept).
+    pub fn keep_growth(&mut self, alpha: f64) -> f64 {
+        let e = &self.accepted;
+        let growing = e.branch.in_contact() && e.lower == self.accepted_alpha && alpha > self.accepted_alpha && alpha < e.upper;
+        if !growing || self.law.evaluate(alpha, &e.history).branch != e.branch {
+            return 0.0;
+        }
+        self.follow(alpha)
+    }
+
+    /// Walks to `end`, a bound at which the accepted branch ends, and over it, taking the history the
+    /// law gives beyond it (`accept` keeps the history of the bound itself, which for a contact that ends
+    /// still says it is established). Returns the law's work on the way [J].
+    pub fn cross(&mut self, end: f64) -> f64 {
+        let work = self.follow(end);
+        let beyond = self.law.evaluate(self.accepted_alpha, &self.accepted.history);
+        if beyond.branch == self.accepted.branch {
+            self.accepted.history = beyond.history;
+        }
+        work
     }
 
     /// Follows a straight overlap path from the accepted overlap to `to`, accepting the history at every

@@ -333,6 +333,12 @@ impl NormalLaw for Jkr {
         2.0 * self.curve.youngs_modulus * self.contact_radius(alpha, h).unwrap_or(0.0)
     }
 
+    /// The adhesive branch under displacement control ends vertically at alpha_f; the zone is alpha_c -
+    /// alpha_f. With force detachment the contact ends at the force minimum, where the curve is smooth.
+    fn vertical_end(&self, branch: Branch, _h: &JkrHistory) -> Option<f64> {
+        (branch == Branch::Adhesive && self.detachment == JkrDetachment::Displacement).then(|| self.curve.pull_off_overlap() - self.curve.detach_overlap())
+    }
+
     /// One contact-radius solve for force, stiffness, damping and Mindlin (same numbers as the three
     /// separate calls).
     fn evaluate_with_radius(&self, alpha: f64, h: &JkrHistory) -> (Evaluation<JkrHistory>, f64, Option<f64>) {

@@ -140,6 +140,16 @@ pub trait NormalLaw {
     fn damping_stiffness(&self, _alpha: f64, _history: &Self::History, branch_stiffness: f64) -> f64 {
         branch_stiffness.abs()
     }
+
+    /// Where a branch ends in a vertical tangent at its lower bound (the JKR curves under displacement
+    /// control, where d alpha / d a = 0 and f - f_d grows as sqrt(alpha - alpha_d), 000 App. B): the
+    /// width [m] of the zone above that bound over which the curve bends to vertical (from the pull-off
+    /// overlap down to detachment). None where the lower end is smooth. Model Exchange crosses the last
+    /// part of that zone in Event Mode (`impact::Sphere::accept_crossing`), since the solution's higher
+    /// derivatives are unbounded there.
+    fn vertical_end(&self, _branch: Branch, _history: &Self::History) -> Option<f64> {
+        None
+    }
 }
 
 /// What a law says about itself beyond its force, for the table (`law_table!`): its options, how a pair
@@ -319,5 +329,9 @@ impl NormalLaw for AnyLaw {
 
     fn damping_stiffness(&self, alpha: f64, history: &AnyHistory, branch_stiffness: f64) -> f64 {
         dispatch!(self, history, l, h => l.damping_stiffness(alpha, h, branch_stiffness), plain, branch_stiffness.abs())
+    }
+
+    fn vertical_end(&self, branch: Branch, history: &AnyHistory) -> Option<f64> {
+        dispatch!(self, history, l, h => l.vertical_end(branch, h), plain, None)
     }
 }

@@ -185,6 +185,11 @@ impl NormalLaw for ThorntonNing {
     fn damping_stiffness(&self, alpha: f64, h: &TnHistory, _branch_stiffness: f64) -> f64 {
         2.0 * self.curve.youngs_modulus * self.contact_radius(alpha, h).unwrap_or(0.0)
     }
+
+    /// The adhesive part of the unloading curve (JKR of R_p) ends vertically at detachment, -5/9 f_cp.
+    fn vertical_end(&self, branch: Branch, h: &TnHistory) -> Option<f64> {
+        (branch == Branch::Adhesive).then(|| h.flat.pull_off_overlap() - h.flat.detach_overlap())
+    }
 }
 
 impl LawInfo for ThorntonNing {

@@ -361,8 +361,8 @@ impl Model for BallIndentation {
     fn derivatives(&mut self, _values: &[Value], _dx: &mut [f64]) {}
     fn event_indicators(&mut self, _values: &[Value], _z: &mut [f64]) {}
     fn nominals(&self, _x: &mut [f64]) {}
-    fn accept(&mut self, _values: &[Value]) -> Option<String> {
-        None
+    fn accept(&mut self, _values: &[Value]) -> super::EventUpdate {
+        super::EventUpdate::default()
     }
 
     fn do_step(&mut self, values: &[Value], _t: f64, h: f64) -> Result<(), UnitError> {

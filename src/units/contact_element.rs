@@ -3,17 +3,27 @@
 //! masses live elsewhere in the system model (the damping uses the scene's m*).
 //!
 //! The history follows the overlap inputs as a sequence of straight paths: at every accepted point (ME:
-//! events and completed integrator steps; CS: each fmi2DoStep, with the inputs of its start), the history
-//! walks from the last accepted overlap to the current one and stops at each branch point on the way.
-//! ME has one continuous state, the contact work (its derivative is force times wall_velocity).
+//! events; CS: each fmi2DoStep, with the inputs of its start), the history walks from the last accepted
+//! overlap to the current one and stops at each branch point on the way.
+//!
+//! The work done on the contact (`dissipated_energy`) has two parts. The law's work, the integral of
+//! f d alpha along that path, is a function of the overlap input and the accepted history: kept at each
+//! accepted point, plus the integral along the accepted branch from there to the current overlap, in
+//! Model Exchange as in Co-Simulation. So it is the same number in both, and Model Exchange needs no
+//! state for it: a state whose derivative (force times wall_velocity) jumps wherever a master holds its
+//! inputs between samples makes a BDF solver with a minimum step fail its error test (OMSimulator), and
+//! a solver that is not restarted after an event integrates it on the old branch (fmusim). The damping's
+//! work, the integral of f_damping times wall_velocity over time, is Model Exchange's one continuous
+//! state (`damping_energy`); its derivative is 0 for an undamped contact (restitution_coefficient 1).
 
 use super::contact_parts::{self, Outputs};
 use super::scene_params;
 use super::variables::{Role, Value, VarType, Variable};
-use super::{Model, UnitError, UnitInfo};
+use super::{EventUpdate, Model, UnitError, UnitInfo};
 use crate::impact::contact::Memory;
 use crate::impact::Contact;
 use crate::law::NormalLaw;
+use crate::numeric::tanh_sinh;
 use serde::{Deserialize, Serialize};
 
 pub const MODEL_IDENTIFIER: &str = "ContactElement";
@@ -32,10 +42,10 @@ variable_table! {
         "dissipated_energy",
         VarType::Real,
         "J",
-        "work done on the contact, the integral of force d(overlap); after separation, the energy the contact dissipated",
-    )
-    .with_role(Role::State(0)),
-    der_energy: Variable::local("der(dissipated_energy)", "W", "power of the contact force, force times wall_velocity", Role::Derivative(0)),
+        "work done on the contact: the law's integral of force d(overlap) along the overlap path plus the damping's work (damping_energy); after separation, the energy the contact dissipated",
+    ),
+    damping_energy: Variable::local("damping_energy", "J", "work of the viscous damping force, the integral of f_damping wall_velocity dt (ME's continuous state; part of dissipated_energy)", Role::State(0)),
+    der_damping_energy: Variable::local("der(damping_energy)", "W", "power of the damping force, f_damping times wall_velocity", Role::Derivative(0)),
     initial_gap: Variable::parameter("initial_gap", Value::Real(0.0), "m", "wall_displacement at which the surfaces touch"),
 }
 
@@ -76,14 +86,18 @@ pub struct ContactElement {
     variables: Vec<Variable>,
     contact: Option<Contact>,
     gap: f64,
-    work: f64,
+    /// The law's work along the path up to the accepted overlap [J].
+    law_work: f64,
+    /// The damping's work [J] (ME: the continuous state).
+    damping_work: f64,
     /// Messages for the logEvents category (the derived parameters at initialization).
     events: Vec<String>,
 }
 
 #[derive(Serialize, Deserialize)]
 struct Snapshot {
-    work: f64,
+    law_work: f64,
+    damping_work: f64,
     contact: Memory,
 }
 
@@ -93,7 +107,8 @@ impl ContactElement {
             variables: u.variables.clone(),
             contact: None,
             gap: 0.0,
-            work: 0.0,
+            law_work: 0.0,
+            damping_work: 0.0,
             events: Vec::new(),
         }
     }
@@ -114,6 +129,16 @@ impl ContactElement {
     }
 }
 
+/// The law's work from the accepted overlap to `alpha` along the accepted branch and its continuation
+/// (what the force output follows between events) [J].
+fn branch_work(c: &Contact, alpha: f64) -> f64 {
+    let from = c.accepted_alpha;
+    if !from.is_finite() || from == alpha {
+        return 0.0;
+    }
+    tanh_sinh(|x| c.force(x, 0.0).law, from, alpha)
+}
+
 impl Model for ContactElement {
     fn initialize(&mut self, values: &[Value], _t0: f64, _model_exchange: bool) -> Result<(), UnitError> {
         let (mut contact, gap) = self.build(values)?;
@@ -127,7 +152,8 @@ impl Model for ContactElement {
         }
         contact.accept(alpha, rate);
         self.contact = Some(contact);
-        self.work = 0.0;
+        self.law_work = 0.0;
+        self.damping_work = 0.0;
         self.events.extend(contact_parts::derived_event(&self.variables, values));
         Ok(())
     }
@@ -142,30 +168,34 @@ impl Model for ContactElement {
         // Feed-through: in Continuous-Time Mode the accepted branch; elsewhere the history walked to the
         // inputs, so that the output at an input is the value fmi2DoStep (or the next event) gives there.
         let walked;
-        let c = if between_events {
-            contact
+        let (c, path_work) = if between_events {
+            (contact, branch_work(contact, alpha))
         } else {
-            walked = contact.walked_to(alpha, rate);
-            &walked
+            let mut w = contact.clone();
+            let path_work = w.follow(alpha);
+            w.accept(alpha, rate);
+            walked = w;
+            (&walked, path_work)
         };
-        let f = OUTPUTS.write(values, c, alpha, rate);
-        values[REFS.dissipated_energy] = Value::Real(self.work);
-        values[REFS.der_energy] = Value::Real(f * rate);
+        OUTPUTS.write(values, c, alpha, rate);
+        values[REFS.dissipated_energy] = Value::Real(self.law_work + path_work + self.damping_work);
+        values[REFS.damping_energy] = Value::Real(self.damping_work);
+        values[REFS.der_damping_energy] = Value::Real(c.force(alpha, rate).damping * rate);
     }
 
     fn set_time(&mut self, _t: f64) {}
 
     fn get_states(&self, x: &mut [f64]) {
-        x[0] = self.work;
+        x[0] = self.damping_work;
     }
 
     fn set_states(&mut self, x: &[f64]) {
-        self.work = x[0];
+        self.damping_work = x[0];
     }
 
     fn derivatives(&mut self, values: &[Value], dx: &mut [f64]) {
         let (alpha, rate) = self.inputs(values);
-        dx[0] = self.contact.as_ref().map_or(0.0, |c| c.force(alpha, rate).total() * rate);
+        dx[0] = self.contact.as_ref().map_or(0.0, |c| c.force(alpha, rate).damping * rate);
     }
 
     fn event_indicators(&mut self, values: &[Value], z: &mut [f64]) {
@@ -176,20 +206,32 @@ impl Model for ContactElement {
     }
 
     fn nominals(&self, x: &mut [f64]) {
+        // The work of the contact's force scale (its force at the nominal overlap, or its pull-off force)
+        // over the nominal overlap.
         x[0] = self.contact.as_ref().map_or(1.0, |c| {
-            let f = c.law.pull_off_force(c.history()).abs().max(1e-12);
+            let fresh = c.law.initial_history();
+            let f = c.law.evaluate(c.alpha_nominal, &fresh).force.abs().max(c.law.pull_off_force(&fresh)).max(1e-12);
             f * c.alpha_nominal
         });
     }
 
-    fn accept(&mut self, values: &[Value]) -> Option<String> {
+    fn accept(&mut self, values: &[Value]) -> EventUpdate {
         let (alpha, rate) = self.inputs(values);
-        let c = self.contact.as_mut()?;
-        let before = c.accepted.branch;
-        c.follow(alpha);
+        let Some(c) = self.contact.as_mut() else { return EventUpdate::default() };
+        let before = c.accepted;
+        self.law_work += c.follow(alpha);
         c.accept(alpha, rate);
-        let after = c.accepted.branch;
-        (before != after).then(|| format!("branch {before:?} -> {after:?} at overlap {alpha:e} m"))
+        let after = c.accepted;
+        let message = (before.branch != after.branch).then(|| format!("branch {:?} -> {:?} at overlap {alpha:e} m", before.branch, after.branch));
+        // The damping power follows the branch's stiffness: a new branch or history is a new right-hand side.
+        EventUpdate { message, restart: before.branch != after.branch || before.history != after.history }
+    }
+
+    fn completed_step(&mut self, values: &[Value]) {
+        let (alpha, _) = self.inputs(values);
+        if let Some(c) = self.contact.as_mut() {
+            self.law_work += c.keep_growth(alpha);
+        }
     }
 
     /// The inputs are held over the step: the history walks to the overlap of the step's start and the
@@ -198,16 +240,16 @@ impl Model for ContactElement {
         let (alpha, rate) = self.inputs(values);
         let c = self.contact.as_mut().ok_or(UnitError::NotInitialized)?;
         let from = c.accepted_alpha;
-        let law_work = c.follow(alpha);
+        self.law_work += c.follow(alpha);
         let damping = c.force(alpha, rate).damping;
         c.accept(alpha, rate);
-        self.work += law_work + damping * (alpha - from);
+        self.damping_work += damping * (alpha - from);
         Ok(())
     }
 
     fn save(&self) -> Result<Vec<u8>, UnitError> {
         let Some(c) = &self.contact else { return Ok(Vec::new()) };
-        let snap = Snapshot { work: self.work, contact: c.memory() };
+        let snap = Snapshot { law_work: self.law_work, damping_work: self.damping_work, contact: c.memory() };
         contact_parts::encode(&snap)
     }
 
@@ -221,7 +263,11 @@ impl Model for ContactElement {
         c.remember(snap.contact).map_err(UnitError::SavedState)?;
         self.contact = Some(c);
         self.gap = gap;
-        self.work = snap.work;
+        if !(snap.law_work.is_finite() && snap.damping_work.is_finite()) {
+            return Err(UnitError::SavedState("the saved contact work is not a finite number".into()));
+        }
+        self.law_work = snap.law_work;
+        self.damping_work = snap.damping_work;
         Ok(())
     }
 }

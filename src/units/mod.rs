@@ -46,9 +46,12 @@ pub trait Model: Send {
     fn event_indicators(&mut self, values: &[Value], z: &mut [f64]);
     fn nominals(&self, x: &mut [f64]);
     /// ME: an event (fmi2NewDiscreteStates): the contact's history accepts the current state. The only
-    /// place where Model Exchange changes a branch. Returns a message for the logEvents category when the
-    /// branch changed.
-    fn accept(&mut self, values: &[Value]) -> Option<String>;
+    /// place where Model Exchange changes a branch (or, crossing a vertical branch end, the states).
+    fn accept(&mut self, values: &[Value]) -> EventUpdate;
+    /// ME: a completed integrator step (fmi2CompletedIntegratorStep), after the inputs of its time are
+    /// set: a history that grows along its branch keeps the point reached (`Contact::keep_growth`);
+    /// nothing the right-hand side uses changes.
+    fn completed_step(&mut self, _values: &[Value]) {}
     /// CS: advance from `t` by `h` with the current inputs.
     fn do_step(&mut self, values: &[Value], t: f64, h: f64) -> Result<(), UnitError>;
     /// CS with early return (FMI 3.0 `earlyReturnAllowed`): advance from `t` by at most `h`, ending at the
@@ -72,6 +75,17 @@ pub trait Model: Send {
         Vec::new()
     }
     fn restore(&mut self, values: &[Value], bytes: &[u8]) -> Result<(), UnitError>;
+}
+
+/// What an event changed (`Model::accept`).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct EventUpdate {
+    /// A message for the logEvents category (a branch switch).
+    pub message: Option<String>,
+    /// The right-hand side or the continuous states changed: an integrator that stepped across the event
+    /// on the old branch must restart from the event (valuesOfContinuousStatesChanged). A host such as
+    /// fmusim restarts CVode only when told; without it, it goes on with the old branch's step.
+    pub restart: bool,
 }
 
 /// One unit: identifier, variables, sizes and a constructor of its model.

@@ -35,7 +35,7 @@ pub fn xml(unit: &UnitInfo, guid: &str) -> String {
         unit.n_event_indicators
     );
     if unit.model_exchange {
-        let _ = writeln!(x, "  <ModelExchange modelIdentifier=\"{id}\" canGetAndSetFMUstate=\"true\" canSerializeFMUstate=\"true\" completedIntegratorStepNotNeeded=\"true\"/>");
+        let _ = writeln!(x, "  <ModelExchange modelIdentifier=\"{id}\" canGetAndSetFMUstate=\"true\" canSerializeFMUstate=\"true\" completedIntegratorStepNotNeeded=\"false\"/>");
     }
     let interpolate = if unit.can_interpolate_inputs { " canInterpolateInputs=\"true\"" } else { "" };
     let _ = writeln!(

@@ -32,7 +32,7 @@ pub fn xml(unit: &UnitInfo, token: &str) -> String {
         env!("CARGO_PKG_VERSION"),
     );
     if unit.model_exchange {
-        let _ = writeln!(x, "  <ModelExchange modelIdentifier=\"{id}\" canGetAndSetFMUState=\"true\" canSerializeFMUState=\"true\" needsCompletedIntegratorStep=\"false\"/>");
+        let _ = writeln!(x, "  <ModelExchange modelIdentifier=\"{id}\" canGetAndSetFMUState=\"true\" canSerializeFMUState=\"true\" needsCompletedIntegratorStep=\"true\"/>");
     }
     // Early return and Event Mode where a step has events inside it: the sphere's contact (the other
     // units' contacts change only where the master changes their inputs, at communication points).

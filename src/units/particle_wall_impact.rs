@@ -8,7 +8,7 @@
 use super::contact_parts::{self, Outputs};
 use super::scene_params;
 use super::variables::{Role, Value, VarType, Variable};
-use super::{Model, UnitError, UnitInfo};
+use super::{EventUpdate, Model, UnitError, UnitInfo};
 use crate::impact::contact::Memory;
 use crate::impact::{Solver, Sphere, State, WallMotion};
 use crate::law::{AnyLaw, NormalLaw};
@@ -368,6 +368,8 @@ impl Model for ParticleWallImpact {
         self.cs_wall = None;
         let wall = WallMotion { t0, position: w, velocity: real(values, REFS.wall_velocity) };
         self.me_wall = model_exchange.then_some(SeenWall { position: wall.position, velocity: wall.velocity, t: t0 });
+        // Model Exchange crosses the end of a vertical branch in Event Mode (`Sphere::accept_crossing`).
+        sphere.contact.lead_vertical_ends = model_exchange;
         sphere.accept(&wall, t0, &self.y);
         sphere.contact.max_overlap = f64::NEG_INFINITY;
         self.sphere = Some(sphere);
@@ -448,18 +450,34 @@ impl Model for ParticleWallImpact {
         }
     }
 
-    fn accept(&mut self, values: &[Value]) -> Option<String> {
+    fn accept(&mut self, values: &[Value]) -> EventUpdate {
         self.see_inputs(values);
         let wall = self.wall(values);
-        let (t, y) = (self.t, self.y);
-        let sphere = self.sphere.as_mut()?;
-        let before = sphere.contact.accepted.branch;
-        if sphere.accept(&wall, t, &y) {
-            let after = sphere.contact.accepted.branch;
-            let (alpha, _) = sphere.overlap(&wall, t, &y);
-            return Some(format!("t = {t:e} s: branch {before:?} -> {after:?} at overlap {alpha:e} m"));
+        let t = self.t;
+        let mut y = self.y;
+        let Some(sphere) = self.sphere.as_mut() else { return EventUpdate::default() };
+        let before = sphere.contact.accepted;
+        let (alpha, _) = sphere.overlap(&wall, t, &y);
+        let (switched, crossed) = sphere.accept_crossing(&wall, t, &mut y);
+        let after = sphere.contact.accepted;
+        self.y = y;
+        let message = switched.then(|| {
+            let how = if crossed { format!(", crossed to the vertical end in Event Mode (leaves at {:e} m/s)", y.velocity) } else { String::new() };
+            format!("t = {t:e} s: branch {:?} -> {:?} at overlap {alpha:e} m{how}", before.branch, after.branch)
+        });
+        // The right-hand side follows the accepted branch and its history: a change of either (or of the
+        // states) is a restart for the host's integrator.
+        EventUpdate { message, restart: crossed || before.branch != after.branch || before.history != after.history }
+    }
+
+    fn completed_step(&mut self, values: &[Value]) {
+        self.see_inputs(values);
+        let wall = self.wall(values);
+        if let Some(sphere) = self.sphere.as_mut() {
+            let (alpha, _) = sphere.overlap(&wall, self.t, &self.y);
+            // The work is the state's; only the history is kept.
+            sphere.contact.keep_growth(alpha);
         }
-        None
     }
 
     fn do_step(&mut self, values: &[Value], t: f64, h: f64) -> Result<(), UnitError> {
@@ -532,6 +550,7 @@ impl Model for ParticleWallImpact {
             )));
         }
         sphere.contact.remember(snap.contact).map_err(UnitError::SavedState)?;
+        sphere.contact.lead_vertical_ends = snap.me_wall.is_some();
         sphere.last_step = snap.last_step;
         self.sphere = Some(sphere);
         self.radius = radius;
