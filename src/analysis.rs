@@ -70,8 +70,8 @@ pub const OUTPUTS: &[Output] = &[
     Output { name: "f_y0", unit: "N", group: Group::ThorntonNing, doc: "Thornton-Ning yield force (000 Eq. 30)" },
     Output { name: "alpha_y0", unit: "m", group: Group::ThorntonNing, doc: "Thornton-Ning yield overlap (000 Eq. 31)" },
     Output { name: "hertz_stiffness_at_yield", unit: "N/m", group: Group::Nan, doc: "2 E* sqrt(R* alpha_y) (000 Eq. 41; Table 3's k_H)" },
-    Output { name: "w_jkr", unit: "J", group: Group::Jkr, doc: "JKR adhesion work 7.09 (Gamma^5 R*^4/E*^2)^(1/3) (000 Eq. 37)" },
-    Output { name: "jkr_sticking_velocity", unit: "m/s", group: Group::Jkr, doc: "V_s = (2 W_JKR / m*)^(1/2) (000 Eq. 73); needs no yield pressure" },
+    Output { name: "w_jkr", unit: "J", group: Group::Jkr, doc: "JKR adhesion work 7.09 (Gamma^5 R*^4/E*^2)^(1/3) (000 Eq. 37): the displacement-controlled reading (contact ending at -5/9 f_c), whatever jkr_detachment is" },
+    Output { name: "jkr_sticking_velocity", unit: "m/s", group: Group::Jkr, doc: "V_s = (2 W_JKR / m*)^(1/2) (000 Eq. 73): the displacement-controlled reading, whatever jkr_detachment is; needs no yield pressure" },
     Output { name: "yield_velocity", unit: "m/s", group: Group::Nan, doc: "V_y0, yield velocity without cohesion (000 Eq. 74)" },
     Output { name: "adhesive_yield_velocity", unit: "m/s", group: Group::Nan, doc: "V_y (000 Eq. 75); null when f_y < f_0 (adhesion-induced plasticity)" },
     Output { name: "sticking_velocity", unit: "m/s", group: Group::Active, doc: "the active law's sticking velocity, undamped: the smallest impact speed at which the sphere rebounds (nan: 000 Eqs. 77-79; other laws: bisection on the energy balance to 1e-12); 0 if it never sticks" },
@@ -240,6 +240,13 @@ fn analyze_with(scene: &Scene, velocity: Option<f64>, search_active: bool) -> Re
         ));
     }
     out.insert("sticking_velocity".into(), json!(sticking));
+    if let AnyLaw::Jkr(jkr) = &law {
+        if jkr.detachment == crate::law::jkr::JkrDetachment::Force && eff.surface_energy > 0.0 {
+            notes.push(
+                "sticking_velocity is jkr_detachment = force's (the contact ends at -f_c, LAMMPS's reading); w_jkr and jkr_sticking_velocity are 000 Eqs. 37 and 73, the displacement reading (-5/9 f_c)".into(),
+            );
+        }
+    }
     if let Some(v) = velocity {
         let o = energy_balance::impact(&law, eff.mass, v, eff.radius)
             .map_err(|e| ParamError::Inconsistent { name: "impact_velocity", why: e.to_string() })?;

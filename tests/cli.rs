@@ -236,6 +236,23 @@ fn jkr_quantities_need_no_yield_pressure() {
     assert!((v_s / 0.66 - 1.0).abs() < 0.01, "{v_s}");
     let active = v["sticking_velocity"].as_f64().unwrap();
     assert!((active / v_s - 1.0).abs() < 1e-3, "{active} vs {v_s}");
+    let notes = v["notes"].as_array().cloned().unwrap_or_default();
+    assert!(!notes.iter().any(|n| n.as_str().unwrap().contains("jkr_detachment")), "{notes:?}");
+}
+
+/// With `jkr_detachment = force` the active sticking velocity is the force reading's (0.703 of Eq. 73's)
+/// and the output says which reading each value is.
+#[test]
+fn jkr_sticking_velocities_name_their_reading() {
+    let mut scene = table5(2.45e-6, 30e6);
+    let obj = scene.as_object_mut().unwrap();
+    obj.insert("contact_model".into(), json!("jkr"));
+    obj.insert("jkr_detachment".into(), json!("force"));
+    let v = analyze("jkr_force.json", &scene);
+    let (active, eq73) = (v["sticking_velocity"].as_f64().unwrap(), v["jkr_sticking_velocity"].as_f64().unwrap());
+    assert!((active / eq73 - 0.703).abs() < 1e-3, "{active} / {eq73}");
+    let notes: Vec<&str> = v["notes"].as_array().unwrap().iter().map(|n| n.as_str().unwrap()).collect();
+    assert!(notes.iter().any(|n| n.contains("sticking_velocity is jkr_detachment = force's") && n.contains("displacement reading")), "{notes:?}");
 }
 
 #[test]

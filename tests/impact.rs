@@ -255,3 +255,40 @@ fn model_exchange_crosses_the_vertical_end_of_jkr_by_its_closed_form_work() {
     assert!(sp.contact.indicators(alpha, -1.0).iter().all(|&g| g > 0.0));
     assert_eq!(sp.contact.law.evaluate(alpha, sp.contact.history()).branch, Branch::Separated);
 }
+
+/// 000 Eq. 20 at its boundaries, to rounding: the unit takes a point within 8 machine epsilons (relative)
+/// of a bound (the rounding of the bound's own formula, `BOUND_ULPS` in impact/contact.rs), moving out of
+/// its branch, as on the bound and goes to the branch beyond; from 9 epsilons on, the paper's inequality
+/// decides alone. At the equality itself with no motion the contact holds (alpha_fp <= alpha is
+/// adhesive). docs/models.md, "Reading the seeds", says why the band is kept.
+#[test]
+fn eq_20_decides_from_nine_epsilons_beyond_a_bound_and_at_the_equality_without_motion() {
+    let (mut c, law) = nan_contact();
+    let pts = law.points(law.p.alpha_y);
+    // k machine epsilons of |x| toward zero (above a negative bound).
+    let toward_zero = |x: f64, k: f64| x - k * f64::EPSILON * x;
+    let established = |c: &mut Contact| {
+        c.accept(-1e-9, 1.0);
+        c.accept(0.0, 1.0);
+        c.follow(0.5 * law.p.alpha_0);
+        c.accept(0.5 * law.p.alpha_0, -1.0);
+    };
+    let fp = pts.alpha_fp; // negative: "above" is toward zero, k ulps of smaller magnitude
+    for (k, rate, holds) in [(9.0, -1.0, true), (50.0, -1.0, true), (0.0, 0.0, true), (7.0, -1.0, false), (0.0, -1.0, false), (-1.0, -1.0, false)] {
+        established(&mut c);
+        let at = toward_zero(fp, k);
+        c.follow(at);
+        c.accept(at, rate);
+        assert_eq!(c.accepted.branch.in_contact(), holds, "{k} epsilons above alpha_fp, rate {rate}");
+    }
+    // Re-contact at alpha_c0 = 0 before yield: below it no contact, at it contact (Eq. 20: cs = 0 on
+    // alpha < alpha_c0 strictly).
+    established(&mut c);
+    c.follow(2.0 * fp);
+    c.accept(2.0 * fp, -1.0);
+    assert!(!c.accepted.branch.in_contact());
+    c.accept(-1e-300, 1.0);
+    assert!(!c.accepted.branch.in_contact());
+    c.accept(0.0, 1.0);
+    assert!(c.accepted.branch.in_contact());
+}

@@ -61,29 +61,29 @@ pub fn saved<'a>(states: &Registry, state: *mut c_void, function: &str) -> Call<
 
 /// fmi2FreeFMUstate and fmi3FreeFMUState: frees the state at `*p` and sets `*p` to NULL (NULL: nothing to
 /// free). A host that passes the state itself instead of its address (fmusim 0.0.39 does) gets that
-/// state freed and a warning naming the mistake, not an error: the pointer is then a live state of this
-/// library, which the address of a host's variable cannot be, so it is recognised before it is read.
+/// state freed too, and the message returned names the mistake for the log: the pointer is then a live
+/// state of this library, which the address of a host's variable cannot be, so it is recognised before
+/// it is read. The call succeeds: fmusim ends its run at any status other than OK, before simulating when
+/// it restores a state from a file.
 ///
 /// # Safety
 /// `p` is the host's argument: NULL, a live state of `states`, or the address of a variable holding NULL
 /// or a state pointer.
-pub unsafe fn free_state(states: &Registry, p: *mut *mut c_void, function: &str, arg: &str) -> Call {
+pub unsafe fn free_state(states: &Registry, p: *mut *mut c_void, function: &str, arg: &str) -> Call<Option<String>> {
     if p.is_null() {
         return error(format!("{function}: argument `{arg}` is NULL"));
     }
     if states.unregister(p as usize) {
         // SAFETY: just unregistered; live states come from Box::into_raw of a SavedState.
         drop(unsafe { Box::from_raw(p as *mut SavedState) });
-        return Err(Failure {
-            status: Status::Warning,
-            message: format!("{function}: `{arg}` is the FMU state itself, not the address of the host's pointer to it; the state is freed, and the host's pointer still holds it"),
-            enters_error_state: false,
-        });
+        return Ok(Some(format!(
+            "{function}: `{arg}` is the FMU state itself, not the address of the host's pointer to it (FMI passes the address, so that the pointer can be set to NULL); the state is freed, and the host's pointer still holds it"
+        )));
     }
     // SAFETY: not a state, so by the contract the address of the host's variable.
     let s = unsafe { *p };
     if s.is_null() {
-        return Ok(());
+        return Ok(None);
     }
     if !states.unregister(s as usize) {
         return error(format!("{function}: `*{arg}` is not a live state of this library (already freed?)"));
@@ -92,7 +92,7 @@ pub unsafe fn free_state(states: &Registry, p: *mut *mut c_void, function: &str,
     drop(unsafe { Box::from_raw(s as *mut SavedState) });
     // SAFETY: the address of the host's variable, checked non-NULL above.
     unsafe { *p = std::ptr::null_mut() };
-    Ok(())
+    Ok(None)
 }
 
 /// Runs `f` on the instance behind `c` if `c` is live in `instances`, of interface `kind` (None: either),

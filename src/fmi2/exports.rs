@@ -370,8 +370,13 @@ pub unsafe extern "C" fn fmi2SetFMUstate(c: fmi2Component, FMUstate: fmi2FMUstat
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi2FreeFMUstate(c: fmi2Component, FMUstate: *mut fmi2FMUstate) -> fmi2Status {
-    // SAFETY: the host's argument, as `free_state` requires (a state pointer's address, or the state).
-    call(c, "fmi2FreeFMUstate", allowed::ANY_LIVE, |_| unsafe { ffi::free_state(&STATES, FMUstate as *mut *mut std::ffi::c_void, "fmi2FreeFMUstate", "FMUstate") })
+    call(c, "fmi2FreeFMUstate", allowed::ANY_LIVE, |inst| {
+        // SAFETY: the host's argument, as `free_state` requires.
+        if let Some(mistake) = unsafe { ffi::free_state(&STATES, FMUstate as *mut *mut std::ffi::c_void, "fmi2FreeFMUstate", "FMUstate") }? {
+            inst.log(Status::Warning, "logStatusWarning", &mistake);
+        }
+        Ok(())
+    })
 }
 
 #[no_mangle]

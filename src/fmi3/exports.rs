@@ -890,8 +890,13 @@ pub unsafe extern "C" fn fmi3SetFMUState(c: fmi3Instance, FMUState: fmi3FMUState
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi3FreeFMUState(c: fmi3Instance, FMUState: *mut fmi3FMUState) -> fmi3Status {
-    // SAFETY: the host's argument, as `free_state` requires (a state pointer's address, or the state).
-    call(c, "fmi3FreeFMUState", allowed::ANY_LIVE, |_| unsafe { ffi::free_state(&STATES, FMUState as *mut *mut std::ffi::c_void, "fmi3FreeFMUState", "FMUState") })
+    call(c, "fmi3FreeFMUState", allowed::ANY_LIVE, |inst| {
+        // SAFETY: the host's argument, as `free_state` requires.
+        if let Some(mistake) = unsafe { ffi::free_state(&STATES, FMUState as *mut *mut std::ffi::c_void, "fmi3FreeFMUState", "FMUState") }? {
+            inst.log(Status::Warning, "logStatusWarning", &mistake);
+        }
+        Ok(())
+    })
 }
 
 #[no_mangle]

@@ -1,6 +1,5 @@
 """Our laws against the peer DEM codes users come from (docs/porting.md), where a peer is installed here
-from Debian (`apt-get install lammps`). Skipped, with the reason, where it is not: CI does not install
-them, so these never sit in its critical path."""
+from Debian (`apt-get install lammps`). Skipped, with the reason, where it is not."""
 
 from __future__ import annotations
 
@@ -66,6 +65,37 @@ def test_jkr_force_detachment_is_lammps_granular_jkr(tmp_path, cli):
     on = (f_out != 0) & (a_out > our_end + 2 * v * dt)
     assert np.max(np.abs(np.interp(a_out[on], oa2[in_contact], of2[in_contact]) - f_out[on])) < 1e-9 * f_c
     assert f_out[f_out != 0].min() == pytest.approx(-f_c, rel=1e-6), "LAMMPS ends at the pull-off force"
+
+
+def lammps_version() -> str:
+    """The version line of the installed LAMMPS (its -h banner)."""
+    banner = subprocess.run([LMP, "-h"], capture_output=True, text=True, timeout=60).stdout
+    return next(line for line in banner.splitlines() if "Simulator" in line).split(" - ", 1)[1].strip()
+
+
+@pytest.mark.skipif(LMP is None, reason="LAMMPS is not installed (apt-get install lammps); the peer comparison runs where it is")
+def test_lammps_wall_modulus_is_the_one_docs_porting_names(tmp_path):
+    """docs/porting.md's wall mapping: `fix wall/gran granular hertz/material` builds the wall's E* as
+    E/(2(1 - nu)) in LAMMPS 29 Sep 2021 Update 2 (Debian 12's lammps 20220106), not E/(2(1 - nu^2)) as a
+    like pair does. One 2.45 um sphere pushed 20 nm into the wall at 1 m/s: F = 4/3 E* sqrt(R) delta^1.5
+    at every step in contact gives E* to 1e-9. Another version may differ: then this test says which."""
+    radius, E, nu = 2.45e-6, 1.2e9, 0.33
+    out = tmp_path / "wall.txt"
+    run = subprocess.run(
+        [LMP, "-in", str(REPO / "tests/python/peers/lammps_wall.in"), "-log", "none", "-screen", "none", "-var", "z0", repr(radius + 1e-8),
+         "-var", "d", repr(2 * radius), "-var", "E", repr(E), "-var", "nu", repr(nu), "-var", "dt", "1e-11", "-var", "v", "1.0",
+         "-var", "n", "3000", "-var", "out", str(out)],
+        capture_output=True, text=True, timeout=300,
+    )
+    assert run.returncode == 0, run.stdout[-2000:] + run.stderr[-2000:]
+    z, fz = np.loadtxt(out, comments="#").T
+    delta = radius - z
+    touching = delta > 1e-9
+    e_star = fz[touching] / (4.0 / 3.0 * math.sqrt(radius) * delta[touching] ** 1.5)
+    version = lammps_version()
+    assert np.ptp(e_star) < 1e-9 * e_star.mean()
+    assert e_star.mean() == pytest.approx(E / (2 * (1 - nu)), rel=1e-9), f"LAMMPS {version}: wall E* = {e_star.mean():e} Pa"
+    assert version == "29 Sep 2021 - Update 2", f"docs/porting.md names the version measured; this is {version}"
 
 
 YADE = shutil.which("yade")
