@@ -259,6 +259,13 @@ fn saved_state_restores_and_repeats_the_step_bit_for_bit() {
         assert_eq!(free_state(c, &mut s2), fmi2OK);
         assert!(s.is_null());
         assert_eq!(set_state(c, s2), fmi2Error, "a freed state is refused");
+        // fmusim 0.0.39 passes the state itself, not its address: freed, OK, the mistake logged.
+        let mut s3: fmi2FMUstate = std::ptr::null_mut();
+        assert_eq!(get_state(c, &mut s3), fmi2OK);
+        assert_eq!(free_state(c, s3 as *mut fmi2FMUstate), fmi2OK);
+        let said = log.lock().unwrap().last().unwrap().clone();
+        assert!(said.2.contains("the FMU state itself, not the address"), "{said:?}");
+        assert_eq!(set_state(c, s3), fmi2Error, "that state is freed");
     }
     api.free(c);
 }

@@ -372,7 +372,7 @@ pub unsafe extern "C" fn fmi2SetFMUstate(c: fmi2Component, FMUstate: fmi2FMUstat
 pub unsafe extern "C" fn fmi2FreeFMUstate(c: fmi2Component, FMUstate: *mut fmi2FMUstate) -> fmi2Status {
     call(c, "fmi2FreeFMUstate", allowed::ANY_LIVE, |inst| {
         // SAFETY: the host's argument, as `free_state` requires.
-        if let Some(mistake) = unsafe { ffi::free_state(&STATES, FMUstate as *mut *mut std::ffi::c_void, "fmi2FreeFMUstate", "FMUstate") }? {
+        if let Some(mistake) = unsafe { ffi::free_state(&STATES, FMUstate, "fmi2FreeFMUstate", "FMUstate") }? {
             inst.log(Status::Warning, "logStatusWarning", &mistake);
         }
         Ok(())

@@ -892,7 +892,7 @@ pub unsafe extern "C" fn fmi3SetFMUState(c: fmi3Instance, FMUState: fmi3FMUState
 pub unsafe extern "C" fn fmi3FreeFMUState(c: fmi3Instance, FMUState: *mut fmi3FMUState) -> fmi3Status {
     call(c, "fmi3FreeFMUState", allowed::ANY_LIVE, |inst| {
         // SAFETY: the host's argument, as `free_state` requires.
-        if let Some(mistake) = unsafe { ffi::free_state(&STATES, FMUState as *mut *mut std::ffi::c_void, "fmi3FreeFMUState", "FMUState") }? {
+        if let Some(mistake) = unsafe { ffi::free_state(&STATES, FMUState, "fmi3FreeFMUState", "FMUState") }? {
             inst.log(Status::Warning, "logStatusWarning", &mistake);
         }
         Ok(())
