@@ -106,8 +106,12 @@ def held_input_run(
         num_steps(solver.cvode_mem, ctypes.byref(n))
         return n.value
 
-    def handle_event(time: float) -> None:
+    def handle_event(time: float, inputs_now: list[float] | None = None) -> None:
+        """Event Mode: the inputs of this time if given (an input event), the event iteration, and the
+        restart the policy asks for."""
         fmu.enterEventMode()
+        if inputs_now is not None:
+            fmu.setReal(vr_in, inputs_now)
         told = event_iteration(time)
         fmu.enterContinuousTimeMode()
         if restart == "always" or told:
@@ -131,14 +135,7 @@ def held_input_run(
         if k + 1 < t.size:
             values = [float(samples[n][k]) for n in inputs]
             if input_events:
-                fmu.enterEventMode()
-                fmu.setReal(vr_in, values)
-                told = event_iteration(time)
-                fmu.enterContinuousTimeMode()
-                if restart == "always" or told:
-                    run.steps += cvode_steps()
-                    solver.reset(time)
-                    run.restarts += 1
+                handle_event(time, values)
             else:
                 fmu.setReal(vr_in, values)
                 if fmu.completedIntegratorStep()[0]:
