@@ -512,7 +512,7 @@ impl Instance {
     /// detects it (an indicator may stay below zero after its event: the overlap rate after a turning
     /// point).
     pub fn completed_integrator_step(&mut self) -> Call<bool> {
-        self.refresh(&self.api.name("CompletedIntegratorStep"))?;
+        // Continuous-Time Mode: the model is initialized; the outputs are computed when asked for.
         self.model.completed_step(&self.values);
         let z = self.indicators_now();
         let event = self.indicators_seen.as_ref().is_some_and(|seen| seen.iter().zip(&z).any(|(a, b)| (*a >= 0.0) != (*b >= 0.0)));

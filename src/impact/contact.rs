@@ -232,13 +232,14 @@ impl Contact {
     }
 
     /// The contact as it is after walking from the accepted overlap to `alpha` (a copy; this one is not
-    /// changed): what `follow` and `accept` would make of these inputs. Co-Simulation's outputs at new
-    /// inputs use it, so that they are the values the next step starts from.
-    pub fn walked_to(&self, alpha: f64, rate: f64) -> Contact {
+    /// changed): what `follow` and `accept` would make of these inputs, and the law's work on the way
+    /// [J]. Co-Simulation's outputs at new inputs use it, so that they are the values the next step
+    /// starts from.
+    pub fn walked_to(&self, alpha: f64, rate: f64) -> (Contact, f64) {
         let mut c = self.clone();
-        c.follow(alpha);
+        let work = c.follow(alpha);
         c.accept(alpha, rate);
-        c
+        (c, work)
     }
 
     /// Takes the state at `alpha`, moving with `rate`, into the history. Returns the branch before and after.

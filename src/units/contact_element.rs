@@ -171,16 +171,14 @@ impl Model for ContactElement {
         let (c, path_work) = if between_events {
             (contact, branch_work(contact, alpha))
         } else {
-            let mut w = contact.clone();
-            let path_work = w.follow(alpha);
-            w.accept(alpha, rate);
+            let (w, path_work) = contact.walked_to(alpha, rate);
             walked = w;
             (&walked, path_work)
         };
-        OUTPUTS.write(values, c, alpha, rate);
+        let f = OUTPUTS.write(values, c, alpha, rate);
         values[REFS.dissipated_energy] = Value::Real(self.law_work + path_work + self.damping_work);
         values[REFS.damping_energy] = Value::Real(self.damping_work);
-        values[REFS.der_damping_energy] = Value::Real(c.force(alpha, rate).damping * rate);
+        values[REFS.der_damping_energy] = Value::Real(f.damping * rate);
     }
 
     fn set_time(&mut self, _t: f64) {}

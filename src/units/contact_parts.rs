@@ -4,7 +4,7 @@
 use super::scene_params;
 use super::UnitError;
 use super::variables::{Value, VarType, Variable};
-use crate::impact::Contact;
+use crate::impact::{Contact, ContactForce};
 use crate::law::damping::NormalDamping;
 use crate::law::params::Effective;
 use crate::law::{AnyLaw, NormalLaw};
@@ -62,7 +62,7 @@ impl Outputs {
 
     /// Writes force, overlap, state and history at `alpha`, `rate` on the accepted branch of `c`; returns
     /// the total force.
-    pub fn write(&self, values: &mut [Value], c: &Contact, alpha: f64, rate: f64) -> f64 {
+    pub fn write(&self, values: &mut [Value], c: &Contact, alpha: f64, rate: f64) -> ContactForce {
         let (f, history) = c.state_at(alpha, rate);
         values[self.force] = Value::Real(f.total());
         values[self.overlap] = Value::Real(alpha);
@@ -70,7 +70,7 @@ impl Outputs {
         values[self.max_overlap] = Value::Real(c.max_overlap.max(alpha).max(0.0));
         values[self.plastic_overlap] = Value::Real(c.law.plastic_overlap(&history));
         values[self.pull_off_force] = Value::Real(c.law.pull_off_force(&history));
-        f.total()
+        f
     }
 }
 

@@ -392,12 +392,12 @@ impl Model for ParticleWallImpact {
         // A wall moved outside Continuous-Time Mode: the outputs the next step or event starts from.
         let walked;
         let c = if !between_events && sphere.jumped(&wall, self.t, &self.y) {
-            walked = sphere.contact.walked_to(alpha, rate);
+            walked = sphere.contact.walked_to(alpha, rate).0;
             &walked
         } else {
             &sphere.contact
         };
-        let f = OUTPUTS.write(values, c, alpha, rate);
+        let f = OUTPUTS.write(values, c, alpha, rate).total();
         values[REFS.sphere_position] = Value::Real(self.y.bottom + self.radius);
         values[REFS.sphere_velocity] = Value::Real(self.y.velocity);
         values[REFS.dissipated_energy] = Value::Real(self.y.work);
