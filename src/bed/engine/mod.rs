@@ -411,6 +411,16 @@ impl<L: BedLaw> Engine<L> {
     pub fn reach(&self) -> f64 {
         self.reach
     }
+
+    /// A 64-bit FNV-1a digest of the bits of every position, velocity, angular velocity and force of
+    /// the last step: two runs that print the same digest stepped to the same bits (the bench prints
+    /// it, so a faster build, another thread count or the Windows build can be compared to the bit).
+    pub fn state_digest(&self) -> u64 {
+        let p = &self.particles;
+        let vectors = p.position.iter().chain(&p.velocity).chain(&p.angular_velocity).chain(&self.total.force).chain(&self.total.torque);
+        let words = vectors.flat_map(|v| [v.x, v.y, v.z]).chain(self.total.rolling.iter().copied());
+        words.fold(0xcbf2_9ce4_8422_2325u64, |h, x| x.to_bits().to_le_bytes().iter().fold(h, |h, &b| (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3)))
+    }
 }
 
 /// Half a kick of the particles from `base` on (their slices), and the drift x += v dt (dt = 0: none).
