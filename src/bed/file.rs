@@ -175,9 +175,9 @@ impl AnyEngine {
                 walls: e.walls.clone(),
                 contacts,
                 wall_contacts,
-                force: e.totals().force.clone(),
-                torque: e.totals().torque.clone(),
-                rolling: e.totals().rolling.clone(),
+                force: e.totals().forces(),
+                torque: e.totals().torques(),
+                rolling: e.totals().rolling_loads(),
             }
         })
     }

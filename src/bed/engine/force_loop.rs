@@ -8,7 +8,7 @@ use super::super::kernel::{contact, surface_velocity};
 use super::super::neighbors::NeighborList;
 use super::super::particles::Particles;
 use super::super::walls::Wall;
-use super::super::{dot, sub, Tensor, Vec3, ZERO};
+use super::super::{cross, dot, sub, Vec3, ZERO};
 use super::partition::Sink;
 use super::Engine;
 use rayon::prelude::*;
@@ -46,6 +46,10 @@ impl<L: BedLaw> Engine<L> {
     }
 
     pub(super) fn forces_inner(&mut self) {
+        let n = self.particles.len();
+        // The pair loop indexes the particle arrays by the list's partners unchecked beyond one test of
+        // each partner against n (see `run_part`); the list must be this bed's.
+        assert_eq!(self.list.rows(), n, "the Verlet list is not built for these particles");
         let shared = Shared {
             p: &self.particles,
             list: &self.list,
@@ -55,7 +59,9 @@ impl<L: BedLaw> Engine<L> {
             species: self.species,
             dt: self.dt,
         };
-        // Cut the memory into the parts' pieces.
+        let record = self.record_dipoles;
+        // Cut the contact memory into the parts' pieces; each part's sink is its buffer (one thread: the
+        // totals).
         let mut parts: Vec<Part<L::History>> = Vec::with_capacity(self.threads);
         let mut normal: &mut [L::History] = &mut self.normal;
         let mut spring: &mut [Vec3] = &mut self.spring;
@@ -63,12 +69,17 @@ impl<L: BedLaw> Engine<L> {
         let mut wall_rest: Vec<WallMemory<'_, L::History>> =
             self.wall_contacts.iter_mut().map(|wc| (&wc.particle[..], &mut wc.normal[..], &mut wc.spring[..], &mut wc.radius[..])).collect();
         let mut consumed = 0usize;
-        let record = self.record_dipoles;
-        let mut own_f: &mut [Vec3] = &mut self.total.force;
-        let mut own_t: &mut [Vec3] = &mut self.total.torque;
-        let mut own_r: &mut [f64] = &mut self.total.rolling;
-        let mut own_d: &mut [Tensor] = &mut self.total.dipole;
-        for (k, spill) in self.spill.iter_mut().enumerate() {
+        let mut sinks: Vec<Sink> = if self.threads == 1 {
+            let t = &mut self.total;
+            vec![Sink { base: 0, load: &mut t.load, dipole: &mut t.dipole, wall_force: &mut t.wall_force }]
+        } else {
+            self.buffers
+                .iter_mut()
+                .zip(&self.parts)
+                .map(|(b, &base)| Sink { base, load: &mut b.load, dipole: &mut b.dipole, wall_force: &mut b.wall_force })
+                .collect()
+        };
+        for (k, sink) in sinks.drain(..).enumerate() {
             let (a, b) = (self.parts[k], self.parts[k + 1]);
             let take = self.list.start[b] as usize - consumed;
             let (mine_n, rest) = std::mem::take(&mut normal).split_at_mut(take);
@@ -90,24 +101,16 @@ impl<L: BedLaw> Engine<L> {
                 *ss = s_rest;
                 *rs = r_rest;
             }
-            let (f, rest) = std::mem::take(&mut own_f).split_at_mut(b - a);
-            own_f = rest;
-            let (t, rest) = std::mem::take(&mut own_t).split_at_mut(b - a);
-            own_t = rest;
-            let (r, rest) = std::mem::take(&mut own_r).split_at_mut(b - a);
-            own_r = rest;
-            let (d, rest) = std::mem::take(&mut own_d).split_at_mut(if record { b - a } else { 0 });
-            own_d = rest;
-            let sink = Sink { base: a, split: b, force: f, torque: t, rolling: r, dipole: d, spill };
+            debug_assert!(!record || sink.dipole.len() == sink.load.len());
             parts.push(Part { rows: (a, b), slot0: consumed, normal: mine_n, spring: mine_s, radius: mine_r, walls, sink });
             consumed += take;
         }
         if self.threads > 1 {
             parts.into_par_iter().for_each(|part| run_part(&shared, part));
+            self.add_buffers();
         } else {
             parts.into_iter().for_each(|part| run_part(&shared, part));
         }
-        self.add_spills();
         for (w, wall) in self.walls.iter_mut().enumerate() {
             wall.force = self.total.wall_force[w];
         }
@@ -117,44 +120,51 @@ impl<L: BedLaw> Engine<L> {
 /// The force loop of one part.
 fn run_part<L: BedLaw>(s: &Shared<L>, part: Part<L::History>) {
     let Part { rows, slot0, normal, spring, radius, walls, mut sink } = part;
-    sink.force.fill(ZERO);
-    sink.torque.fill(ZERO);
-    sink.rolling.fill(0.0);
-    sink.dipole.fill(Tensor::zeros());
-    sink.spill.clear();
+    sink.clear();
     let p = s.p;
+    let n = p.len();
+    // Every per-particle array cut to n: after `j < n` below the compiler drops the other bounds tests of
+    // the partner (one test instead of six per list entry).
+    let (position, velocity, spin, radii, species) = (&p.position[..n], &p.velocity[..n], &p.angular_velocity[..n], &p.radius[..n], &p.species[..n]);
+    let held = &p.held[..];
+    let any_held = held.iter().any(|&h| h);
     let dipoles = !sink.dipole.is_empty();
     for i in rows.0..rows.1 {
-        let xi = p.position[i];
-        let vi = p.velocity[i];
-        let wi = p.angular_velocity[i];
-        let ri = p.radius[i];
-        let table = &s.pairs[p.species[i] as usize * s.species..];
-        let first = s.list.start[i] as usize;
-        let held_i = p.held.get(i) == Some(&true);
-        for (k, &j) in (first..).zip(s.list.row(i)) {
+        let xi = position[i];
+        let vi = velocity[i];
+        let wi = spin[i];
+        let ri = radii[i];
+        let table = &s.pairs[species[i] as usize * s.species..][..s.species];
+        let (first, last) = (s.list.start[i] as usize, s.list.start[i + 1] as usize);
+        let held_i = any_held && held[i];
+        let row = &s.list.partner[first..last];
+        let slots = first - slot0..last - slot0;
+        let memory = normal[slots.clone()].iter_mut().zip(&mut spring[slots.clone()]).zip(&mut radius[slots]);
+        for (&j, ((history, tangential_spring), contact_radius)) in row.iter().zip(memory) {
             let j = j as usize;
-            if held_i && p.held[j] {
+            assert!(j < n);
+            if held_i && held[j] {
                 continue; // two held spheres: neither moves, their contact and its memory stay as they are
             }
-            let d = sub(p.position[j], xi);
+            let d = sub(position[j], xi);
             let dist2 = dot(d, d);
-            let rj = p.radius[j];
-            let it = &table[p.species[j] as usize];
-            let slot = k - slot0;
+            let rj = radii[j];
+            let it = &table[species[j] as usize];
             let range = ri + rj + it.reach;
-            if dist2 >= range * range && spring[slot] == ZERO && normal[slot] == it.initial {
+            if dist2 >= range * range && *tangential_spring == ZERO && *history == it.initial {
                 continue; // apart, beyond any neck, and nothing to forget
             }
             let dist = dist2.sqrt();
             let n = super::super::scale(d, 1.0 / dist);
             let alpha = ri + rj - dist;
             let (li, lj) = (ri - 0.5 * alpha, rj - 0.5 * alpha);
-            let v = surface_velocity(vi, wi, li, p.velocity[j], p.angular_velocity[j], lj, n);
-            if let Some(c) = contact(it, alpha, n, v, &mut normal[slot], &mut spring[slot], &mut radius[slot], s.dt) {
-                // Particle j sees the contact from the other side: normal, force and tangential force negated.
-                sink.add_contact(i, n, c.force, c.tangential, li, c.rolling_load, dipoles);
-                sink.add_contact(j, neg(n), neg(c.force), neg(c.tangential), lj, c.rolling_load, dipoles);
+            let v = surface_velocity(vi, wi, li, velocity[j], spin[j], lj, n);
+            if let Some(c) = contact(it, alpha, n, v, history, tangential_spring, contact_radius, s.dt) {
+                // Particle j sees the contact from the other side: normal, force and tangential force
+                // negated, so the same n x F_t.
+                let turn = cross(n, c.tangential);
+                sink.add_contact(i, 1.0, n, c.force, turn, li, c.rolling_load, dipoles);
+                sink.add_contact(j, -1.0, n, c.force, turn, lj, c.rolling_load, dipoles);
             }
         }
     }
@@ -172,15 +182,12 @@ fn run_part<L: BedLaw>(s: &Shared<L>, part: Part<L::History>) {
             let li = ri - 0.5 * t.overlap;
             let v = surface_velocity(p.velocity[i], p.angular_velocity[i], li, wall.velocity, ZERO, 0.0, t.normal);
             if let Some(c) = contact(it, t.overlap, t.normal, v, &mut normal[slot], &mut spring[slot], &mut radius[slot], s.dt) {
-                sink.add_contact(i, t.normal, c.force, c.tangential, li, c.rolling_load, dipoles);
+                sink.add_contact(i, 1.0, t.normal, c.force, cross(t.normal, c.tangential), li, c.rolling_load, dipoles);
                 for q in 0..3 {
-                    sink.spill.wall_force[w][q] -= c.force[q];
+                    sink.wall_force[w][q] -= c.force[q];
                 }
             }
         }
     }
 }
 
-fn neg(a: Vec3) -> Vec3 {
-    Vec3::new(-a[0], -a[1], -a[2])
-}

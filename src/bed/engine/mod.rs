@@ -4,9 +4,9 @@
 //! - here: the engine, its set-up and the integration (kicks, drift, walls, when to rebuild);
 //! - `memory`: carrying every contact's memory (law history, tangential spring, contact radius) across
 //!   list rebuilds;
-//! - `partition`: the fixed partition of the particles into parts of equal work, each part's spill
-//!   buffer, and the sum of the spills in part order, so a run is bitwise the same for a given thread
-//!   count;
+//! - `partition`: the fixed partition of the particles into parts of equal work, each part's buffer
+//!   over the particles it touches, and their sum in part order, so a run is bitwise the same for a
+//!   given thread count;
 //! - `force_loop`: the force loop of one part over its pairs and wall contacts.
 
 mod force_loop;
@@ -14,7 +14,7 @@ mod memory;
 mod partition;
 
 pub use memory::WallContacts;
-pub use partition::Accum;
+pub use partition::{Accum, Load};
 
 use super::interaction::{BedLaw, Interaction};
 use super::neighbors::NeighborList;
@@ -54,10 +54,12 @@ pub struct Engine<L: BedLaw> {
     reach: f64,
     /// Forces, torques, rolling loads (and dipoles) of the last step.
     total: Accum,
-    /// Each part's spill buffer (see `Sink`).
-    spill: Vec<Accum>,
+    /// Each part's buffer over its span (threads > 1; one thread writes into `total`).
+    buffers: Vec<Accum>,
     /// First row of each part of the force loop (len parts + 1).
     parts: Vec<usize>,
+    /// One past the last particle each part writes (its last row or its rows' last partner).
+    span_end: Vec<usize>,
     pool: Option<Pool>,
     threads: usize,
     record_dipoles: bool,
@@ -120,8 +122,9 @@ impl<L: BedLaw> Engine<L> {
             radius: vec![],
             reach,
             total: Accum::default(),
-            spill: (0..threads).map(|_| Accum::default()).collect(),
+            buffers: vec![],
             parts: vec![],
+            span_end: vec![],
             pool,
             threads,
             record_dipoles: false,
@@ -179,10 +182,10 @@ impl<L: BedLaw> Engine<L> {
 
     /// Sets the forces of the last step (a bed loaded from a file continues exactly).
     pub fn set_totals(&mut self, force: &[Vec3], torque: &[Vec3], rolling: &[f64]) {
-        let t = &mut self.total;
-        t.force.copy_from_slice(force);
-        t.torque.copy_from_slice(torque);
-        t.rolling.copy_from_slice(rolling);
+        assert!(force.len() == self.total.load.len() && torque.len() == force.len() && rolling.len() == force.len(), "one force, torque and rolling load per sphere");
+        for (l, ((f, t), r)) in self.total.load.iter_mut().zip(force.iter().zip(torque).zip(rolling)) {
+            *l = Load { force: *f, torque: *t, rolling: *r };
+        }
     }
 
     /// Per particle sum of |x_c - x_p| n_i F_j over its contacts (Bagi, 004 Eq. 5.1) for the current
@@ -265,7 +268,7 @@ impl<L: BedLaw> Engine<L> {
     fn partial_forces(&mut self) -> Vec<Vec3> {
         let saved = self.total.clone();
         self.compute_forces_without_increment();
-        let forces = self.total.force.clone();
+        let forces = self.total.forces();
         self.total = saved;
         forces
     }
@@ -276,7 +279,7 @@ impl<L: BedLaw> Engine<L> {
     pub fn release_disturbed(&mut self, threshold: f64) -> usize {
         let mut released = 0;
         for i in 0..self.particles.len() {
-            if self.particles.held[i] && (self.total.force[i] - self.held_reference[i]).norm_squared() > threshold * threshold {
+            if self.particles.held[i] && (self.total.load[i].force - self.held_reference[i]).norm_squared() > threshold * threshold {
                 self.particles.held[i] = false;
                 released += 1;
             }
@@ -330,26 +333,23 @@ impl<L: BedLaw> Engine<L> {
     /// also x += v dt. Returns the largest squared displacement since the last list build (with drift).
     fn kick(&mut self, h: f64, drift: bool) -> f64 {
         let threads = self.threads;
-        let acc = &self.total;
+        let load = &self.total.load[..];
         let p = &mut self.particles;
         let reference = self.list.reference();
         let dt = if drift { self.dt } else { 0.0 };
         let g = self.gravity;
+        let any_held = p.held.iter().any(|&x| x);
+        let body = Body { inv_mass: &p.inv_mass, inv_inertia: &p.inv_inertia, radius: &p.radius, held: if any_held { &p.held } else { &[] } };
         if threads == 1 {
-            return kick_range(0, &mut p.velocity, &mut p.angular_velocity, &mut p.position, (&p.inv_mass, &p.inv_inertia, &p.radius, &p.held), acc, reference, g, h, dt);
+            return kick_range(0, &mut p.velocity, &mut p.angular_velocity, &mut p.position, body, load, reference, g, h, dt);
         }
         let chunk = p.len().div_ceil(threads).max(1);
-        let chunks: Vec<_> = p
-            .velocity
-            .chunks_mut(chunk)
-            .zip(p.angular_velocity.chunks_mut(chunk))
-            .zip(p.position.chunks_mut(chunk))
-            .zip(p.inv_mass.chunks(chunk).zip(p.inv_inertia.chunks(chunk)).zip(p.radius.chunks(chunk)).zip(p.held.chunks(chunk)))
+        p.velocity
+            .par_chunks_mut(chunk)
+            .zip(p.angular_velocity.par_chunks_mut(chunk))
+            .zip(p.position.par_chunks_mut(chunk))
             .enumerate()
-            .collect();
-        chunks
-            .into_par_iter()
-            .map(|(k, (((v, w), x), (((im, ii), r), held)))| kick_range(k * chunk, v, w, x, (im, ii, r, held), acc, reference, g, h, dt))
+            .map(|(k, ((v, w), x))| kick_range(k * chunk, v, w, x, body, load, reference, g, h, dt))
             .reduce(|| 0.0, f64::max)
     }
 
@@ -363,18 +363,14 @@ impl<L: BedLaw> Engine<L> {
     pub fn memory_bytes(&self) -> usize {
         use std::mem::size_of;
         let (h, v, f, u) = (size_of::<L::History>(), size_of::<Vec3>(), size_of::<f64>(), size_of::<u32>());
-        let acc = |a: &Accum| {
-            (a.force.capacity() + a.torque.capacity() + a.wall_force.capacity()) * v
-                + a.rolling.capacity() * f
-                + a.dipole.capacity() * size_of::<Tensor>()
-        };
+        let acc = |a: &Accum| a.load.capacity() * size_of::<Load>() + a.wall_force.capacity() * v + a.dipole.capacity() * size_of::<Tensor>();
         self.particles.memory_bytes()
             + self.list.memory_bytes()
             + self.normal.capacity() * h
             + self.spring.capacity() * v
             + self.radius.capacity() * f
             + self.wall_contacts.iter().map(|w| w.particle.capacity() * u + w.normal.capacity() * h + w.spring.capacity() * v + w.radius.capacity() * f).sum::<usize>()
-            + self.spill.iter().map(acc).sum::<usize>()
+            + self.buffers.iter().map(acc).sum::<usize>()
             + acc(&self.total)
     }
 
@@ -417,54 +413,63 @@ impl<L: BedLaw> Engine<L> {
     /// it, so a faster build, another thread count or the Windows build can be compared to the bit).
     pub fn state_digest(&self) -> u64 {
         let p = &self.particles;
-        let vectors = p.position.iter().chain(&p.velocity).chain(&p.angular_velocity).chain(&self.total.force).chain(&self.total.torque);
-        let words = vectors.flat_map(|v| [v.x, v.y, v.z]).chain(self.total.rolling.iter().copied());
+        let (force, torque) = (self.total.forces(), self.total.torques());
+        let vectors = p.position.iter().chain(&p.velocity).chain(&p.angular_velocity).chain(&force).chain(&torque);
+        let words = vectors.flat_map(|v| [v.x, v.y, v.z]).chain(self.total.load.iter().map(|l| l.rolling));
         words.fold(0xcbf2_9ce4_8422_2325u64, |h, x| x.to_bits().to_le_bytes().iter().fold(h, |h, &b| (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3)))
     }
+}
+
+/// What the kick reads of each sphere; `held` empty when none is held.
+#[derive(Clone, Copy)]
+struct Body<'a> {
+    inv_mass: &'a [f64],
+    inv_inertia: &'a [f64],
+    radius: &'a [f64],
+    held: &'a [bool],
 }
 
 /// Half a kick of the particles from `base` on (their slices), and the drift x += v dt (dt = 0: none).
 /// Returns the largest squared displacement from `reference` (the positions of the last list build).
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
-fn kick_range(
-    base: usize,
-    v: &mut [Vec3],
-    w: &mut [Vec3],
-    x: &mut [Vec3],
-    (im, ii, r, held): (&[f64], &[f64], &[f64], &[bool]),
-    acc: &Accum,
-    reference: &[Vec3],
-    g: Vec3,
-    h: f64,
-    dt: f64,
-) -> f64 {
+fn kick_range(base: usize, v: &mut [Vec3], w: &mut [Vec3], x: &mut [Vec3], body: Body, load: &[Load], reference: &[Vec3], g: Vec3, h: f64, dt: f64) -> f64 {
     let n = v.len();
-    let (force, torque, rolling) = (&acc.force[base..base + n], &acc.torque[base..base + n], &acc.rolling[base..base + n]);
-    let (w, x, im, ii, r, held) = (&mut w[..n], &mut x[..n], &im[..n], &ii[..n], &r[..n], &held[..n]);
+    let end = base + n;
+    let (w, x, load) = (&mut w[..n], &mut x[..n], &load[base..end]);
+    let (im, ii, r) = (&body.inv_mass[base..end], &body.inv_inertia[base..end], &body.radius[base..end]);
+    let held = if body.held.is_empty() { None } else { Some(&body.held[base..end]) };
+    // A list built for fewer spheres than there are: rebuild (infinitely far).
+    let reference = reference.get(base..end);
     let mut moved: f64 = 0.0;
     for q in 0..n {
-        if held[q] {
+        if held.is_some_and(|held| held[q]) {
             continue;
         }
-        v[q] += (force[q] * im[q] + g) * h;
-        w[q] += torque[q] * ii[q] * h;
+        let l = &load[q];
+        // Component by component, as nalgebra's (F m^-1 + g) h would round.
+        v[q].x += (l.force.x * im[q] + g.x) * h;
+        v[q].y += (l.force.y * im[q] + g.y) * h;
+        v[q].z += (l.force.z * im[q] + g.z) * h;
+        w[q].x += l.torque.x * ii[q] * h;
+        w[q].y += l.torque.y * ii[q] * h;
+        w[q].z += l.torque.z * ii[q] * h;
         // Constant directional rolling torque mu_r |f_n| R against the spin, limited so that it stops the
         // spin but never reverses it within a step.
-        let load = rolling[q];
-        if load > 0.0 {
+        if l.rolling > 0.0 {
             let spin = w[q].norm();
-            let brake = load * r[q] * ii[q] * h;
+            let brake = l.rolling * r[q] * ii[q] * h;
             let keep = if spin > brake { 1.0 - brake / spin } else { 0.0 };
             w[q] *= keep;
         }
         if dt != 0.0 {
-            x[q] += v[q] * dt;
-            if let Some(x0) = reference.get(base + q) {
-                moved = moved.max((x[q] - x0).norm_squared());
-            } else {
-                moved = f64::INFINITY;
-            }
+            x[q].x += v[q].x * dt;
+            x[q].y += v[q].y * dt;
+            x[q].z += v[q].z * dt;
+            moved = match reference {
+                Some(x0) => moved.max(super::dot(super::sub(x[q], x0[q]), super::sub(x[q], x0[q]))),
+                None => f64::INFINITY,
+            };
         }
     }
     moved

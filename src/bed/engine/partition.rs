@@ -1,18 +1,30 @@
-//! The partition of the force loop over threads: the rows cut into parts of about equal work, each
-//! part writing its own rows straight into the totals and the partners beyond them into its spill
-//! buffer, and the spills added in part order after the loop, so a run is bitwise the same for a given
-//! thread count.
+//! The partition of the force loop over threads: the rows cut into parts of about equal work; each part
+//! accumulates into one contiguous buffer over the particles it touches, [first row, last partner], with
+//! no test of whose particle it is; the buffers are then summed, each particle's in part order (its own
+//! part first, then the parts before it), so a run is bitwise the same for a given thread count. With one
+//! thread the part writes straight into the totals.
 
 use super::super::interaction::BedLaw;
 use super::super::{Tensor, Vec3, ZERO};
 use super::Engine;
+use rayon::prelude::*;
 
-/// Forces accumulated by one part of the force loop.
+/// What the contacts of a step give one particle. One record per particle, so a contact's share is one
+/// index (and one cache line) per body, and the kick reads one record.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Load {
+    /// Force [N].
+    pub force: Vec3,
+    /// Torque about the centre [N m].
+    pub torque: Vec3,
+    /// Sum of mu_r |f_n| over the contacts [N]: the load of the rolling friction (004 Table 5.3).
+    pub rolling: f64,
+}
+
+/// Forces accumulated by the force loop (the totals), or by one part of it (over its span of particles).
 #[derive(Debug, Clone, Default)]
 pub struct Accum {
-    pub force: Vec<Vec3>,
-    pub torque: Vec<Vec3>,
-    pub rolling: Vec<f64>,
+    pub load: Vec<Load>,
     /// Per particle sum of |x_c - x_p| n_i F_j over its contacts (Bagi, 004 Eq. 5.1), when recorded.
     pub dipole: Vec<Tensor>,
     pub wall_force: Vec<Vec3>,
@@ -20,91 +32,73 @@ pub struct Accum {
 
 impl Accum {
     pub(super) fn resize(&mut self, n: usize, walls: usize, dipole: bool) {
-        self.force.resize(n, ZERO);
-        self.torque.resize(n, ZERO);
-        self.rolling.resize(n, 0.0);
+        self.load.resize(n, Load::default());
         self.dipole.resize(if dipole { n } else { 0 }, Tensor::zeros());
         self.wall_force.resize(walls, ZERO);
     }
 
-    pub(super) fn clear(&mut self) {
-        self.force.fill(ZERO);
-        self.torque.fill(ZERO);
-        self.rolling.fill(0.0);
-        self.dipole.fill(Tensor::zeros());
-        self.wall_force.fill(ZERO);
+    /// The forces, torques and rolling loads as three arrays (a bed file's layout).
+    pub fn forces(&self) -> Vec<Vec3> {
+        self.load.iter().map(|l| l.force).collect()
+    }
+
+    pub fn torques(&self) -> Vec<Vec3> {
+        self.load.iter().map(|l| l.torque).collect()
+    }
+
+    pub fn rolling_loads(&self) -> Vec<f64> {
+        self.load.iter().map(|l| l.rolling).collect()
     }
 }
 
-/// Where one part of the force loop writes: its own rows [base, split) straight into the totals, and
-/// partners beyond its rows, [split, split + spill length), into its spill buffer (j > i, so no partner
-/// is below `base`). The spills are added in part order after the loop.
+/// Where one part of the force loop writes: particle i at `load[i - base]`, for every i from its first
+/// row to its last row's last partner (j > i, so no partner is below `base`).
 pub(super) struct Sink<'a> {
     pub(super) base: usize,
-    pub(super) split: usize,
-    pub(super) force: &'a mut [Vec3],
-    pub(super) torque: &'a mut [Vec3],
-    pub(super) rolling: &'a mut [f64],
+    pub(super) load: &'a mut [Load],
     pub(super) dipole: &'a mut [Tensor],
-    pub(super) spill: &'a mut Accum,
+    pub(super) wall_force: &'a mut [Vec3],
 }
 
 impl Sink<'_> {
+    pub(super) fn clear(&mut self) {
+        self.load.fill(Load::default());
+        self.dipole.fill(Tensor::zeros());
+        self.wall_force.fill(ZERO);
+    }
+
     /// Adds one contact's share to particle `i`, seen from `i`: `n` the unit normal toward the partner,
-    /// `force` and `tangential` the total and tangential force on `i`, `lever` the distance from its
-    /// centre to the contact point. Torque lever n x F_t; rolling load; and, when recorded, the dipole
-    /// |x_c - x_p| n F^T of 004 Eq. 5.1. The one accumulation of particle pairs and wall contacts alike.
+    /// `force` its total force on `i`, `turn` = n x F_t (the same from both sides: both factors change
+    /// sign), `lever` the distance from its centre to the contact point. Torque turn x lever, rolling
+    /// load, and, when recorded, the dipole |x_c - x_p| n F^T of 004 Eq. 5.1. `sign` -1 gives the
+    /// partner's share (its normal and force are the opposite ones): a - b is a + (-b) to the bit.
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
-    pub(super) fn add_contact(&mut self, i: usize, n: Vec3, force: Vec3, tangential: Vec3, lever: f64, rolling_load: f64, dipoles: bool) {
-        *self.force(i) += force;
-        *self.torque(i) += n.cross(&tangential) * lever;
-        *self.rolling(i) += rolling_load;
+    pub(super) fn add_contact(&mut self, i: usize, sign: f64, n: Vec3, force: Vec3, turn: Vec3, lever: f64, rolling_load: f64, dipoles: bool) {
+        let l = &mut self.load[i - self.base];
+        if sign > 0.0 {
+            l.force.x += force.x;
+            l.force.y += force.y;
+            l.force.z += force.z;
+        } else {
+            l.force.x -= force.x;
+            l.force.y -= force.y;
+            l.force.z -= force.z;
+        }
+        l.torque.x += turn.x * lever;
+        l.torque.y += turn.y * lever;
+        l.torque.z += turn.z * lever;
+        l.rolling += rolling_load;
         if dipoles {
-            *self.dipole(i) += (n * lever) * force.transpose();
-        }
-    }
-
-    #[inline(always)]
-    pub(super) fn force(&mut self, i: usize) -> &mut Vec3 {
-        if i < self.split {
-            &mut self.force[i - self.base]
-        } else {
-            &mut self.spill.force[i - self.split]
-        }
-    }
-
-    #[inline(always)]
-    pub(super) fn torque(&mut self, i: usize) -> &mut Vec3 {
-        if i < self.split {
-            &mut self.torque[i - self.base]
-        } else {
-            &mut self.spill.torque[i - self.split]
-        }
-    }
-
-    #[inline(always)]
-    pub(super) fn rolling(&mut self, i: usize) -> &mut f64 {
-        if i < self.split {
-            &mut self.rolling[i - self.base]
-        } else {
-            &mut self.spill.rolling[i - self.split]
-        }
-    }
-
-    #[inline(always)]
-    pub(super) fn dipole(&mut self, i: usize) -> &mut Tensor {
-        if i < self.split {
-            &mut self.dipole[i - self.base]
-        } else {
-            &mut self.spill.dipole[i - self.split]
+            // (-n lever)(-F)^T = (n lever) F^T to the bit.
+            self.dipole[i - self.base] += (n * lever) * force.transpose();
         }
     }
 }
 
 impl<L: BedLaw> Engine<L> {
     /// Splits the rows into `threads` parts of about equal work (list slots plus one per row), and sizes
-    /// each part's spill buffer for the partners beyond its rows.
+    /// each part's buffer for the particles it touches.
     pub(crate) fn partition(&mut self) {
         let n = self.particles.len();
         let t = self.threads;
@@ -123,39 +117,83 @@ impl<L: BedLaw> Engine<L> {
         self.resize_buffers();
     }
 
+    /// The end of part k's span: one past its last row or its rows' last partner, whichever is later.
+    pub(super) fn span_end(&self, k: usize) -> usize {
+        let (a, b) = (self.parts[k], self.parts[k + 1]);
+        (a..b).filter_map(|i| self.list.row(i).last().map(|&j| j as usize + 1)).max().unwrap_or(b).max(b)
+    }
+
     pub(super) fn resize_buffers(&mut self) {
         let n = self.particles.len();
         let w = self.walls.len();
         let d = self.record_dipoles;
         self.total.resize(n, w, d);
+        self.span_end.clear();
         for k in 0..self.threads {
-            let (a, b) = (self.parts[k], self.parts[k + 1]);
-            let hi = (a..b).filter_map(|i| self.list.row(i).last().map(|&j| j as usize + 1)).max().unwrap_or(b).max(b);
-            let spill = &mut self.spill[k];
-            spill.force.clear();
-            spill.torque.clear();
-            spill.rolling.clear();
-            spill.dipole.clear();
-            spill.resize(hi - b, w, d);
+            let end = self.span_end(k);
+            self.span_end.push(end);
+        }
+        if self.threads == 1 {
+            // The one part writes into the totals.
+            self.buffers.clear();
+            return;
+        }
+        self.buffers.resize_with(self.threads, Accum::default);
+        for k in 0..self.threads {
+            let len = self.span_end[k] - self.parts[k];
+            let buffer = &mut self.buffers[k];
+            buffer.load.clear();
+            buffer.dipole.clear();
+            buffer.resize(len, w, d);
         }
     }
 
-    /// Adds each part's spill to the totals, in part order, and sums the wall reactions.
-    pub(super) fn add_spills(&mut self) {
-        let total = &mut self.total;
-        total.wall_force.fill(ZERO);
-        for (k, spill) in self.spill.iter().enumerate() {
-            let b = self.parts[k + 1];
-            for q in 0..spill.force.len() {
-                total.force[b + q] += spill.force[q];
-                total.torque[b + q] += spill.torque[q];
-                total.rolling[b + q] += spill.rolling[q];
+    /// The totals from the parts' buffers (threads > 1): each particle's own part first, then every
+    /// earlier part whose span reaches it, in part order; the wall reactions summed in part order. Each
+    /// part's own rows are summed by a thread of their own.
+    pub(super) fn add_buffers(&mut self) {
+        let (parts, ends, buffers) = (&self.parts, &self.span_end, &self.buffers);
+        let dipoles = self.record_dipoles;
+        let mut loads: Vec<&mut [Load]> = Vec::with_capacity(buffers.len());
+        let mut rest: &mut [Load] = &mut self.total.load;
+        let mut dips: Vec<&mut [Tensor]> = Vec::with_capacity(buffers.len());
+        let mut rest_d: &mut [Tensor] = &mut self.total.dipole;
+        for k in 0..buffers.len() {
+            let len = parts[k + 1] - parts[k];
+            let (mine, more) = std::mem::take(&mut rest).split_at_mut(len);
+            loads.push(mine);
+            rest = more;
+            let (mine, more) = std::mem::take(&mut rest_d).split_at_mut(if dipoles { len } else { 0 });
+            dips.push(mine);
+            rest_d = more;
+        }
+        loads.into_par_iter().zip(dips).enumerate().for_each(|(k, (load, dipole))| {
+            let a = parts[k];
+            load.copy_from_slice(&buffers[k].load[..load.len()]);
+            dipole.copy_from_slice(&buffers[k].dipole[..dipole.len()]);
+            for m in 0..k {
+                let end = ends[m].min(a + load.len());
+                if end <= a {
+                    continue;
+                }
+                let from = a - parts[m];
+                for (t, s) in load[..end - a].iter_mut().zip(&buffers[m].load[from..]) {
+                    t.force += s.force;
+                    t.torque += s.torque;
+                    t.rolling += s.rolling;
+                }
+                if dipoles {
+                    for (t, s) in dipole[..end - a].iter_mut().zip(&buffers[m].dipole[from..]) {
+                        *t += s;
+                    }
+                }
             }
-            for q in 0..spill.dipole.len() {
-                total.dipole[b + q] += spill.dipole[q];
-            }
-            for (w, f) in spill.wall_force.iter().enumerate() {
-                total.wall_force[w] += f;
+        });
+        let total = &mut self.total.wall_force;
+        total.fill(ZERO);
+        for buffer in buffers {
+            for (t, f) in total.iter_mut().zip(&buffer.wall_force) {
+                *t += f;
             }
         }
     }
