@@ -24,6 +24,7 @@ impl NormalLaw for Hertz {
 
     fn initial_history(&self) {}
 
+    #[inline]
     fn evaluate(&self, alpha: f64, _h: &()) -> Evaluation<()> {
         if alpha <= 0.0 {
             return Evaluation::separated(0.0, ());
@@ -39,10 +40,12 @@ impl NormalLaw for Hertz {
         }
     }
 
+    #[inline]
     fn has_yielded(&self, _h: &()) -> bool {
         false
     }
 
+    #[inline]
     fn sliding_normal_force(&self, force: f64, _alpha: f64, _h: &()) -> f64 {
         force
     }
@@ -55,6 +58,7 @@ impl NormalLaw for Hertz {
         0.0
     }
 
+    #[inline]
     fn contact_radius(&self, alpha: f64, _h: &()) -> Option<f64> {
         Some((self.radius * alpha.max(0.0)).sqrt())
     }

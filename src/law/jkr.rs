@@ -132,6 +132,7 @@ impl JkrCurve {
     /// m^3 + alpha R m - (b R)^2 / 8 = 0 (Cardano, or its trigonometric form where it has three real
     /// roots), and the largest root is w = (sqrt(2m) + sqrt(sqrt(2) b R / sqrt(m) - 2m)) / 2. One Newton
     /// step on the quartic then polishes w to rounding (docs/models.md, JKR).
+    #[inline]
     pub fn contact_radius(&self, alpha: f64) -> f64 {
         if self.b == 0.0 {
             return (self.radius * alpha.max(0.0)).sqrt();
@@ -178,6 +179,7 @@ impl JkrCurve {
     /// same contact a step earlier). On the stable branch the quartic increases and is convex, so from
     /// either side Newton converges (from the left it first overshoots to the right); two or three
     /// steps reach rounding. Falls back to the closed form without a usable guess.
+    #[inline]
     pub fn contact_radius_from(&self, alpha: f64, guess: f64) -> f64 {
         let wf = self.w_detach;
         if self.b == 0.0 || alpha <= self.alpha_detach || !(guess > wf * wf * (1.0 + 1e-6)) {
@@ -256,6 +258,7 @@ impl Jkr {
     }
 
     /// Whether an established contact has ended at this overlap.
+    #[inline]
     fn separated(&self, alpha: f64, h: &JkrHistory) -> bool {
         (!h.established && alpha < 0.0) || alpha < self.detach_at
     }
@@ -300,6 +303,7 @@ impl NormalLaw for Jkr {
         JkrHistory { established: false }
     }
 
+    #[inline]
     fn evaluate(&self, alpha: f64, h: &JkrHistory) -> Evaluation<JkrHistory> {
         if self.separated(alpha, h) {
             return Evaluation::separated(0.0, JkrHistory { established: false });
@@ -307,11 +311,13 @@ impl NormalLaw for Jkr {
         self.on_curve_at(self.curve.contact_radius(alpha))
     }
 
+    #[inline]
     fn has_yielded(&self, _h: &JkrHistory) -> bool {
         false
     }
 
     /// Thornton & Yin's sliding criterion mu (F_n + 2 F_c) (004 Eq. 3.49).
+    #[inline]
     fn sliding_normal_force(&self, force: f64, _alpha: f64, _h: &JkrHistory) -> f64 {
         force + 2.0 * self.curve.pull_off_force()
     }
@@ -324,11 +330,13 @@ impl NormalLaw for Jkr {
         0.0
     }
 
+    #[inline]
     fn contact_radius(&self, alpha: f64, h: &JkrHistory) -> Option<f64> {
         (h.established && alpha >= self.detach_at || alpha >= 0.0).then(|| self.curve.contact_radius(alpha))
     }
 
     /// 2 E* a: the Hertz stiffness at the JKR contact radius (the JKR slope is infinite at detachment).
+    #[inline]
     fn damping_stiffness(&self, alpha: f64, h: &JkrHistory, _branch_stiffness: f64) -> f64 {
         2.0 * self.curve.youngs_modulus * self.contact_radius(alpha, h).unwrap_or(0.0)
     }
@@ -341,6 +349,7 @@ impl NormalLaw for Jkr {
 
     /// One contact-radius solve for force, stiffness, damping and Mindlin (same numbers as the three
     /// separate calls).
+    #[inline]
     fn evaluate_with_radius(&self, alpha: f64, h: &JkrHistory) -> (Evaluation<JkrHistory>, f64, Option<f64>) {
         if self.separated(alpha, h) {
             return (Evaluation::separated(0.0, JkrHistory { established: false }), 0.0, None);
@@ -350,6 +359,7 @@ impl NormalLaw for Jkr {
         (ev, 2.0 * self.curve.youngs_modulus * a, Some(a))
     }
 
+    #[inline]
     fn evaluate_near(&self, alpha: f64, h: &JkrHistory, guess: f64) -> (Evaluation<JkrHistory>, f64, Option<f64>) {
         if self.separated(alpha, h) {
             return (Evaluation::separated(0.0, JkrHistory { established: false }), 0.0, None);

@@ -38,6 +38,7 @@ impl NormalLaw for JkrModified {
 
     fn initial_history(&self) {}
 
+    #[inline]
     fn evaluate(&self, alpha: f64, _h: &()) -> Evaluation<()> {
         if alpha <= 0.0 {
             return Evaluation::separated(0.0, ());
@@ -45,11 +46,13 @@ impl NormalLaw for JkrModified {
         self.elastic_at(self.curve.contact_radius(alpha))
     }
 
+    #[inline]
     fn has_yielded(&self, _h: &()) -> bool {
         false
     }
 
     /// As JKR: mu (F_n + 2 F_c) (004 Eq. 3.49).
+    #[inline]
     fn sliding_normal_force(&self, force: f64, _alpha: f64, _h: &()) -> f64 {
         force + 2.0 * self.curve.pull_off_force()
     }
@@ -63,16 +66,19 @@ impl NormalLaw for JkrModified {
         0.0
     }
 
+    #[inline]
     fn contact_radius(&self, alpha: f64, _h: &()) -> Option<f64> {
         (alpha > 0.0).then(|| self.curve.contact_radius(alpha))
     }
 
     /// 2 E* a: the Hertz stiffness at the JKR contact radius (the JKR slope is infinite at detachment).
+    #[inline]
     fn damping_stiffness(&self, alpha: f64, h: &(), _branch_stiffness: f64) -> f64 {
         2.0 * self.curve.youngs_modulus * self.contact_radius(alpha, h).unwrap_or(0.0)
     }
 
     /// One contact-radius solve for force, stiffness, damping and Mindlin.
+    #[inline]
     fn evaluate_with_radius(&self, alpha: f64, _h: &()) -> (Evaluation<()>, f64, Option<f64>) {
         if alpha <= 0.0 {
             return (Evaluation::separated(0.0, ()), 0.0, None);
@@ -81,6 +87,7 @@ impl NormalLaw for JkrModified {
         (self.elastic_at(a), 2.0 * self.curve.youngs_modulus * a, Some(a))
     }
 
+    #[inline]
     fn evaluate_near(&self, alpha: f64, _h: &(), guess: f64) -> (Evaluation<()>, f64, Option<f64>) {
         if alpha <= 0.0 {
             return (Evaluation::separated(0.0, ()), 0.0, None);

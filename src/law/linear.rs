@@ -16,6 +16,7 @@ impl NormalLaw for Linear {
 
     fn initial_history(&self) {}
 
+    #[inline]
     fn evaluate(&self, alpha: f64, _h: &()) -> Evaluation<()> {
         if alpha <= 0.0 {
             return Evaluation::separated(0.0, ());
@@ -30,10 +31,12 @@ impl NormalLaw for Linear {
         }
     }
 
+    #[inline]
     fn has_yielded(&self, _h: &()) -> bool {
         false
     }
 
+    #[inline]
     fn sliding_normal_force(&self, force: f64, _alpha: f64, _h: &()) -> f64 {
         force
     }

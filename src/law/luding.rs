@@ -155,6 +155,7 @@ impl NormalLaw for Luding {
         LudingHistory { established: false, delta_peak: 0.0, delta_0: 0.0 }
     }
 
+    #[inline]
     fn evaluate(&self, alpha: f64, h: &LudingHistory) -> Evaluation<LudingHistory> {
         if alpha <= 0.0 {
             return Evaluation::separated(0.0, self.initial_history());
@@ -189,11 +190,13 @@ impl NormalLaw for Luding {
         }
     }
 
+    #[inline]
     fn has_yielded(&self, h: &LudingHistory) -> bool {
         h.delta_peak > 0.0
     }
 
     /// 004 Eq. 3.75, measured from the adhesion limit -k_c alpha - f_0: mu (F_n + k_c alpha + f_0).
+    #[inline]
     fn sliding_normal_force(&self, force: f64, alpha: f64, _h: &LudingHistory) -> f64 {
         force + self.kc * alpha.max(0.0) + self.f0
     }

@@ -80,6 +80,7 @@ pub struct Evaluation<H> {
 
 impl<H> Evaluation<H> {
     /// Not in contact: no force, no stiffness; contact can form again at `upper`.
+    #[inline]
     pub fn separated(upper: f64, history: H) -> Evaluation<H> {
         Evaluation { force: 0.0, stiffness: 0.0, branch: Branch::Separated, lower: f64::NEG_INFINITY, upper, history }
     }

@@ -109,6 +109,7 @@ impl Nan {
     }
 
     /// Branch points for a given alpha_max.
+    #[inline]
     pub fn points(&self, alpha_max: f64) -> NanPoints {
         if alpha_max <= self.p.alpha_y {
             self.before_yield
@@ -142,6 +143,7 @@ impl NormalLaw for Nan {
         NanHistory { established: false, alpha_max: self.p.alpha_y, points: self.before_yield }
     }
 
+    #[inline]
     fn evaluate(&self, alpha: f64, h: &NanHistory) -> Evaluation<NanHistory> {
         let pts = h.points;
         // Not yet (re-)established below alpha_c0, or detached below alpha_fp.
@@ -180,11 +182,13 @@ impl NormalLaw for Nan {
         }
     }
 
+    #[inline]
     fn has_yielded(&self, h: &NanHistory) -> bool {
         h.alpha_max > self.p.alpha_y
     }
 
     /// 000 Eq. 23: the limit is mu f; no adhesion shift.
+    #[inline]
     fn sliding_normal_force(&self, force: f64, _alpha: f64, _h: &NanHistory) -> f64 {
         force
     }

@@ -72,6 +72,7 @@ pub struct PashaStiffness {
 impl PashaStiffness {
     /// k_e at a given alpha_max: constant, or k_p + (r/R*)^2 (k_e_max - k_p) with r^2 = 2 R* alpha_max - alpha_max^2
     /// (004 Eqs. 4.21-4.23); r is capped at R* (alpha_max >= R* is outside the model).
+    #[inline]
     pub fn at(&self, alpha_max: f64) -> f64 {
         match self.law {
             PashaStiffnessLaw::Constant => self.k_e,
@@ -152,6 +153,7 @@ impl Pasha {
         (162.0 / 137.0 * k_e * w_ad).sqrt() // Eq. 4.9 with f_cp = k_e (alpha_p - alpha_cp)
     }
 
+    #[inline]
     pub fn points(&self, alpha_max: f64) -> PashaPoints {
         let (k_e, alpha_p, f_cp) = if alpha_max <= self.alpha_0 {
             (self.k_e0, self.alpha_0, self.f_ce)
@@ -169,6 +171,7 @@ impl Pasha {
 /// The branch logic the full and the simplified Pasha laws share: reversible elastic line of slope k_e
 /// through (alpha_p, 0), the mirrored line of slope -k_e beyond alpha_cp, plastic loading above alpha_max,
 /// re-contact at max(alpha_fp, 0).
+#[inline]
 pub(crate) fn pasha_evaluate(alpha: f64, h: &PashaHistory, pts: &PashaPoints, plastic: impl Fn(f64) -> f64, k_p: f64) -> Evaluation<PashaHistory> {
     let recontact = pts.alpha_fp.max(0.0);
     if (!h.established && alpha < recontact) || alpha < pts.alpha_fp {
@@ -212,16 +215,19 @@ impl NormalLaw for Pasha {
         PashaHistory { established: false, alpha_max: self.alpha_0 }
     }
 
+    #[inline]
     fn evaluate(&self, alpha: f64, h: &PashaHistory) -> Evaluation<PashaHistory> {
         let pts = self.points(h.alpha_max);
         pasha_evaluate(alpha, h, &pts, |a| self.k_p * (a - self.alpha_0), self.k_p)
     }
 
+    #[inline]
     fn has_yielded(&self, h: &PashaHistory) -> bool {
         h.alpha_max > self.alpha_0
     }
 
     /// 004 Eq. 4.27: mu (F_n + f_cp - f_ce).
+    #[inline]
     fn sliding_normal_force(&self, force: f64, _alpha: f64, h: &PashaHistory) -> f64 {
         force + self.points(h.alpha_max).f_cp - self.f_ce
     }

@@ -38,6 +38,7 @@ impl PashaSimplified {
         Ok(PashaSimplified { f_ce, stiffness, k_p: stiffness.k_p, k_cp, f_0p, alpha_0: 8.0 / 9.0 * f_ce / stiffness.k_p })
     }
 
+    #[inline]
     pub fn points(&self, alpha_max: f64) -> PashaPoints {
         let k_e = self.stiffness.at(alpha_max);
         let f_max = self.k_p * (alpha_max - self.alpha_0);
@@ -54,16 +55,19 @@ impl NormalLaw for PashaSimplified {
         PashaHistory { established: false, alpha_max: 0.0 }
     }
 
+    #[inline]
     fn evaluate(&self, alpha: f64, h: &PashaHistory) -> Evaluation<PashaHistory> {
         let pts = self.points(h.alpha_max);
         pasha_evaluate(alpha, h, &pts, |a| self.k_p * (a - self.alpha_0), self.k_p)
     }
 
+    #[inline]
     fn has_yielded(&self, h: &PashaHistory) -> bool {
         h.alpha_max > 0.0
     }
 
     /// 004 Eq. 4.28: mu (F_n + k_cp alpha + f_0p - f_ce).
+    #[inline]
     fn sliding_normal_force(&self, force: f64, alpha: f64, _h: &PashaHistory) -> f64 {
         force + self.k_cp * alpha + self.f_0p - self.f_ce
     }

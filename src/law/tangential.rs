@@ -44,6 +44,7 @@ impl TangentialStiffness {
 
     /// k_t [N/m] for a normal state: overlap, branch stiffness, the load F_N + F_H (Tomas) and the law's
     /// contact radius where it has one (`NormalLaw::contact_radius`).
+    #[inline]
     pub fn at(&self, alpha: f64, normal_stiffness: f64, adhesive_load: f64, contact_radius: Option<f64>) -> f64 {
         match *self {
             TangentialStiffness::Ratio { ratio } => ratio * normal_stiffness.abs(),
@@ -68,6 +69,7 @@ pub struct TangentialSpring {
 impl TangentialSpring {
     /// Adds a tangential displacement increment with the current stiffness (dF = -k_t d delta) and returns
     /// the force [N], projected back onto the Coulomb limit `mu max(normal, 0)`; `true` when it slides.
+    #[inline]
     pub fn step(&mut self, increment: Vector3<f64>, k_t: f64, mu: f64, sliding_normal_force: f64) -> (Vector3<f64>, bool) {
         self.force -= increment * k_t;
         let limit = mu * sliding_normal_force.max(0.0);

@@ -124,6 +124,7 @@ impl NormalLaw for ThorntonNing {
         TnHistory { established: false, alpha_max: self.alpha_yield_start, alpha_p: 0.0, flat: self.curve }
     }
 
+    #[inline]
     fn evaluate(&self, alpha: f64, h: &TnHistory) -> Evaluation<TnHistory> {
         let flat = h.flat;
         let alpha_c0 = h.alpha_p;
@@ -148,11 +149,13 @@ impl NormalLaw for ThorntonNing {
         e
     }
 
+    #[inline]
     fn has_yielded(&self, h: &TnHistory) -> bool {
         h.alpha_max > self.alpha_yield_start
     }
 
     /// Thornton & Yin's criterion with the flattened radius: mu (F_n + 2 f_cp) (004 Eqs. 3.49, 3.59).
+    #[inline]
     fn sliding_normal_force(&self, force: f64, _alpha: f64, h: &TnHistory) -> f64 {
         force + 3.0 * PI * self.curve.surface_energy * h.flat.radius
     }
@@ -173,6 +176,7 @@ impl NormalLaw for ThorntonNing {
         h.alpha_p + flat.overlap(a0)
     }
 
+    #[inline]
     fn contact_radius(&self, alpha: f64, h: &TnHistory) -> Option<f64> {
         if alpha > h.alpha_max {
             Some(self.curve.contact_radius(alpha))
@@ -182,6 +186,7 @@ impl NormalLaw for ThorntonNing {
     }
 
     /// 2 E* a: the Hertz stiffness at the JKR contact radius (the JKR slope is infinite at detachment).
+    #[inline]
     fn damping_stiffness(&self, alpha: f64, h: &TnHistory, _branch_stiffness: f64) -> f64 {
         2.0 * self.curve.youngs_modulus * self.contact_radius(alpha, h).unwrap_or(0.0)
     }

@@ -154,6 +154,7 @@ impl NormalLaw for Tomas {
         }
     }
 
+    #[inline]
     fn evaluate(&self, alpha: f64, h: &TomasHistory) -> Evaluation<TomasHistory> {
         let cutoff = 99.0 * self.a_f;
         if alpha > h.alpha_max {
@@ -217,11 +218,13 @@ impl NormalLaw for Tomas {
         Evaluation { force, stiffness, branch, lower, upper, history: TomasHistory { mode, anchor_alpha, anchor_force, last_alpha: alpha, ..*h } }
     }
 
+    #[inline]
     fn has_yielded(&self, h: &TomasHistory) -> bool {
         h.yielded
     }
 
     /// 003 Eq. 10: mu (1 + kappa) (F_H0 + F_N).
+    #[inline]
     fn sliding_normal_force(&self, force: f64, _alpha: f64, _h: &TomasHistory) -> f64 {
         (1.0 + self.kappa) * (self.f0 + force)
     }

@@ -48,6 +48,7 @@ impl NormalLaw for WaltonBraun {
         WbHistory { alpha_max: 0.0 }
     }
 
+    #[inline]
     fn evaluate(&self, alpha: f64, h: &WbHistory) -> Evaluation<WbHistory> {
         let alpha_0 = self.alpha_0(h.alpha_max);
         if alpha <= alpha_0 {
@@ -74,10 +75,12 @@ impl NormalLaw for WaltonBraun {
         }
     }
 
+    #[inline]
     fn has_yielded(&self, h: &WbHistory) -> bool {
         h.alpha_max > 0.0
     }
 
+    #[inline]
     fn sliding_normal_force(&self, force: f64, _alpha: f64, _h: &WbHistory) -> f64 {
         force
     }
