@@ -22,11 +22,14 @@ struct Shared<'a, L: BedLaw> {
     walls: &'a [Wall],
     species: usize,
     dt: f64,
+    /// Some sphere is held (`Engine::hold`).
+    any_held: bool,
 }
 
 /// One part of the force loop: rows [rows.0, rows.1) and what it may write.
 struct Part<'a, H> {
     rows: (usize, usize),
+    /// The list slot of the part's first entry (its memory slices start there).
     slot0: usize,
     normal: &'a mut [H],
     spring: &'a mut [Vec3],
@@ -58,6 +61,7 @@ impl<L: BedLaw> Engine<L> {
             walls: &self.walls,
             species: self.species,
             dt: self.dt,
+            any_held: self.any_held,
         };
         let record = self.record_dipoles;
         // Cut the contact memory into the parts' pieces; each part's sink is its buffer (one thread: the
@@ -126,8 +130,8 @@ fn run_part<L: BedLaw>(s: &Shared<L>, part: Part<L::History>) {
     // Every per-particle array cut to n: after `j < n` below the compiler drops the other bounds tests of
     // the partner (one test instead of six per list entry).
     let (position, velocity, spin, radii, species) = (&p.position[..n], &p.velocity[..n], &p.angular_velocity[..n], &p.radius[..n], &p.species[..n]);
-    let held = &p.held[..];
-    let any_held = held.iter().any(|&h| h);
+    let held = &p.held[..n];
+    let any_held = s.any_held;
     let dipoles = !sink.dipole.is_empty();
     for i in rows.0..rows.1 {
         let xi = position[i];

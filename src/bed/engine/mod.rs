@@ -65,6 +65,8 @@ pub struct Engine<L: BedLaw> {
     record_dipoles: bool,
     /// The force on each held sphere when it was held (`hold`).
     held_reference: Vec<Vec3>,
+    /// False when no sphere is held: the force loop and the kick then skip the test.
+    any_held: bool,
 }
 
 impl<L: BedLaw> std::fmt::Debug for Engine<L> {
@@ -129,6 +131,7 @@ impl<L: BedLaw> Engine<L> {
             threads,
             record_dipoles: false,
             held_reference: vec![],
+            any_held: false,
         };
         e.rebuild();
         e.compute_forces();
@@ -261,6 +264,7 @@ impl<L: BedLaw> Engine<L> {
             }
         }
         self.particles.held = held.to_vec();
+        self.any_held = held.iter().any(|&h| h);
         self.held_reference = self.partial_forces();
     }
 
@@ -284,6 +288,7 @@ impl<L: BedLaw> Engine<L> {
                 released += 1;
             }
         }
+        self.any_held = self.particles.held.iter().any(|&h| h);
         if released > 0 {
             // The last step's totals of a released sphere miss its contacts with held neighbours.
             self.compute_forces_without_increment();
@@ -299,6 +304,7 @@ impl<L: BedLaw> Engine<L> {
     /// Puts back held spheres and their reference forces from a saved state.
     pub fn restore_held(&mut self, held: Vec<bool>, reference: Vec<Vec3>) {
         assert!(held.len() == self.particles.len() && reference.len() == held.len(), "one flag and force per sphere");
+        self.any_held = held.iter().any(|&h| h);
         self.particles.held = held;
         self.held_reference = reference;
     }
@@ -338,7 +344,7 @@ impl<L: BedLaw> Engine<L> {
         let reference = self.list.reference();
         let dt = if drift { self.dt } else { 0.0 };
         let g = self.gravity;
-        let any_held = p.held.iter().any(|&x| x);
+        let any_held = self.any_held;
         let body = Body { inv_mass: &p.inv_mass, inv_inertia: &p.inv_inertia, radius: &p.radius, held: if any_held { &p.held } else { &[] } };
         if threads == 1 {
             return kick_range(0, &mut p.velocity, &mut p.angular_velocity, &mut p.position, body, load, reference, g, h, dt);
