@@ -10,6 +10,7 @@ use super::super::particles::Particles;
 use super::super::walls::Wall;
 use super::super::{cross, dot, sub, Vec3, ZERO};
 use super::partition::Sink;
+use super::isa::Isa;
 use super::Engine;
 use rayon::prelude::*;
 
@@ -24,6 +25,7 @@ struct Shared<'a, L: BedLaw> {
     dt: f64,
     /// Some sphere is held (`Engine::hold`).
     any_held: bool,
+    isa: Isa,
 }
 
 /// One part of the force loop: rows [rows.0, rows.1) and what it may write.
@@ -62,6 +64,7 @@ impl<L: BedLaw> Engine<L> {
             species: self.species,
             dt: self.dt,
             any_held: self.any_held,
+            isa: self.isa,
         };
         let record = self.record_dipoles;
         // Cut the contact memory into the parts' pieces; each part's sink is its buffer (one thread: the
@@ -121,8 +124,25 @@ impl<L: BedLaw> Engine<L> {
     }
 }
 
-/// The force loop of one part.
+/// The force loop of one part, with the engine's instruction set.
 fn run_part<L: BedLaw>(s: &Shared<L>, part: Part<L::History>) {
+    #[cfg(target_arch = "x86_64")]
+    if s.isa == Isa::Avx2 {
+        // SAFETY: an engine takes Isa::Avx2 only where the CPU reports AVX2 (`Engine::set_isa`).
+        return unsafe { run_part_avx2(s, part) };
+    }
+    run_part_body(s, part)
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn run_part_avx2<L: BedLaw>(s: &Shared<L>, part: Part<L::History>) {
+    run_part_body(s, part)
+}
+
+/// The force loop of one part (compiled once per instruction set, `isa`).
+#[inline(always)]
+fn run_part_body<L: BedLaw>(s: &Shared<L>, part: Part<L::History>) {
     let Part { rows, slot0, normal, spring, radius, walls, mut sink } = part;
     sink.clear();
     let p = s.p;

@@ -7,13 +7,16 @@
 //! - `partition`: the fixed partition of the particles into parts of equal work, each part's buffer
 //!   over the particles it touches, and their sum in part order, so a run is bitwise the same for a
 //!   given thread count;
-//! - `force_loop`: the force loop of one part over its pairs and wall contacts.
+//! - `force_loop`: the force loop of one part over its pairs and wall contacts;
+//! - `isa`: the instruction set the force loop and the kick run with (AVX2 where the CPU has it).
 
 mod force_loop;
+mod isa;
 mod memory;
 mod partition;
 
 pub use memory::WallContacts;
+pub use isa::Isa;
 pub use partition::{Accum, Load};
 
 use super::interaction::{BedLaw, Interaction};
@@ -67,6 +70,8 @@ pub struct Engine<L: BedLaw> {
     held_reference: Vec<Vec3>,
     /// False when no sphere is held: the force loop and the kick then skip the test.
     any_held: bool,
+    /// The instruction set of the force loop and the kick.
+    isa: Isa,
 }
 
 impl<L: BedLaw> std::fmt::Debug for Engine<L> {
@@ -132,6 +137,7 @@ impl<L: BedLaw> Engine<L> {
             record_dipoles: false,
             held_reference: vec![],
             any_held: false,
+            isa: Isa::detect(),
         };
         e.rebuild();
         e.compute_forces();
@@ -140,6 +146,21 @@ impl<L: BedLaw> Engine<L> {
 
     pub fn threads(&self) -> usize {
         self.threads
+    }
+
+    /// The instruction set the force loop and the kick run with.
+    pub fn isa(&self) -> Isa {
+        self.isa
+    }
+
+    /// Runs the hot loops with another instruction set (the same bits either way; for comparisons).
+    /// Refused where this CPU lacks it.
+    pub fn set_isa(&mut self, isa: Isa) -> Result<(), String> {
+        if !isa.available() {
+            return Err(format!("this CPU cannot run the engine's {} loops", isa.name()));
+        }
+        self.isa = isa;
+        Ok(())
     }
 
     /// Adds a wall (the indenter lowered onto a prepared bed) with its interaction with each species,
@@ -346,8 +367,9 @@ impl<L: BedLaw> Engine<L> {
         let g = self.gravity;
         let any_held = self.any_held;
         let body = Body { inv_mass: &p.inv_mass, inv_inertia: &p.inv_inertia, radius: &p.radius, held: if any_held { &p.held } else { &[] } };
+        let isa = self.isa;
         if threads == 1 {
-            return kick_range(0, &mut p.velocity, &mut p.angular_velocity, &mut p.position, body, load, reference, g, h, dt);
+            return kick_range(isa, 0, &mut p.velocity, &mut p.angular_velocity, &mut p.position, body, load, reference, g, h, dt);
         }
         let chunk = p.len().div_ceil(threads).max(1);
         p.velocity
@@ -355,7 +377,7 @@ impl<L: BedLaw> Engine<L> {
             .zip(p.angular_velocity.par_chunks_mut(chunk))
             .zip(p.position.par_chunks_mut(chunk))
             .enumerate()
-            .map(|(k, ((v, w), x))| kick_range(k * chunk, v, w, x, body, load, reference, g, h, dt))
+            .map(|(k, ((v, w), x))| kick_range(isa, k * chunk, v, w, x, body, load, reference, g, h, dt))
             .reduce(|| 0.0, f64::max)
     }
 
@@ -435,11 +457,29 @@ struct Body<'a> {
     held: &'a [bool],
 }
 
+/// `kick_body` with the engine's instruction set.
+#[allow(clippy::too_many_arguments)]
+fn kick_range(isa: Isa, base: usize, v: &mut [Vec3], w: &mut [Vec3], x: &mut [Vec3], body: Body, load: &[Load], reference: &[Vec3], g: Vec3, h: f64, dt: f64) -> f64 {
+    #[cfg(target_arch = "x86_64")]
+    if isa == Isa::Avx2 {
+        // SAFETY: an engine takes Isa::Avx2 only where the CPU reports AVX2 (`Engine::set_isa`).
+        return unsafe { kick_avx2(base, v, w, x, body, load, reference, g, h, dt) };
+    }
+    kick_body(base, v, w, x, body, load, reference, g, h, dt)
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+#[allow(clippy::too_many_arguments)]
+unsafe fn kick_avx2(base: usize, v: &mut [Vec3], w: &mut [Vec3], x: &mut [Vec3], body: Body, load: &[Load], reference: &[Vec3], g: Vec3, h: f64, dt: f64) -> f64 {
+    kick_body(base, v, w, x, body, load, reference, g, h, dt)
+}
+
 /// Half a kick of the particles from `base` on (their slices), and the drift x += v dt (dt = 0: none).
 /// Returns the largest squared displacement from `reference` (the positions of the last list build).
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
-fn kick_range(base: usize, v: &mut [Vec3], w: &mut [Vec3], x: &mut [Vec3], body: Body, load: &[Load], reference: &[Vec3], g: Vec3, h: f64, dt: f64) -> f64 {
+fn kick_body(base: usize, v: &mut [Vec3], w: &mut [Vec3], x: &mut [Vec3], body: Body, load: &[Load], reference: &[Vec3], g: Vec3, h: f64, dt: f64) -> f64 {
     let n = v.len();
     let end = base + n;
     let (w, x, load) = (&mut w[..n], &mut x[..n], &load[base..end]);
