@@ -1,0 +1,67 @@
+//! The engine's hot loops compiled for AVX2 (`bed/engine/isa.rs`) step to the same bits as the x86-64
+//! baseline: every law of the table on the shipped quarter bed (one and two threads), and an indentation
+//! with the indenter, the die walls and held spheres. `POWDERFMU_ENGINE_ISA=baseline` forces the
+//! baseline; the bench prints the ISA it ran and a digest of every position, velocity and force.
+
+use std::process::Command;
+
+const BED: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/beds/bed_004_ch6_quarter.pfbed");
+
+fn run(args: &[&str], baseline: bool) -> String {
+    let mut c = Command::new(env!("CARGO_BIN_EXE_powderfmu"));
+    c.args(args);
+    if baseline {
+        c.env("POWDERFMU_ENGINE_ISA", "baseline");
+    } else {
+        c.env_remove("POWDERFMU_ENGINE_ISA");
+    }
+    let out = c.output().unwrap();
+    assert!(out.status.success(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
+    String::from_utf8_lossy(&out.stdout).into()
+}
+
+fn field<'a>(out: &'a str, key: &str) -> &'a str {
+    out.split_whitespace().find_map(|w| w.strip_prefix(key)).unwrap_or_else(|| panic!("no {key} in {out}"))
+}
+
+/// Whether this CPU runs the AVX2 loops (then the comparisons below compare two builds of the loops).
+fn avx2() -> bool {
+    #[cfg(target_arch = "x86_64")]
+    return std::is_x86_feature_detected!("avx2");
+    #[cfg(not(target_arch = "x86_64"))]
+    false
+}
+
+#[test]
+fn every_law_steps_to_the_same_bits_with_avx2_and_the_baseline() {
+    if !avx2() {
+        eprintln!("this CPU has no AVX2: only the baseline loops run here, nothing to compare");
+    }
+    let laws = ["nan", "pasha", "pasha_simplified", "luding", "thornton_ning", "tomas", "hertz", "jkr", "jkr_modified", "hooke", "walton_braun"];
+    for law in laws {
+        for threads in ["1", "2"] {
+            let args = ["bed", "bench", BED, "--model", law, "--steps", "40", "--warmup", "0", "--threads", threads];
+            let (fast, base) = (run(&args, false), run(&args, true));
+            assert_eq!(field(&base, "isa="), "baseline");
+            assert_eq!(field(&fast, "isa="), if avx2() { "avx2" } else { "baseline" });
+            assert_eq!(field(&fast, "state_digest="), field(&base, "state_digest="), "{law}, {threads} threads");
+        }
+    }
+}
+
+#[test]
+fn an_indentation_with_held_spheres_is_the_same_with_avx2_and_the_baseline() {
+    let dir = std::env::temp_dir().join(format!("powderfmu-isa-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for threads in ["1", "2"] {
+        let csv = |name: &str| dir.join(format!("{name}_{threads}.csv"));
+        for (name, baseline) in [("fast", false), ("base", true)] {
+            let out = csv(name);
+            let args = ["bed", "indent", BED, "--speed", "0.5", "--max-penetration", "1e-4", "--every", "2e-5", "--fidelity", "fast", "--threads", threads, "--out", out.to_str().unwrap()];
+            run(&args, baseline);
+        }
+        let (fast, base) = (std::fs::read(csv("fast")).unwrap(), std::fs::read(csv("base")).unwrap());
+        assert!(fast.len() > 200, "a force-depth record");
+        assert!(fast == base, "{threads} threads: the force-depth records differ");
+    }
+}
