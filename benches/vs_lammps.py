@@ -9,6 +9,8 @@ with the same time step, skin and equivalent contact models on one core each:
     Hertz-Mindlin                        powderfmu `hertz`     LAMMPS granular hertz/material + mindlin
     JKR + Mindlin                        powderfmu `jkr`       LAMMPS granular jkr + mindlin
     Nan (000), no LAMMPS equivalent      powderfmu `nan`       compared with powderfmu's Hertz-Mindlin
+    simplified Pasha (004), the same     powderfmu             compared with powderfmu's Hertz-Mindlin
+                                         `pasha_simplified`    (BallIndentation's default law)
 
 Each measurement is repeated (--repeats, default 3), alternating the two codes, and the medians are
 compared. Also printed: the 2-thread speed-up of powderfmu and the memory per particle of both.
@@ -79,7 +81,7 @@ def ensure_bed():
     run([str(BIN), "bed", "export-lammps", str(BED), str(DATA)])
 
 
-ADHESIVE = {"jkr", "jkr_modified", "nan"}
+ADHESIVE = {"jkr", "jkr_modified", "nan", "pasha_simplified"}
 CONTACTS = {}  # force-carrying particle contacts per particle at the end of the last run of each model
 
 
@@ -135,7 +137,8 @@ def main():
     for name, ours, theirs in [("linear spring + tangential history", "hooke", ["hooke", "hooke_classic"]),
                                ("Hertz-Mindlin", "hertz", ["hertz"]),
                                ("JKR + Mindlin", "jkr", ["jkr"]),
-                               ("Nan", "nan", [])]:
+                               ("Nan", "nan", []),
+                               ("simplified Pasha", "pasha_simplified", [])]:
         mine, peer, other = [], {t: [] for t in theirs}, []
         for _ in range(args.repeats):
             rate, dt, bytes_ours, n = powderfmu(ours, args.steps)
