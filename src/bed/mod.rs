@@ -59,8 +59,8 @@ pub type Tensor = nalgebra::Matrix3<f64>;
 // the 10^4-sphere bench bed executed 6.84e9 instructions (valgrind callgrind), against 6.54e9 with these
 // (6.57e9 before nalgebra), and one side-by-side timing ran 8.5 % slower (median of 7; a second, noisier
 // one showed no difference). What those two call keeps nalgebra, as measured in the 6.54e9:
-// `TangentialSpring::step`, `Sink::add_contact` (the accumulation and Bagi's outer product) and
-// `Wall::touch`. The helpers round as nalgebra does, ((a0 b0 + a1 b1) + a2 b2): either way a bed steps
+// `TangentialSpring::step`, `Sink::add_contact`'s Bagi outer product (its accumulation is written out
+// since issue 30, with the same rounding) and `Wall::touch`. The helpers round as nalgebra does, ((a0 b0 + a1 b1) + a2 b2): either way a bed steps
 // to the same bits.
 
 #[inline(always)]

@@ -1,7 +1,8 @@
 //! The force loop: each part of the partition over its rows of the Verlet list (particle pairs) and its
 //! wall contacts, one `kernel::contact` per pair, accumulating into its `Sink`. The pair loop's vector
 //! arithmetic is hand-written (`dot`, `sub`, `scale`), as in the kernel, for speed (measured in
-//! `bed/mod.rs`); the accumulation (`Sink::add_contact`) keeps nalgebra at no measured cost.
+//! `bed/mod.rs`), and so is the accumulation (`Sink::add_contact`), which adds the partner's share with
+//! the signs the other side of the contact gives.
 
 use super::super::interaction::{BedLaw, Interaction};
 use super::super::kernel::{contact, surface_velocity};
@@ -52,8 +53,8 @@ impl<L: BedLaw> Engine<L> {
 
     pub(super) fn forces_inner(&mut self) {
         let n = self.particles.len();
-        // The pair loop indexes the particle arrays by the list's partners unchecked beyond one test of
-        // each partner against n (see `run_part`); the list must be this bed's.
+        // The pair loop tests each partner once against n, and the compiler drops the other bounds tests
+        // (see `run_part_body`); the list must be this bed's.
         assert_eq!(self.list.rows(), n, "the Verlet list is not built for these particles");
         let shared = Shared {
             p: &self.particles,
