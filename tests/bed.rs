@@ -8,7 +8,7 @@ use powderfmu::bed::particles::Particles;
 use powderfmu::bed::prepare::{self, bed_height, DIE, FLOOR};
 use powderfmu::bed::stress::{bagi, Region};
 use powderfmu::bed::walls::Wall;
-use powderfmu::bed::{AnyEngine, BedScene, Vec3};
+use powderfmu::bed::{AnyEngine, BedScene, Isa, Vec3};
 use powderfmu::impact::{Contact, Solver, Sphere, State, WallMotion};
 use powderfmu::law::damping::NormalDamping;
 use powderfmu::law::params::Effective;
@@ -522,4 +522,27 @@ fn bad_scenes_are_refused_by_name() {
     assert!(e.contains("particle_radius"), "{e}");
     let e = BedScene::from_json(r#"{"particle_particle": {"particle_youngs_modulus": -5}}"#).unwrap_err().to_string();
     assert!(e.contains("particle_youngs_modulus"), "{e}");
+}
+
+#[test]
+fn a_colliding_cloud_steps_to_the_same_bits_with_every_instruction_set_this_cpu_has() {
+    // Spin, friction, adhesion and sliding: every branch of the kernel (tests/bed_isa.rs does the same
+    // through the command-line tool on the shipped bed, for every law).
+    let digest = |isa: Isa| {
+        let mut e = cloud(vec![]);
+        with_engine!(&mut e, x => x.set_isa(isa)).unwrap();
+        assert_eq!(with_engine!(&e, x => x.isa()), isa);
+        e.run(1500);
+        with_engine!(&e, x => x.state_digest())
+    };
+    let baseline = digest(Isa::Baseline);
+    let isa = Isa::Avx2;
+    if isa.available() {
+        assert_eq!(digest(isa), baseline, "{}", isa.name());
+    } else {
+        // Not this CPU's: refused by name, and the engine keeps running the baseline.
+        let mut e = cloud(vec![]);
+        let refused = with_engine!(&mut e, x => x.set_isa(isa)).unwrap_err();
+        assert!(refused.contains(isa.name()), "{refused}");
+    }
 }

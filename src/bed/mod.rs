@@ -40,7 +40,7 @@ pub mod stress;
 pub mod walls;
 
 pub use any::{AnyEngine, BedError};
-pub use engine::Engine;
+pub use engine::{Engine, Isa};
 pub use scene::BedScene;
 
 /// A 3-vector [m], [m/s], [N], ...: nalgebra's, so the geometry reads as vector algebra (`x - wall.position`,
