@@ -3,7 +3,7 @@
 //! die's force from either, and a quarter bed prepares to the target stress inside its planes.
 
 use powderfmu::bed::file;
-use powderfmu::bed::indentation::{Indentation, Motion, Setup};
+use powderfmu::bed::indentation::{DepthOrigin, Indentation, Motion, Setup, PLATEAU};
 use powderfmu::bed::particles::Particles;
 use powderfmu::bed::prepare::{self, die, fill};
 use powderfmu::bed::{AnyEngine, BedScene, Vec3};
@@ -87,9 +87,11 @@ fn the_indenter_reads_the_whole_die_from_the_half() {
         constraint_factor: 3.0,
         motion: Motion::Prescribed,
         shortcut: None,
+        plateau: PLATEAU,
+        depth_origin: DepthOrigin::FirstTouch,
     };
-    let mut a = Indentation::new(half, soft(json!({"particle_count": 150, "die_sector": 0.5})), setup, 0.0, None).unwrap();
-    let mut b = Indentation::new(whole, soft(json!({"particle_count": 300})), setup, 0.0, None).unwrap();
+    let mut a = Indentation::new(half, soft(json!({"particle_count": 150, "die_sector": 0.5})), setup, None, None).unwrap();
+    let mut b = Indentation::new(whole, soft(json!({"particle_count": 300})), setup, None, None).unwrap();
     assert!((a.record.touch - b.record.touch).abs() < 1e-12, "first touch: half {} m, whole {} m", a.record.touch, b.record.touch);
     let mut compared = 0;
     for _ in 0..20 {

@@ -1,13 +1,23 @@
 //! The ball indentation test (`004` Sec. 2.3.5, Chs. 5-7) on a prepared bed: a sphere pushed into the
 //! bed surface and pulled out again, the force-depth record, and what the seed derives from it.
 //!
-//! - Depth h is measured from the indenter's first touch of the bed surface: the height of its lowest
-//!   point when, lowered along the die axis, it would first touch a sphere (`first_touch_height`).
+//! - Depth h is measured from the depth origin (`DepthOrigin`): the indenter's first touch of the bed
+//!   surface (the height of its lowest point when, lowered along the die axis, it would first touch a
+//!   sphere: `first_touch_height`), or the bed's mean surface under the indenter's footprint
+//!   (`mean_surface_height`). The seed does not say which it used (004 Sec. 5.2 plots from one particle
+//!   diameter of depth on).
 //! - Projected area A(h) = pi (d h - h^2) (Eq. 2.9); hardness during loading F / A(h) (Eq. 2.7 at the
 //!   current load); after unloading H = F_max / A(h_c), with h_c where the tangent to the initial
 //!   unloading curve meets zero force (Sec. 2.3.5). "Initial" is read as the upper quarter of the
 //!   unloading curve (F >= 0.75 F_0, with h_0, F_0 where unloading starts), sampled at every step: its
-//!   least-squares slope S gives the tangent through the start, h_c = h_0 - F_0 / S.
+//!   least-squares slope S gives the tangent through the start, h_c = h_0 - F_0 / S. Where the bed lets
+//!   go of the indenter within a few steps of the turn (a powder bed recovers almost nothing
+//!   elastically) the tangent is vertical and h_c = h_max, said so by `contact_depth_from_tangent`.
+//! - F_max is the force at the turn read from the loading curve, not its largest sample: the largest of
+//!   ~10^3 samples of a force that fluctuates by 10-20 % lies well above its mean (+30 % in the default
+//!   test). It is A(h_max) times the mean of F/A(h) over the last `TURN_FIT` of the loading depth.
+//! - The plateau hardness: the mean of F/A(h) over the loading samples within the window
+//!   `Setup::plateau` (h/r), with its standard error from the samples' autocorrelation (`series`).
 //! - Unconfined yield strength = H / C with the constraint factor C (Eq. 2.10).
 //! - Hydrostatic and deviatoric stress (Eqs. 5.2-5.3) of Bagi's tensor (Eq. 5.1) in the dynamic bin:
 //!   5.2 x 5.2 x 4.2 mean diameters (5.2 x 5.2 x 4.2 mm for the seed's 1 mm spheres), directly below the
@@ -24,6 +34,7 @@ use super::any::{AnyEngine, BedError};
 use super::file::{self, BedFile};
 use super::particles::Particles;
 use super::scene::BedScene;
+use super::series::{self, MeanEstimate};
 use super::stress::{bagi, Cuboid, Volume};
 use super::walls::Wall;
 use super::Vec3;
@@ -39,9 +50,34 @@ const CHECK_EVERY: u64 = 100;
 const TANGENT_FRACTION: f64 = 0.75;
 /// The dynamic bin in mean diameters (004 Sec. 5.2: 5.2 x 5.2 x 4.2 mm for 1 mm spheres).
 const BIN: [f64; 3] = [5.2, 5.2, 4.2];
-/// The depths h/r of the plateau hardness: F/A(h) levels off above about 0.1 (004 Figs. 5.2-5.3), and
-/// the default test turns at 0.2.
+/// The default depths h/r of the plateau hardness: F/A(h) levels off above about 0.1 (004 Figs.
+/// 5.2-5.3), and the default test turns at 0.2.
 pub const PLATEAU: (f64, f64) = (0.1, 0.2);
+/// The part of the loading depth whose force-depth line gives the force at the turn: its last tenth.
+pub const TURN_FIT: f64 = 0.1;
+
+/// Where the depth h is measured from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub enum DepthOrigin {
+    /// The indenter's lowest point at its first touch of a sphere, lowered along the die axis.
+    FirstTouch,
+    /// The bed's mean surface under the footprint of the deepest indentation (`mean_surface_height`),
+    /// measured before the test.
+    MeanSurface,
+}
+
+impl DepthOrigin {
+    pub fn name(self) -> &'static str {
+        match self {
+            DepthOrigin::FirstTouch => "first_touch",
+            DepthOrigin::MeanSurface => "mean_surface",
+        }
+    }
+
+    pub fn parse(text: &str) -> Option<DepthOrigin> {
+        [DepthOrigin::FirstTouch, DepthOrigin::MeanSurface].into_iter().find(|o| o.name() == text)
+    }
+}
 
 /// How the indenter moves.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
@@ -67,6 +103,9 @@ pub struct Setup {
     pub motion: Motion,
     /// The shortcut of `fidelity = fast` (none: every sphere moves, `fidelity = full`).
     pub shortcut: Option<Shortcut>,
+    /// The window of the plateau hardness, h/r from and to (`PLATEAU` by default).
+    pub plateau: (f64, f64),
+    pub depth_origin: DepthOrigin,
 }
 
 /// Spheres far from the indenter held until disturbed: at the start only those within `zone` contact
@@ -116,26 +155,47 @@ pub struct Record {
     pub unloading: Vec<(f64, f64)>,
     /// h_c once the tangent is known [m].
     pub contact_depth: Option<f64>,
+    /// Whether the unloading has ended its upper part (the tangent found or not).
+    pub tangent_done: bool,
     /// Height of the indenter's lowest point at first touch [m].
     pub touch: f64,
+    /// Height of the depth origin [m] (`DepthOrigin`): h = origin - the indenter's lowest point.
+    pub origin: f64,
     /// Communication time not yet stepped [s].
     pub time_debt: f64,
     /// Engine steps since the indenter was put in (the checks fall on multiples of `CHECK_EVERY`).
     pub steps: u64,
-    /// Sum and number of the samples of F/A(h) taken at the checks while loading within `PLATEAU`.
-    pub plateau_sum: f64,
-    pub plateau_samples: u64,
+    /// (h, F) at every check while loading, in the order taken.
+    pub loading: Vec<(f64, f64)>,
 }
 
 impl Record {
-    /// The plateau hardness: the mean of F/A(h) while loading at h/r within `PLATEAU` (004 Figs.
-    /// 5.2-5.3); 0 before the first sample [Pa].
-    pub fn plateau_hardness(&self) -> f64 {
-        if self.plateau_samples == 0 {
-            0.0
-        } else {
-            self.plateau_sum / self.plateau_samples as f64
+    /// The plateau hardness: the mean of F/A(h) over the loading samples at h/r within `window` (004
+    /// Figs. 5.2-5.3), its standard error and the number of samples (mean 0 before the first) [Pa].
+    pub fn plateau(&self, d: f64, window: (f64, f64)) -> MeanEstimate {
+        let r = 0.5 * d;
+        let samples: Vec<f64> = self
+            .loading
+            .iter()
+            .filter(|&&(h, _)| h / r >= window.0 && h / r <= window.1 && projected_area(d, h) > 0.0)
+            .map(|&(h, f)| f / projected_area(d, h))
+            .collect();
+        series::mean_with_error(&samples)
+    }
+
+    /// The force at the turn [N]: A(h_max) times the mean of F/A(h) over the loading samples within the
+    /// last `TURN_FIT` of h_max (the largest sample where none lie there). A local reading of the
+    /// fluctuating curve, not its largest sample: over the 29 recorded runs of docs/data the largest
+    /// sample read the hardness 19 % above the plateau on average (-13 to +71 %), this reading 4 % below
+    /// (-23 to +14 %), and the least-squares line over the same samples taken at h_max 12 % below
+    /// (`benches/indentation_outputs.py`).
+    pub fn turn_force(&self, d: f64) -> f64 {
+        let from = self.h_max * (1.0 - TURN_FIT);
+        let hardness: Vec<f64> = self.loading.iter().filter(|&&(h, _)| h >= from && projected_area(d, h) > 0.0).map(|&(h, f)| f / projected_area(d, h)).collect();
+        if hardness.is_empty() {
+            return self.f_max;
         }
+        projected_area(d, self.h_max) * hardness.iter().sum::<f64>() / hardness.len() as f64
     }
 }
 
@@ -158,10 +218,17 @@ pub struct Reading {
     pub contacts: usize,
     pub kinetic_energy: f64,
     pub state: TestState,
-    /// h_c, 0 until known [m].
+    /// h_c from the tangent to the unloading curve; h_max (so far) where there is none [m].
     pub contact_depth: f64,
-    /// Mean F/A(h) while loading within `PLATEAU` [Pa].
-    pub plateau_hardness: f64,
+    /// Whether `contact_depth` is the tangent's.
+    pub contact_depth_from_tangent: bool,
+    /// The force at the turn (`Record::turn_force`) [N]; during loading, the same reading at the
+    /// deepest point so far.
+    pub turn_force: f64,
+    /// Mean F/A(h) while loading within the plateau window, its standard error and sample count.
+    pub plateau: MeanEstimate,
+    /// Height of the first touch above the depth origin [m] (0 with `DepthOrigin::FirstTouch`).
+    pub depth_origin_offset: f64,
 }
 
 /// A prepared bed with the indenter in it.
@@ -199,12 +266,58 @@ pub fn first_touch_height(p: &Particles, r_i: f64) -> Option<f64> {
     top
 }
 
+/// Height of the bed's mean surface under a disc of radius `footprint` about the die axis: a probe sphere
+/// of radius `probe`, lowered along vertical lines on a square grid of spacing `spacing` within the disc,
+/// gives at each line the height of its lowest point when it first touches a sphere (or a mirror image of
+/// one: `mirrors`, the die sector's planes); the mean over the lines. None where no line meets a sphere.
+pub fn mean_surface_height(p: &Particles, mirrors: &[Wall], probe: f64, footprint: f64, spacing: f64) -> Option<f64> {
+    // The spheres and their images through every combination of the mirror planes.
+    let mut centres: Vec<(Vec3, f64)> = p.position.iter().copied().zip(p.radius.iter().copied()).collect();
+    for m in mirrors {
+        let images: Vec<(Vec3, f64)> = centres
+            .iter()
+            .map(|&(x, r)| {
+                // touch() of a mirror at r = 0 gives -2 (d . n) along -n: the image is x - 2 (d . n) n.
+                let t = m.touch(x, 0.0);
+                (x - t.normal * t.overlap, r)
+            })
+            .collect();
+        centres.extend(images);
+    }
+    centres.retain(|&(c, r)| c.xy().norm() < footprint + probe + r);
+    let k = (footprint / spacing).floor() as i64;
+    let (mut sum, mut lines) = (0.0, 0usize);
+    for a in -k..=k {
+        for b in -k..=k {
+            let (x, y) = (a as f64 * spacing, b as f64 * spacing);
+            if x * x + y * y > footprint * footprint {
+                continue;
+            }
+            let mut top: Option<f64> = None;
+            for &(c, r) in &centres {
+                let rho2 = (c.x - x).powi(2) + (c.y - y).powi(2);
+                let reach2 = (probe + r) * (probe + r);
+                if rho2 < reach2 {
+                    let z = c.z - probe + (reach2 - rho2).sqrt();
+                    top = Some(top.map_or(z, |t: f64| t.max(z)));
+                }
+            }
+            if let Some(z) = top {
+                sum += z;
+                lines += 1;
+            }
+        }
+    }
+    (lines > 0).then(|| sum / lines as f64)
+}
+
 impl Indentation {
-    /// Puts the indenter into a prepared bed, its lowest point at depth `start_depth` (0 = first touch;
-    /// negative = above the surface). Refuses an indenter wider than the die, a depth beyond the bed, a
-    /// start inside the bed, and a bed with nothing under the indenter.
-    /// `indenter_pair`: the particle-indenter scene keys (none: the bed's particle-wall keys).
-    pub fn new(mut engine: AnyEngine, scene: BedScene, setup: Setup, start_depth: f64, indenter_pair: Option<&Map<String, Value>>) -> Result<Indentation, BedError> {
+    /// Puts the indenter into a prepared bed, its lowest point at depth `start_depth` below the depth
+    /// origin (negative = above it; none: at the first touch). Refuses an indenter wider than the die, a
+    /// depth beyond the bed, a start inside the bed, an empty plateau window, and a bed with nothing
+    /// under the indenter (a window beyond the turn is allowed: its plateau stays without samples). `indenter_pair`: the particle-indenter scene keys (none: the
+    /// bed's particle-wall keys).
+    pub fn new(mut engine: AnyEngine, scene: BedScene, setup: Setup, start_depth: Option<f64>, indenter_pair: Option<&Map<String, Value>>) -> Result<Indentation, BedError> {
         let d = setup.indenter_diameter;
         let die = scene.die_diameter;
         if !(d > 0.0 && d < die) {
@@ -225,18 +338,42 @@ impl Indentation {
         if !(setup.constraint_factor > 0.0 && setup.constraint_factor.is_finite()) {
             return Err(ParamError::OutOfRange { name: "constraint_factor", value: setup.constraint_factor, allowed: "(0, inf)".into() }.into());
         }
-        if !(start_depth <= 0.0) {
-            return Err(ParamError::OutOfRange {
-                name: "indenter_displacement",
-                value: start_depth,
-                allowed: "(-inf, 0] m at the start: the indenter starts at or above the bed surface".into(),
-            }
-            .into());
+        let (p0, p1) = setup.plateau;
+        if !(p0 >= 0.0 && p0.is_finite()) {
+            return Err(ParamError::OutOfRange { name: "plateau_start", value: p0, allowed: "[0, plateau_end) (h/r)".into() }.into());
+        }
+        if !(p1 > p0 && p1.is_finite()) {
+            return Err(ParamError::OutOfRange { name: "plateau_end", value: p1, allowed: format!("({p0}, inf) (h/r): above plateau_start") }.into());
         }
         let r_i = 0.5 * d;
         let touch = first_touch_height(engine.particles(), r_i)
             .ok_or_else(|| BedError::Setup("no sphere of the bed lies under the indenter: nothing to indent".into()))?;
-        let bottom = touch - start_depth;
+        let origin = match setup.depth_origin {
+            DepthOrigin::FirstTouch => touch,
+            DepthOrigin::MeanSurface => {
+                let mean = scene.size_distribution.mean_diameter();
+                let h = setup.max_penetration;
+                let footprint = (d * h - h * h).sqrt();
+                let mirrors: Vec<Wall> = engine.walls().iter().filter(|w| w.is_mirror()).cloned().collect();
+                mean_surface_height(engine.particles(), &mirrors, 0.5 * mean, footprint, 0.25 * mean)
+                    .ok_or_else(|| BedError::Setup("no sphere of the bed lies under the indenter's footprint: no mean surface".into()))?
+            }
+        };
+        let start_depth = start_depth.unwrap_or(origin - touch);
+        if !(start_depth <= origin - touch) {
+            return Err(ParamError::OutOfRange {
+                name: "indenter_displacement",
+                value: start_depth,
+                allowed: format!(
+                    "(-inf, {:e}] m at the start: the indenter starts at or above its first touch of the bed ({:e} m below the depth origin, {})",
+                    origin - touch,
+                    origin - touch,
+                    setup.depth_origin.name()
+                ),
+            }
+            .into());
+        }
+        let bottom = origin - start_depth;
         let pair = indenter_pair.unwrap_or(&scene.particle_wall).clone();
         engine.add_wall(&scene, Wall::sphere("indenter", Vec3::new(0.0, 0.0, bottom + r_i), r_i), &pair)?;
         let indenter = engine.walls().len() - 1;
@@ -250,7 +387,19 @@ impl Indentation {
             let held = held_outside(engine.particles(), &setup, touch, scene.size_distribution.mean_diameter());
             engine.hold(&held);
         }
-        let record = Record { state: TestState::Loading, f_max: 0.0, h_max: 0.0, unloading: vec![], contact_depth: None, touch, time_debt: 0.0, steps: 0, plateau_sum: 0.0, plateau_samples: 0 };
+        let record = Record {
+            state: TestState::Loading,
+            f_max: 0.0,
+            h_max: 0.0,
+            unloading: vec![],
+            contact_depth: None,
+            tangent_done: false,
+            touch,
+            origin,
+            time_debt: 0.0,
+            steps: 0,
+            loading: vec![],
+        };
         let mut test = Indentation { engine, scene, setup, record, indenter, indenter_pair: pair, die_pair: None };
         if setup.motion == Motion::Prescribed {
             test.set_indenter_velocity(-setup.indentation_speed);
@@ -276,10 +425,10 @@ impl Indentation {
         self.engine.walls_mut()[w].velocity = Vec3::new(0.0, 0.0, vz);
     }
 
-    /// Depth of the indenter's lowest point below the first touch [m].
+    /// Depth of the indenter's lowest point below the depth origin [m].
     pub fn depth(&self) -> f64 {
         let w = self.indenter();
-        self.record.touch - (w.position[2] - 0.5 * self.setup.indenter_diameter)
+        self.record.origin - (w.position[2] - 0.5 * self.setup.indenter_diameter)
     }
 
     /// Force of the bed on the indenter, upward [N]: on a die sector, the sector's times the number of
@@ -331,7 +480,7 @@ impl Indentation {
         let mut left = n;
         while left > 0 {
             // The upper unloading curve is steep: sampled at every step until its tangent is known.
-            let every = if self.record.state == TestState::Unloading && self.record.contact_depth.is_none() { 1 } else { CHECK_EVERY };
+            let every = if self.record.state == TestState::Unloading && !self.record.tangent_done { 1 } else { CHECK_EVERY };
             let to_check = every - self.record.steps % every;
             let mut chunk = left.min(to_check);
             // A prescribed indenter turns at the step that reaches max_penetration.
@@ -374,11 +523,8 @@ impl Indentation {
             self.record.h_max = self.record.h_max.max(h);
             self.record.unloading.clear();
             self.record.contact_depth = None;
-            let (area, r) = (projected_area(self.setup.indenter_diameter, h), 0.5 * self.setup.indenter_diameter);
-            if area > 0.0 && (PLATEAU.0..=PLATEAU.1).contains(&(h / r)) {
-                self.record.plateau_sum += f / area;
-                self.record.plateau_samples += 1;
-            }
+            self.record.tangent_done = false;
+            self.record.loading.push((h, f));
             if self.setup.motion == Motion::Prescribed && h >= self.setup.max_penetration * (1.0 - 1e-9) {
                 self.record.state = TestState::Unloading;
                 self.set_indenter_velocity(self.setup.indentation_speed);
@@ -389,12 +535,13 @@ impl Indentation {
             self.record.state = TestState::Unloading;
         }
         if self.record.state == TestState::Unloading {
-            if self.record.contact_depth.is_none() {
+            if !self.record.tangent_done {
                 let start = self.record.unloading.first().map_or(f, |p| p.1);
-                if f >= TANGENT_FRACTION * start {
+                if f >= TANGENT_FRACTION * start && f > 0.0 {
                     self.record.unloading.push((h, f));
                 } else {
                     self.record.contact_depth = tangent_depth(&self.record.unloading);
+                    self.record.tangent_done = true;
                 }
             }
             // Done once the indenter has left the bed; a prescribed indenter goes on rising at its speed,
@@ -410,19 +557,15 @@ impl Indentation {
     pub fn reading(&mut self) -> Reading {
         let (d, f, h) = (self.setup.indenter_diameter, self.force(), self.depth());
         let area = projected_area(d, h);
-        let hardness = match (self.record.state, self.record.contact_depth) {
-            (TestState::Loading, _) => {
-                if area > 0.0 {
-                    f / area
-                } else {
-                    0.0
-                }
-            }
-            (_, Some(hc)) => self.record.f_max / projected_area(d, hc),
-            (_, None) => {
-                let a = projected_area(d, self.record.h_max);
+        let turn_force = self.record.turn_force(d);
+        let contact_depth = self.record.contact_depth.unwrap_or(self.record.h_max);
+        let hardness = match self.record.state {
+            TestState::Loading if area > 0.0 => f / area,
+            TestState::Loading => 0.0,
+            _ => {
+                let a = projected_area(d, contact_depth);
                 if a > 0.0 {
-                    self.record.f_max / a
+                    turn_force / a
                 } else {
                     0.0
                 }
@@ -445,8 +588,11 @@ impl Indentation {
             contacts: self.contacts(),
             kinetic_energy: self.engine.particles().kinetic_energy() / self.scene.die_sector,
             state: self.record.state,
-            contact_depth: self.record.contact_depth.unwrap_or(0.0),
-            plateau_hardness: self.record.plateau_hardness(),
+            contact_depth,
+            contact_depth_from_tangent: self.record.contact_depth.is_some(),
+            turn_force,
+            plateau: self.record.plateau(d, self.setup.plateau),
+            depth_origin_offset: self.record.touch - self.record.origin,
         }
     }
 
@@ -567,6 +713,41 @@ mod tests {
         let hc = tangent_depth(&pts).unwrap();
         assert!((hc - 0.6e-3).abs() < 1e-12, "{hc}");
         assert_eq!(tangent_depth(&pts[..2]), None);
+    }
+
+    #[test]
+    fn the_mean_surface_of_a_layer_lies_between_its_valleys_and_its_tops_and_a_quarter_gives_the_whole() {
+        // A square layer of touching 1 mm spheres, centres at z = 0.5 mm, symmetric about x = 0 and y = 0.
+        let r = 0.5e-3;
+        let (mut whole, mut quarter) = (Particles::default(), Particles::default());
+        for i in -10..10 {
+            for j in -10..10 {
+                let x = Vec3::new((i as f64 + 0.5) * 2.0 * r, (j as f64 + 0.5) * 2.0 * r, r);
+                whole.push(x, r, 2500.0, 0);
+                if i >= 0 && j >= 0 {
+                    quarter.push(x, r, 2500.0, 0);
+                }
+            }
+        }
+        let mirrors = [Wall::mirror("mirror_x", Vec3::zeros(), Vec3::x()), Wall::mirror("mirror_y", Vec3::zeros(), Vec3::y())];
+        let m = mean_surface_height(&whole, &[], r, 4e-3, 0.25e-3).unwrap();
+        // The probe's lowest point: 2r over a top, r + r (sqrt(2) - 1)... over the hollow between four.
+        let hollow = r + ((2.0 * r).powi(2) - 2.0 * r * r).sqrt() - r;
+        assert!(m > hollow && m < 2.0 * r, "mean surface {m} m between {hollow} and {}", 2.0 * r);
+        let q = mean_surface_height(&quarter, &mirrors, r, 4e-3, 0.25e-3).unwrap();
+        assert!((q - m).abs() < 1e-15, "quarter with mirrors {q} m, whole {m} m");
+        // Without its mirror images the quarter's lines outside it find nothing or lower spheres.
+        let alone = mean_surface_height(&quarter, &[], r, 4e-3, 0.25e-3).unwrap();
+        assert!((alone - m).abs() > 1e-6);
+        assert_eq!(mean_surface_height(&Particles::default(), &[], r, 4e-3, 0.25e-3), None);
+    }
+
+    #[test]
+    fn the_depth_origin_names_parse_back() {
+        for o in [DepthOrigin::FirstTouch, DepthOrigin::MeanSurface] {
+            assert_eq!(DepthOrigin::parse(o.name()), Some(o));
+        }
+        assert_eq!(DepthOrigin::parse("surface"), None);
     }
 
     #[test]

@@ -1,7 +1,7 @@
 //! `powderfmu bed ...`: prepare a bed, describe it, look at it, export it, time it.
 
 use powderfmu::bed::file::{self, BedFile};
-use powderfmu::bed::indentation::{Indentation, Motion, Setup, Shortcut, TestState, FAST, PLATEAU};
+use powderfmu::bed::indentation::{DepthOrigin, Indentation, Motion, Setup, Shortcut, TestState, FAST, PLATEAU};
 use powderfmu::bed::prepare::{self, Progress};
 use powderfmu::bed::stress::{bagi, Region};
 use powderfmu::bed::{export, render, AnyEngine, BedScene};
@@ -122,6 +122,25 @@ pub struct IndentArgs {
     /// Release threshold of --fidelity fast, a fraction of consolidation_stress x d^2 (inf: never) [-]
     #[arg(long, value_name = "E", value_parser = options::positive("-"))]
     release: Option<f64>,
+    /// Where the plateau hardness's window starts, h/r [-]
+    #[arg(long, value_name = "H_OVER_R", default_value_t = PLATEAU.0, value_parser = options::in_range(0.0, f64::INFINITY, true, "-"))]
+    plateau_start: f64,
+    /// Where the plateau hardness's window ends, h/r [-]
+    #[arg(long, value_name = "H_OVER_R", default_value_t = PLATEAU.1, value_parser = options::positive("-"))]
+    plateau_end: f64,
+    /// Where the depth is measured from: the indenter's first touch of the bed, or the bed's mean surface
+    /// under the footprint of --max-penetration
+    #[arg(long, value_enum, default_value_t = Origin::FirstTouch)]
+    depth_origin: Origin,
+    /// Also write the loading samples (h [m], F [N], at every check: 100 engine steps) to this CSV
+    #[arg(long, value_name = "CSV")]
+    samples_out: Option<PathBuf>,
+}
+
+#[derive(Clone, Copy, PartialEq, clap::ValueEnum)]
+pub enum Origin {
+    FirstTouch,
+    MeanSurface,
 }
 
 #[derive(Clone, Copy, PartialEq, clap::ValueEnum)]
@@ -483,6 +502,11 @@ fn indent_cmd(a: IndentArgs) -> Result<(), String> {
         constraint_factor: 3.0,
         motion: Motion::Prescribed,
         shortcut,
+        plateau: (a.plateau_start, a.plateau_end),
+        depth_origin: match a.depth_origin {
+            Origin::FirstTouch => DepthOrigin::FirstTouch,
+            Origin::MeanSurface => DepthOrigin::MeanSurface,
+        },
     };
     let every = a.every;
     let over_walls = |option: &str, text: &Option<String>| -> Result<Option<serde_json::Map<String, serde_json::Value>>, String> {
@@ -495,13 +519,21 @@ fn indent_cmd(a: IndentArgs) -> Result<(), String> {
     };
     let indenter = over_walls("--indenter", &a.indenter)?;
     let walls = over_walls("--walls", &a.walls)?;
-    let mut test = Indentation::new(engine, scene, setup, 0.0, indenter.as_ref()).map_err(|e| e.to_string())?;
+    let mut test = Indentation::new(engine, scene, setup, None, indenter.as_ref()).map_err(|e| e.to_string())?;
     if let Some(pair) = &walls {
         test.set_die_walls(pair).map_err(|e| format!("--walls: {e}"))?;
     }
     if let Some(dt) = a.time_step {
         test.engine.set_time_step(&test.scene, dt).map_err(|e| format!("--time-step: {e}"))?;
     }
+    eprintln!(
+        "indentation: depth from the {} ({:.4e} m below the first touch at z = {:.6e} m); plateau window h/r {}-{}",
+        setup.depth_origin.name().replace('_', " "),
+        test.record.touch - test.record.origin,
+        test.record.touch,
+        setup.plateau.0,
+        setup.plateau.1
+    );
     let mut csv = String::from("time_s,depth_m,depth_over_r,force_N,hardness_Pa,hydrostatic_Pa,deviatoric_Pa,contacts,kinetic_energy_J,state\n");
     let started = Instant::now();
     let mut t = 0.0;
@@ -518,20 +550,36 @@ fn indent_cmd(a: IndentArgs) -> Result<(), String> {
             let wall = started.elapsed().as_secs_f64();
             let particle_steps = test.engine.particles().len() as f64 * test.record.steps as f64;
             let moving = test.engine.particles().held.iter().filter(|&&h| !h).count();
+            let p = r.plateau;
             eprintln!(
-                "indentation: h_max {:.4e} m (h/r {:.3}), F_max {:.4e} N, h_c {:.4e} m, hardness {:.4e} Pa, plateau hardness {:.4e} Pa (h/r {}-{}), {:.1} s wall time, {} steps, {:.3e} particle-steps/s, {moving} spheres moving",
+                "indentation: h_max {:.4e} m (h/r {:.3}; depth from the {}, {:.4e} m below the first touch), F_max {:.4e} N (read over the last tenth of the loading; largest sample {:.4e} N), h_c {:.4e} m ({}), hardness {:.4e} Pa, plateau hardness {:.4e} +- {:.2e} Pa (standard error; h/r {}-{}, {} samples, correlation time {:.1} samples{}), {:.1} s wall time, {} steps, {:.3e} particle-steps/s, {moving} spheres moving",
                 test.record.h_max,
                 test.record.h_max / (0.5 * d),
+                setup.depth_origin.name().replace('_', " "),
+                r.depth_origin_offset,
+                r.turn_force,
                 test.record.f_max,
                 r.contact_depth,
+                if r.contact_depth_from_tangent { "tangent" } else { "no tangent: h_max" },
                 r.hardness,
-                r.plateau_hardness,
-                PLATEAU.0,
-                PLATEAU.1,
+                p.mean,
+                p.standard_error,
+                setup.plateau.0,
+                setup.plateau.1,
+                p.samples,
+                p.correlation_time,
+                if p.reliable() { "" } else { ", under 50 correlation times: the error is itself uncertain" },
                 wall,
                 test.record.steps,
                 particle_steps / wall
             );
+            if let Some(path) = &a.samples_out {
+                let mut rows = String::from("depth_m,force_N\n");
+                for (h, f) in &test.record.loading {
+                    rows += &format!("{h:.6e},{f:.6e}\n");
+                }
+                file::write_atomic(path, rows.as_bytes()).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+            }
             break;
         }
     }

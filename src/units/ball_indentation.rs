@@ -12,7 +12,7 @@ use super::scene_params;
 use super::variables::{Value, VarType, Variable};
 use super::{Model, UnitError, UnitInfo};
 use crate::bed::file;
-use crate::bed::indentation::{Indentation, Motion, Setup, TestState, FAST};
+use crate::bed::indentation::{DepthOrigin, Indentation, Motion, Setup, TestState, FAST, PLATEAU};
 use crate::bed::{BedError, BedScene};
 use crate::scene::{Key, KeyDefault, KEYS};
 use serde_json::{Map, Value as Json};
@@ -100,21 +100,26 @@ pub fn parameters_of_bed(bed: &BedScene) -> Map<String, Json> {
 }
 
 variable_table! {
-    indenter_displacement: Variable::input("indenter_displacement", "m", "with indenter_motion = input: depth of the indenter's lowest point below its first touch of the bed surface, positive into the bed"),
+    indenter_displacement: Variable::input("indenter_displacement", "m", "with indenter_motion = input: depth of the indenter's lowest point below the depth origin (depth_origin), positive into the bed; at the start at most -depth_origin_offset (the indenter starts at or above its first touch of the bed)"),
     indenter_velocity: Variable::input("indenter_velocity", "m/s", "with indenter_motion = input: rate of indenter_displacement, positive into the bed"),
     indenter_force: Variable::output("indenter_force", VarType::Real, "N", "force of the bed on the indenter, positive resisting the indentation"),
-    penetration_depth: Variable::output("penetration_depth", VarType::Real, "m", "h, depth of the indenter's lowest point below its first touch of the bed surface"),
+    penetration_depth: Variable::output("penetration_depth", VarType::Real, "m", "h, depth of the indenter's lowest point below the depth origin (depth_origin: its first touch of the bed, or the bed's mean surface under its footprint)"),
     dimensionless_penetration: Variable::output("dimensionless_penetration", VarType::Real, "", "h / r with r the indenter's radius (004 Eq. 5.5)"),
     projected_area: Variable::output("projected_area", VarType::Real, "m2", "A(h) = pi (d h - h^2) (004 Eq. 2.9)"),
-    hardness: Variable::output("hardness", VarType::Real, "Pa", "while loading F / A(h); after unloading F_max / A(h_c), h_c from the tangent to the initial unloading curve (004 Sec. 2.3.5)"),
+    hardness: Variable::output("hardness", VarType::Real, "Pa", "while loading F / A(h); after the turn F_max / A(h_c) (004 Sec. 2.3.5), F_max = force_at_turn (the loading curve's force at h_max, not its largest sample) and h_c = contact_depth"),
     unconfined_yield_strength: Variable::output("unconfined_yield_strength", VarType::Real, "Pa", "hardness / constraint_factor (004 Eq. 2.10)"),
     hydrostatic_stress: Variable::output("hydrostatic_stress", VarType::Real, "Pa", "Bagi's hydrostatic stress in the dynamic bin under the indenter (004 Eqs. 5.1-5.2, Sec. 5.2), compression positive"),
     deviatoric_stress: Variable::output("deviatoric_stress", VarType::Real, "Pa", "Bagi's deviatoric stress in the dynamic bin under the indenter (004 Eq. 5.3)"),
     indenter_contacts: Variable::output("indenter_contacts", VarType::Integer, "", "spheres touching the indenter (on a quarter bed, with their mirror images: four per sphere)"),
     kinetic_energy: Variable::output("kinetic_energy", VarType::Real, "J", "kinetic energy of the bed's spheres, translation and rotation"),
     test_state: Variable::output("test_state", VarType::Integer, "", "0 loading, 1 unloading, 2 done (the indenter has left the bed)"),
-    contact_depth: Variable::output("contact_depth", VarType::Real, "m", "h_c, where the tangent to the initial unloading curve meets zero force; 0 until known"),
-    plateau_hardness: Variable::output("plateau_hardness", VarType::Real, "Pa", "mean of F/A(h) while loading at 0.1 <= h/r <= 0.2, where it levels off (004 Figs. 5.2-5.3); 0 until the indenter passes h/r = 0.1"),
+    contact_depth: Variable::output("contact_depth", VarType::Real, "m", "h_c, where the tangent to the initial unloading curve (its upper quarter) meets zero force (004 Sec. 2.3.5); h_max (the deepest so far) until the tangent is known, and for good where the bed lets go of the indenter too fast for one (see contact_depth_from_tangent)"),
+    contact_depth_from_tangent: Variable::output("contact_depth_from_tangent", VarType::Boolean, "", "true once contact_depth is the tangent's h_c; false while it is h_max (before unloading, or where the unloading curve gave no tangent: a vertical one, h_c = h_max)"),
+    force_at_turn: Variable::output("force_at_turn", VarType::Real, "N", "F_max of the hardness: A(h_max) times the mean of F/A(h) over the loading samples in the last tenth of the loading depth (h_max the deepest so far): a local reading of the fluctuating force at the turn, not its largest sample"),
+    plateau_hardness: Variable::output("plateau_hardness", VarType::Real, "Pa", "mean of F/A(h) over the loading samples (every 100 engine steps) at plateau_start <= h/r <= plateau_end, where it levels off (004 Figs. 5.2-5.3, 5.19); 0 until the indenter reaches plateau_start"),
+    plateau_hardness_standard_error: Variable::output("plateau_hardness_standard_error", VarType::Real, "Pa", "standard error of plateau_hardness from this run's fluctuations: sqrt(sigma^2 tau / n), sigma^2 the samples' variance and tau their integrated autocorrelation time in samples (Sokal's window); 0 below 8 samples. It holds neither the bed-to-bed scatter nor, below about 50 correlation times of samples, a reliable error of itself (docs/indentation.md)"),
+    plateau_samples: Variable::output("plateau_samples", VarType::Integer, "", "n, the samples behind plateau_hardness"),
+    depth_origin_offset: Variable::output("depth_origin_offset", VarType::Real, "m", "height of the indenter's first touch above the depth origin (0 with depth_origin = first_touch)"),
     indenter_motion: Variable::parameter("indenter_motion", Value::String("prescribed".into()), "", "prescribed (load at indentation_speed to max_penetration, unload at the same speed until the indenter leaves the bed) or input (follow indenter_displacement and indenter_velocity)"),
     indenter_diameter: Variable::parameter("indenter_diameter", Value::Real(0.016), "m", "d, diameter of the spherical indenter, narrower than the die (default 16 mm, 16 mean diameters of the shipped bed: 004 Ch. 5's smallest reliable size)")
         .with_range(Some(0.0), None),
@@ -124,6 +129,11 @@ variable_table! {
         .with_range(Some(0.0), None),
     constraint_factor: Variable::parameter("constraint_factor", Value::Real(3.0), "", "C = hardness / yield strength (004 Eq. 2.10)")
         .with_range(Some(0.0), None),
+    plateau_start: Variable::parameter("plateau_start", Value::Real(PLATEAU.0), "", "h/r where the plateau window of plateau_hardness starts, in [0, plateau_end); a window beyond max_penetration / r gets no samples (default 0.1: 004's minimum depth, Secs. 5.2-5.3)")
+        .with_range(Some(0.0), None),
+    plateau_end: Variable::parameter("plateau_end", Value::Real(PLATEAU.1), "", "h/r where the plateau window ends, above plateau_start (default 0.2, the default max_penetration)")
+        .with_range(Some(0.0), None),
+    depth_origin: Variable::parameter("depth_origin", Value::String("first_touch".into()), "", "where h is measured from: first_touch (the indenter's lowest point when it first touches a sphere, lowered along the die axis) or mean_surface (the bed's mean surface under the footprint of max_penetration, probed before the test with a sphere of the mean particle radius on a grid of a quarter mean diameter); depth_origin_offset gives the difference"),
     bed_file: Variable::parameter("bed_file", Value::String(String::new()), "", "a bed file of `powderfmu bed prepare`; empty: the bed in the FMU's resources"),
     threads: Variable::parameter("threads", Value::Integer(2), "", "threads of the bed engine's force loop, in [1, 256] (results differ from one thread's by round-off, which the bed's dynamics then grow)"),
     time_step: Variable::parameter("time_step", Value::Real(DEFAULT_TIME_STEP), "s", "the bed engine's time step, refused above the bed's stability limit; the default is half the shipped bed's limit (its error is in docs/indentation.md); 0 = the bed's own (its scene's time_step or rayleigh_fraction of its stability limit)")
@@ -216,6 +226,13 @@ impl BallIndentation {
             "full" | "quarter" => None,
             other => return Err(variable("fidelity", format!("parameter `fidelity` = \"{other}\" is not known: allowed fast, quarter, full"))),
         };
+        let depth_origin = match DepthOrigin::parse(values[REFS.depth_origin].as_str()) {
+            Some(o) => o,
+            None => {
+                let other = values[REFS.depth_origin].as_str();
+                return Err(variable("depth_origin", format!("parameter `depth_origin` = \"{other}\" is not known: allowed first_touch, mean_surface")));
+            }
+        };
         Ok(Setup {
             indenter_diameter: values[REFS.indenter_diameter].as_real(),
             indentation_speed: values[REFS.indentation_speed].as_real(),
@@ -223,6 +240,8 @@ impl BallIndentation {
             constraint_factor: values[REFS.constraint_factor].as_real(),
             motion,
             shortcut,
+            plateau: (values[REFS.plateau_start].as_real(), values[REFS.plateau_end].as_real()),
+            depth_origin,
         })
     }
 
@@ -290,7 +309,7 @@ impl Model for BallIndentation {
         self.check_bed(values, &scene, &path)?;
         let indenter = self.indenter_pair(values, &scene)?;
         let start = match setup.motion {
-            Motion::Prescribed => 0.0,
+            Motion::Prescribed => None,
             Motion::Input => {
                 let (u, v) = Self::inputs(values)?;
                 if u <= 0.0 && v < 0.0 {
@@ -299,7 +318,7 @@ impl Model for BallIndentation {
                         format!("input `indenter_velocity` = {v:e} m/s would pull the indenter out of a bed it has not entered (indenter_displacement = {u:e} m)"),
                     ));
                 }
-                u
+                Some(u)
             }
         };
         let mut test = Indentation::new(engine, scene, setup, start, Some(&indenter))?;
@@ -310,7 +329,7 @@ impl Model for BallIndentation {
         }
         let p = test.engine.particles();
         self.events.push(format!(
-            "bed {}: {} spheres{}, {:.4e} m high, time step {:.4e} s; indenter d = {:.4e} m, first touch at z = {:.6e} m",
+            "bed {}: {} spheres{}, {:.4e} m high, time step {:.4e} s; indenter d = {:.4e} m, first touch at z = {:.6e} m, depth origin ({}) {:.4e} m below it",
             path.display(),
             p.len(),
             match test.scene.die_sector {
@@ -320,8 +339,18 @@ impl Model for BallIndentation {
             crate::bed::prepare::bed_height(p),
             test.engine.dt(),
             setup.indenter_diameter,
-            test.record.touch
+            test.record.touch,
+            setup.depth_origin.name(),
+            test.record.touch - test.record.origin
         ));
+        let r = 0.5 * setup.indenter_diameter;
+        if setup.motion == Motion::Prescribed && setup.plateau.0 >= setup.max_penetration / r {
+            self.events.push(format!(
+                "plateau_start = {} (h/r) is at or beyond the turn at max_penetration / r = {:.4}: plateau_hardness will have no samples",
+                setup.plateau.0,
+                setup.max_penetration / r
+            ));
+        }
         self.reported = Some(test.record.state);
         self.test = Some(test);
         self.fresh = false;
@@ -345,10 +374,15 @@ impl Model for BallIndentation {
             (REFS.deviatoric_stress, r.deviatoric_stress),
             (REFS.kinetic_energy, r.kinetic_energy),
             (REFS.contact_depth, r.contact_depth),
-            (REFS.plateau_hardness, r.plateau_hardness),
+            (REFS.force_at_turn, r.turn_force),
+            (REFS.plateau_hardness, r.plateau.mean),
+            (REFS.plateau_hardness_standard_error, r.plateau.standard_error),
+            (REFS.depth_origin_offset, r.depth_origin_offset),
         ] {
             values[vr] = Value::Real(x);
         }
+        values[REFS.contact_depth_from_tangent] = Value::Boolean(r.contact_depth_from_tangent);
+        values[REFS.plateau_samples] = Value::Integer(r.plateau.samples.min(i32::MAX as usize) as i32);
         values[REFS.indenter_contacts] = Value::Integer(r.contacts.min(i32::MAX as usize) as i32);
         values[REFS.test_state] = Value::Integer(r.state as i32);
         self.fresh = true;
@@ -384,14 +418,30 @@ impl Model for BallIndentation {
             };
             self.events.push(match next {
                 TestState::Loading => format!("loading again at h = {:.4e} m", test.depth()),
-                TestState::Unloading => format!("unloading from h_max = {:.4e} m, F_max = {:.4e} N", rec.h_max, rec.f_max),
-                TestState::Done => match rec.contact_depth {
-                    Some(hc) => format!(
-                        "the indenter has left the bed: h_c = {hc:.4e} m, hardness F_max/A(h_c) = {:.4e} Pa",
-                        rec.f_max / crate::bed::indentation::projected_area(test.setup.indenter_diameter, hc)
-                    ),
-                    None => "the indenter has left the bed; the unloading curve gave no tangent, so the hardness is F_max/A(h_max)".to_string(),
-                },
+                TestState::Unloading => {
+                    let p = rec.plateau(test.setup.indenter_diameter, test.setup.plateau);
+                    format!(
+                        "unloading from h_max = {:.4e} m, F_max = {:.4e} N (the loading curve's force there, read over its last tenth; largest sample {:.4e} N); plateau hardness {:.4e} +- {:.2e} Pa (standard error, {} samples, correlation time {:.1} samples{})",
+                        rec.h_max,
+                        rec.turn_force(test.setup.indenter_diameter),
+                        rec.f_max,
+                        p.mean,
+                        p.standard_error,
+                        p.samples,
+                        p.correlation_time,
+                        if p.reliable() { "" } else { ": fewer than 50 correlation times, the error is itself uncertain" }
+                    )
+                }
+                TestState::Done => {
+                    let (hc, how) = match rec.contact_depth {
+                        Some(hc) => (hc, "from the tangent to the unloading curve"),
+                        None => (rec.h_max, "= h_max: the bed let go of the indenter too fast for a tangent"),
+                    };
+                    format!(
+                        "the indenter has left the bed: h_c = {hc:.4e} m ({how}), hardness F_max/A(h_c) = {:.4e} Pa",
+                        rec.turn_force(test.setup.indenter_diameter) / crate::bed::indentation::projected_area(test.setup.indenter_diameter, hc)
+                    )
+                }
             });
             self.reported = Some(next);
         }
