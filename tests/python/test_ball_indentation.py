@@ -53,12 +53,35 @@ def test_the_default_test_loads_unloads_and_ends(indentation, default_run):
     assert np.allclose(deep["projected_area"], math.pi * (d * h - h * h), rtol=1e-12)
     assert np.allclose(deep["hardness"], deep["indenter_force"] / deep["projected_area"], rtol=1e-12)
     assert np.all(deep["indenter_force"] > 0) and np.all(deep["indenter_contacts"] > 0)
-    # After unloading: h_c from the tangent lies inside the indent; hardness = F_max / A(h_c), UYS = H / C.
+    # After unloading: h_c is the tangent's, inside the indent, or h_max where the bed let go too fast for
+    # one, and the outputs say which; hardness = F_max / A(h_c) with F_max the loading line's force at
+    # h_max (force_at_turn, read over the last tenth of the loading), within the force's fluctuation of
+    # its largest sample.
     last = r[-1]
     hc = last["contact_depth"]
-    assert 0 < hc < h_max
-    f_max = last["hardness"] * math.pi * (d * hc - hc * hc)
-    assert f_max == pytest.approx(r["indenter_force"].max(), rel=0.05)
+    # The indenter turns at the engine step that reaches max_penetration (between two output rows).
+    turned = h_max
+    if last["contact_depth_from_tangent"]:
+        assert 0 < hc < turned
+    else:
+        assert h_max <= hc < h_max * (1 + 1e-3), (float(hc), h_max)
+    f_turn = last["force_at_turn"]
+    assert last["hardness"] == pytest.approx(f_turn / (math.pi * (d * hc - hc * hc)), rel=1e-12)
+    # (The unit samples every 100 engine steps, the output rows here less often: its largest sample may
+    # lie above theirs.)
+    assert 0.7 * r["indenter_force"].max() < f_turn < 1.1 * r["indenter_force"].max()
+    # The force at the turn is A(h_max) times the mean F/A over the last tenth of the loading depth.
+    tail = loading[loading["penetration_depth"] >= 0.9 * turned]
+    assert len(tail) >= 3
+    assert f_turn == pytest.approx(math.pi * (d * turned - turned**2) * np.mean(tail["hardness"]), rel=0.05), "sampled every 100 engine steps by the unit, every output step here"
+    # The plateau: the mean of F/A over the loading samples at 0.1 <= h/r <= 0.2, with an error that is a
+    # few per cent of it, and the mean of the output rows there within a few of those errors.
+    window = loading[(loading["dimensionless_penetration"] >= 0.1) & (loading["dimensionless_penetration"] <= 0.2)]
+    mean_rows = np.mean(window["hardness"])
+    se = last["plateau_hardness_standard_error"]
+    assert last["plateau_samples"] > 10 and 0 < se < 0.1 * last["plateau_hardness"]
+    assert abs(last["plateau_hardness"] - mean_rows) < 4 * se, (last["plateau_hardness"], mean_rows, se)
+    assert last["depth_origin_offset"] == 0.0, "depth from the first touch by default"
     assert last["unconfined_yield_strength"] == last["hardness"] / indentation.start("constraint_factor")
     assert last["indenter_contacts"] == 0
     # Compression in the dynamic bin under a loaded indenter.
@@ -133,6 +156,8 @@ def test_bad_input_is_refused_at_initialization_and_the_host_survives(indentatio
     _refused(indentation, {"indenter_motion": "sideways"}, "indenter_motion")
     _refused(indentation, {"fidelity": "medium"}, "fidelity")
     _refused(indentation, {"time_step": 1e-3}, "time_step")
+    _refused(indentation, {"depth_origin": "surface"}, "depth_origin")
+    _refused(indentation, {"plateau_start": 0.2, "plateau_end": 0.1}, "plateau_end")
     # A bed prepared with other materials is another powder: the difference is named, for a changed
     # parameter and for another bed (the shipped one, under the stand-in's parameters).
     messages = _refused(indentation, {"particle_particle.surface_energy": 2.0}, "bed_file")
@@ -211,3 +236,17 @@ def test_the_engine_threads_end_with_the_instance(indentation):
     after = len(os.listdir("/proc/self/task"))
     assert during > before, "two threads start a pool"
     assert after == before, f"{after - before} threads left after fmi2FreeInstance"
+
+
+def test_the_depth_from_the_mean_surface_is_the_depth_from_the_first_touch_less_the_offset(indentation, default_run):
+    """depth_origin = mean_surface: the bed's mean surface under the footprint lies below the first touch
+    by depth_origin_offset (less than a sphere); the indenter starts at the first touch as before, so the
+    same motion gives the same forces, every depth that much smaller (until the turn, which comes at
+    max_penetration below the mean surface)."""
+    r = indentation.simulate(start_values={"depth_origin": "mean_surface"}, stop_time=0.004)
+    offset = r["depth_origin_offset"][0]
+    assert 0 < offset < 1e-3, offset
+    assert np.all(r["depth_origin_offset"] == offset)
+    n = len(r)
+    assert np.allclose(r["penetration_depth"], default_run["penetration_depth"][:n] - offset, rtol=0, atol=1e-15)
+    assert np.array_equal(r["indenter_force"], default_run["indenter_force"][:n])
