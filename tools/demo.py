@@ -218,11 +218,15 @@ def indentation(fmu, out):
     wall = time.perf_counter() - t0
     last = r[-1]
     print(f"  wall time {wall:.1f} s, {len(r)} output points; test_state at the end {last['test_state']} (2 = done)")
-    print(f"  F_max {r['indenter_force'].max():.4f} N at h/r {r['dimensionless_penetration'].max():.3f}")
-    print(f"  plateau hardness (mean F/A(h) while loading at 0.1 <= h/r <= 0.2, 004 Figs. 5.2-5.3): {last['plateau_hardness']:.4g} Pa, "
+    p0, p1 = float(start["plateau_start"]), float(start["plateau_end"])
+    se = last["plateau_hardness_standard_error"]
+    print(f"  plateau hardness (mean F/A(h) while loading at {p0} <= h/r <= {p1}, 004 Figs. 5.2-5.3): {last['plateau_hardness']:.4g} "
+          f"+- {se:.2g} Pa (standard error from this run's fluctuations, {last['plateau_samples']} samples; beds differ by about 6 % more), "
           f"unconfined yield strength {last['plateau_hardness'] / float(start['constraint_factor']):.4g} Pa (C = {start['constraint_factor']})")
-    print(f"  after unloading: h_c {last['contact_depth'] * 1e3:.4f} mm, hardness F_max/A(h_c) {last['hardness']:.4g} Pa"
-          + (" (h_c = 0: the bed did not follow the indenter back, so A(h_max))" if last["contact_depth"] == 0 else ""))
+    how = "from the tangent to the unloading curve" if last["contact_depth_from_tangent"] else "= h_max: the bed let go of the indenter too fast for a tangent"
+    print(f"  after unloading: F_max {last['force_at_turn']:.4f} N (the loading curve at the turn; largest output sample "
+          f"{r['indenter_force'].max():.4f} N), h_c {last['contact_depth'] * 1e3:.4f} mm ({how}), hardness F_max/A(h_c) {last['hardness']:.4g} Pa "
+          f"(a local reading at h_max: over 29 recorded runs 4 % below the plateau, standard deviation 8 %)")
     reference = None
     if os.path.isfile(REFERENCE):
         reference = np.genfromtxt(REFERENCE, delimiter=",", names=True)
@@ -242,7 +246,9 @@ def indentation(fmu, out):
     ax[0].set(xlabel="penetration depth h [mm]", ylabel="indenter force [N]", title="force-depth curve")
     ax[0].legend(fontsize=8)
     ax[1].plot(r["dimensionless_penetration"][ok], r["hydrostatic_stress"][ok] / 1e3, lw=0.8, label="hydrostatic stress, dynamic bin")
-    ax[1].hlines(last["plateau_hardness"] / 1e3, 0.1, 0.2, color="C3", lw=2, label="plateau hardness")
+    ax[1].hlines(last["plateau_hardness"] / 1e3, p0, p1, color="C3", lw=2, label="plateau hardness")
+    ax[1].fill_between([p0, p1], (last["plateau_hardness"] - 2 * se) / 1e3, (last["plateau_hardness"] + 2 * se) / 1e3, color="C3", alpha=0.2, lw=0,
+                       label="+- 2 standard errors")
     ax[1].set(xlabel="h / r [-]", ylabel="[kPa]", title="hardness against dimensionless penetration")
     ax[1].legend(fontsize=8)
     fig.tight_layout()

@@ -17,7 +17,18 @@ from .fmus import fmu_path
 from .instance import cosimulation
 
 OWN_KEYS = ("stop_time", "output_interval")
-SUMMARY_KEYS = ("plateau_hardness", "hardness", "unconfined_yield_strength", "max_force", "max_depth", "test_state", "wall_time")
+SUMMARY_KEYS = (
+    "plateau_hardness",
+    "plateau_hardness_standard_error",
+    "hardness",
+    "unconfined_yield_strength",
+    "force_at_turn",
+    "contact_depth",
+    "max_force",
+    "max_depth",
+    "test_state",
+    "wall_time",
+)
 
 
 def resolve(inputs: Mapping[str, Any], fmu: Path | None = None, check_unit: bool = False) -> tuple[dict[str, Any], dict[str, Any]]:
@@ -53,7 +64,10 @@ def run(inputs: Mapping[str, Any], fmu: Path | None = None) -> dict[str, Any]:
     last = r[-1]
     return {
         "plateau_hardness": float(last["plateau_hardness"]),
+        "plateau_hardness_standard_error": float(last["plateau_hardness_standard_error"]),
         "hardness": float(last["hardness"]),
+        "force_at_turn": float(last["force_at_turn"]),
+        "contact_depth": float(last["contact_depth"]),
         "unconfined_yield_strength": float(last["unconfined_yield_strength"]),
         "max_force": float(max(r["indenter_force"])),
         "max_depth": float(max(r["penetration_depth"])),
