@@ -63,7 +63,9 @@ def test_the_default_outputs_are_a_measurement(default_run):
     last = default_run[-1]
     p, se = last["plateau_hardness"], last["plateau_hardness_standard_error"]
     assert last["plateau_samples"] > 500, "gamma* = 0.02 to h/r = 0.2: about 900 samples in the window"
-    assert 0 < se < 0.06 * p, (p, se)
+    # The window holds only a few correlation times of the force, so one run's error is itself uncertain
+    # (docs/indentation.md: ten runs' spread against their errors); it is a fraction of the mean.
+    assert 0.01 * p < se < 0.25 * p, (p, se)
     hc = last["contact_depth"]
     assert hc > 0
     h_max = 0.0016  # max_penetration's default: the indenter turns at the engine step that reaches it
@@ -121,9 +123,9 @@ def test_the_quarter_reports_the_whole_die(default_run):
 
 @pytest.mark.xfail(
     strict=True,
-    reason="not met: the default (the quarter bed at gamma* = 0.02, within 2 minutes) reads the plateau 7 % below the full "
-    "run at the seed's gamma* = 0.01 (5-6 % below the mean of the seed's-speed runs, whose run-to-run scatter is 3-7 %); "
-    "docs/indentation.md shows the curve and what 5 % would take",
+    reason="not met: this run of the default (the quarter bed at gamma* = 0.02) reads the plateau 7 % below the full run at "
+    "the seed's gamma* = 0.01, and ten runs of it 18 % below the whole beds at that speed, with 8 % from run to run "
+    "(docs/indentation.md, 'The outputs as a measurement'); choosing the default again is issue 31's",
 )
 def test_the_default_plateau_is_within_5_percent_of_the_seeds_speed(default_run):
     assert rel(default_run[-1]["plateau_hardness"], plateau_of(REFERENCE)) < 0.05
