@@ -15,7 +15,12 @@ by side:
 Each against the plateau, in per cent and in units of the combined error. The rows are four times coarser
 than the unit's own samples (every 100 engine steps of 2.5e-7 s): the errors here are those of the rows.
 
+It ends with the reference of record: the seed's speed (gamma* = 0.01, 2.5e-7 s steps, every sphere
+moving) on the three whole beds of docs/data/ch6_indentation/beds.csv, each with its own error, and their
+mean with the error over beds (`--reference` writes it).
+
     .venv/bin/python benches/indentation_outputs.py [--csv docs/data/indentation_outputs.csv]
+        [--reference docs/data/reference_of_record.csv]
 """
 
 import argparse
@@ -100,6 +105,7 @@ def analyse(path):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--csv", type=Path, help="also write the table here")
+    ap.add_argument("--reference", type=Path, help="also write the reference of record here")
     args = ap.parse_args()
     out = []
     for path in sorted(DATA.glob("*.csv")):
@@ -120,6 +126,23 @@ def main():
     print(f"New hardness against the plateau: mean {new.mean():+.1f} %, standard deviation {new.std(ddof=1):.1f} %, range {new.min():+.1f} to {new.max():+.1f} %; |z| < 2 in {np.sum(abs(z) < 2)} of {len(z)}.")
     print(f"(The least-squares line over the same rows at h_max: mean {line.mean():+.1f} %, standard deviation {line.std(ddof=1):.1f} %.)")
     print(f"Old: standard deviation {old.std(ddof=1):.1f} %.")
+    beds = {1: "gamma0.01_full_dt2.5e-7.csv", 2: "seed2_gamma0.01_full_dt2.5e-7.csv", 3: "seed3_gamma0.01_full_dt2.5e-7.csv"}
+    by_file = {r["file"]: r for r in out}
+    ref = [{"bed_fill_seed": k, "file": f, "plateau_Pa": by_file[f]["plateau_Pa"], "own_standard_error_Pa": by_file[f]["plateau_se_Pa"]} for k, f in beds.items()]
+    values = np.array([r["plateau_Pa"] for r in ref])
+    mean, sd = values.mean(), values.std(ddof=1)
+    print("\nReference of record: gamma* = 0.01, 2.5e-7 s, full, the three whole beds (rows of 1e-4 s)")
+    for r in ref:
+        print(f"  bed {r['bed_fill_seed']}: {r['plateau_Pa']:.0f} +- {r['own_standard_error_Pa']:.0f} Pa (the run's own error)")
+    print(f"  mean {mean:.0f} Pa, standard deviation over beds {sd:.0f} Pa ({100 * sd / mean:.1f} %), standard error of the mean {sd / math.sqrt(len(ref)):.0f} Pa")
+    if args.reference:
+        with open(args.reference, "w", newline="") as fh:
+            w = csv.DictWriter(fh, fieldnames=list(ref[0]))
+            w.writeheader()
+            for r in ref:
+                w.writerow({k: (f"{v:.6g}" if isinstance(v, float) else v) for k, v in r.items()})
+            w.writerow({"bed_fill_seed": "mean", "file": f"standard deviation over beds {sd:.0f} Pa", "plateau_Pa": f"{mean:.6g}", "own_standard_error_Pa": f"{sd / math.sqrt(len(ref)):.6g}"})
+        print(f"wrote {args.reference}")
     if args.csv:
         with open(args.csv, "w", newline="") as fh:
             w = csv.DictWriter(fh, fieldnames=list(out[0]))
