@@ -53,7 +53,7 @@ const BIN: [f64; 3] = [5.2, 5.2, 4.2];
 /// The default depths h/r of the plateau hardness: F/A(h) levels off above about 0.1 (004 Figs.
 /// 5.2-5.3), and the default test turns at 0.2.
 pub const PLATEAU: (f64, f64) = (0.1, 0.2);
-/// The part of the loading depth whose force-depth line gives the force at the turn: its last tenth.
+/// The part of the loading depth over which the force at the turn is read: its last tenth.
 pub const TURN_FIT: f64 = 0.1;
 
 /// Where the depth h is measured from.
@@ -243,6 +243,9 @@ pub struct Indentation {
     /// bed's own (`set_die_walls`): a saved state carries them, as the bed file holds only the bed's.
     indenter_pair: Map<String, Value>,
     die_pair: Option<Map<String, Value>>,
+    /// The plateau of the last reading and how many loading samples it saw: a host reading at every
+    /// short communication step does not repeat the autocorrelation sums (O(n W)) between checks.
+    plateau_cache: Option<(usize, MeanEstimate)>,
 }
 
 /// A(h) = pi (d h - h^2) (004 Eq. 2.9), 0 outside the indenter.
@@ -400,7 +403,7 @@ impl Indentation {
             steps: 0,
             loading: vec![],
         };
-        let mut test = Indentation { engine, scene, setup, record, indenter, indenter_pair: pair, die_pair: None };
+        let mut test = Indentation { engine, scene, setup, record, indenter, indenter_pair: pair, die_pair: None, plateau_cache: None };
         if setup.motion == Motion::Prescribed {
             test.set_indenter_velocity(-setup.indentation_speed);
         }
@@ -552,6 +555,20 @@ impl Indentation {
         }
     }
 
+    /// The plateau hardness of the record so far (`Record::plateau` with the set-up's window), computed
+    /// again only when a loading sample has been added.
+    pub fn plateau(&mut self) -> MeanEstimate {
+        let n = self.record.loading.len();
+        match self.plateau_cache {
+            Some((seen, p)) if seen == n => p,
+            _ => {
+                let p = self.record.plateau(self.setup.indenter_diameter, self.setup.plateau);
+                self.plateau_cache = Some((n, p));
+                p
+            }
+        }
+    }
+
     /// The outputs at the current state (one extra force evaluation for Bagi's stress, which leaves the
     /// state unchanged).
     pub fn reading(&mut self) -> Reading {
@@ -591,7 +608,7 @@ impl Indentation {
             contact_depth,
             contact_depth_from_tangent: self.record.contact_depth.is_some(),
             turn_force,
-            plateau: self.record.plateau(d, self.setup.plateau),
+            plateau: self.plateau(),
             depth_origin_offset: self.record.touch - self.record.origin,
         }
     }
@@ -647,7 +664,7 @@ impl Indentation {
             }
             engine.restore_held(saved.held, saved.held_reference);
         }
-        Ok(Indentation { engine, scene, setup: saved.setup, record: saved.record, indenter, indenter_pair, die_pair })
+        Ok(Indentation { engine, scene, setup: saved.setup, record: saved.record, indenter, indenter_pair, die_pair, plateau_cache: None })
     }
 }
 
