@@ -136,21 +136,20 @@ def main():
         print(f"  bed {r['bed_fill_seed']}: {r['plateau_Pa']:.0f} +- {r['own_standard_error_Pa']:.0f} Pa (the run's own error)")
     print(f"  mean {mean:.0f} Pa, standard deviation over beds {sd:.0f} Pa ({100 * sd / mean:.1f} %), standard error of the mean {sd / math.sqrt(len(ref)):.0f} Pa")
     if args.reference:
-        with open(args.reference, "w", newline="") as fh:
-            w = csv.DictWriter(fh, fieldnames=list(ref[0]))
-            w.writeheader()
-            for r in ref:
-                w.writerow({k: (f"{v:.6g}" if isinstance(v, float) else v) for k, v in r.items()})
-            w.writerow({"bed_fill_seed": "mean", "file": f"standard deviation over beds {sd:.0f} Pa", "plateau_Pa": f"{mean:.6g}", "own_standard_error_Pa": f"{sd / math.sqrt(len(ref)):.6g}"})
-        print(f"wrote {args.reference}")
+        summary = {"bed_fill_seed": "mean", "file": f"standard deviation over beds {sd:.0f} Pa", "plateau_Pa": mean, "own_standard_error_Pa": sd / math.sqrt(len(ref))}
+        write_csv(args.reference, ref + [summary])
     if args.csv:
-        with open(args.csv, "w", newline="") as fh:
-            w = csv.DictWriter(fh, fieldnames=list(out[0]))
-            w.writeheader()
-            for r in out:
-                w.writerow({k: (f"{v:.6g}" if isinstance(v, float) else v) for k, v in r.items()})
-        print(f"wrote {args.csv}")
+        write_csv(args.csv, out)
 
+
+def write_csv(path, rows):
+    """The rows (dicts with the same keys) as a CSV, floats to six digits."""
+    with open(path, "w", newline="") as fh:
+        w = csv.DictWriter(fh, fieldnames=list(rows[0]))
+        w.writeheader()
+        for r in rows:
+            w.writerow({k: (f"{v:.6g}" if isinstance(v, float) else v) for k, v in r.items()})
+    print(f"wrote {path}")
 
 if __name__ == "__main__":
     main()

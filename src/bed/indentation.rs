@@ -197,6 +197,21 @@ impl Record {
         }
         projected_area(d, self.h_max) * hardness.iter().sum::<f64>() / hardness.len() as f64
     }
+
+    /// h_c from the tangent, or h_max where there is none (yet) [m].
+    pub fn contact_depth_or_max(&self) -> f64 {
+        self.contact_depth.unwrap_or(self.h_max)
+    }
+
+    /// The hardness after the turn, F_max / A(h_c) with F_max = `turn_force` (0 before any depth) [Pa].
+    pub fn hardness_after_turn(&self, d: f64) -> f64 {
+        let a = projected_area(d, self.contact_depth_or_max());
+        if a > 0.0 {
+            self.turn_force(d) / a
+        } else {
+            0.0
+        }
+    }
 }
 
 /// The outputs of the test at the current state.
@@ -257,12 +272,20 @@ pub fn projected_area(d: f64, h: f64) -> f64 {
 /// Height of the lowest point of a sphere of radius `r_i`, lowered along the die axis, when it first
 /// touches one of the particles: max over the spheres within reach of z - r_i + sqrt((r_i + r)^2 - rho^2).
 pub fn first_touch_height(p: &Particles, r_i: f64) -> Option<f64> {
+    touch_height_at(p.position.iter().copied().zip(p.radius.iter().copied()), r_i, 0.0, 0.0)
+}
+
+/// Height of the lowest point of a sphere of radius `r_i` lowered along the vertical line through (x, y)
+/// when it first touches one of `spheres` (centre, radius): max over those within reach of
+/// z - r_i + sqrt((r_i + r)^2 - rho^2), rho their distance from the line.
+fn touch_height_at(spheres: impl IntoIterator<Item = (Vec3, f64)>, r_i: f64, x: f64, y: f64) -> Option<f64> {
     let mut top: Option<f64> = None;
-    for (x, &r) in p.position.iter().zip(&p.radius) {
-        let rho2 = x.xy().norm_squared();
+    for (c, r) in spheres {
+        let (dx, dy) = (c.x - x, c.y - y);
+        let rho2 = dx * dx + dy * dy;
         let reach2 = (r_i + r) * (r_i + r);
         if rho2 < reach2 {
-            let z = x[2] - r_i + (reach2 - rho2).sqrt();
+            let z = c.z - r_i + (reach2 - rho2).sqrt();
             top = Some(top.map_or(z, |t: f64| t.max(z)));
         }
     }
@@ -296,16 +319,7 @@ pub fn mean_surface_height(p: &Particles, mirrors: &[Wall], probe: f64, footprin
             if x * x + y * y > footprint * footprint {
                 continue;
             }
-            let mut top: Option<f64> = None;
-            for &(c, r) in &centres {
-                let rho2 = (c.x - x).powi(2) + (c.y - y).powi(2);
-                let reach2 = (probe + r) * (probe + r);
-                if rho2 < reach2 {
-                    let z = c.z - probe + (reach2 - rho2).sqrt();
-                    top = Some(top.map_or(z, |t: f64| t.max(z)));
-                }
-            }
-            if let Some(z) = top {
+            if let Some(z) = touch_height_at(centres.iter().copied(), probe, x, y) {
                 sum += z;
                 lines += 1;
             }
@@ -574,19 +588,10 @@ impl Indentation {
     pub fn reading(&mut self) -> Reading {
         let (d, f, h) = (self.setup.indenter_diameter, self.force(), self.depth());
         let area = projected_area(d, h);
-        let turn_force = self.record.turn_force(d);
-        let contact_depth = self.record.contact_depth.unwrap_or(self.record.h_max);
         let hardness = match self.record.state {
             TestState::Loading if area > 0.0 => f / area,
             TestState::Loading => 0.0,
-            _ => {
-                let a = projected_area(d, contact_depth);
-                if a > 0.0 {
-                    turn_force / a
-                } else {
-                    0.0
-                }
-            }
+            _ => self.record.hardness_after_turn(d),
         };
         let mean = self.scene.size_distribution.mean_diameter();
         let bottom = self.indenter().position[2] - 0.5 * d;
@@ -605,9 +610,9 @@ impl Indentation {
             contacts: self.contacts(),
             kinetic_energy: self.engine.particles().kinetic_energy() / self.scene.die_sector,
             state: self.record.state,
-            contact_depth,
+            contact_depth: self.record.contact_depth_or_max(),
             contact_depth_from_tangent: self.record.contact_depth.is_some(),
-            turn_force,
+            turn_force: self.record.turn_force(d),
             plateau: self.plateau(),
             depth_origin_offset: self.record.touch - self.record.origin,
         }

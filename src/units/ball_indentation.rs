@@ -410,9 +410,9 @@ impl Model for BallIndentation {
         test.advance(h, input)?;
         self.fresh = false;
         // Every change of the test's state since the last report, in order (one step may hold several).
-        let rec = &test.record;
-        while let Some(from) = self.reported.filter(|&s| s != rec.state) {
-            let next = match (from, rec.state) {
+        let d = test.setup.indenter_diameter;
+        while let Some(from) = self.reported.filter(|&s| s != test.record.state) {
+            let next = match (from, test.record.state) {
                 (TestState::Loading, _) => TestState::Unloading,
                 (TestState::Unloading, TestState::Loading) => TestState::Loading,
                 _ => TestState::Done,
@@ -420,11 +420,12 @@ impl Model for BallIndentation {
             self.events.push(match next {
                 TestState::Loading => format!("loading again at h = {:.4e} m", test.depth()),
                 TestState::Unloading => {
-                    let p = rec.plateau(test.setup.indenter_diameter, test.setup.plateau);
+                    let p = test.plateau();
+                    let rec = &test.record;
                     format!(
                         "unloading from h_max = {:.4e} m, F_max = {:.4e} N (the loading curve's force there, read over its last tenth; largest sample {:.4e} N); plateau hardness {:.4e} +- {:.2e} Pa (standard error, {} samples, correlation time {:.1} samples{})",
                         rec.h_max,
-                        rec.turn_force(test.setup.indenter_diameter),
+                        rec.turn_force(d),
                         rec.f_max,
                         p.mean,
                         p.standard_error,
@@ -434,13 +435,12 @@ impl Model for BallIndentation {
                     )
                 }
                 TestState::Done => {
-                    let (hc, how) = match rec.contact_depth {
-                        Some(hc) => (hc, "from the tangent to the unloading curve"),
-                        None => (rec.h_max, "= h_max: the bed let go of the indenter too fast for a tangent"),
-                    };
+                    let rec = &test.record;
+                    let how = if rec.contact_depth.is_some() { "from the tangent to the unloading curve" } else { "= h_max: the bed let go of the indenter too fast for a tangent" };
                     format!(
-                        "the indenter has left the bed: h_c = {hc:.4e} m ({how}), hardness F_max/A(h_c) = {:.4e} Pa",
-                        rec.turn_force(test.setup.indenter_diameter) / crate::bed::indentation::projected_area(test.setup.indenter_diameter, hc)
+                        "the indenter has left the bed: h_c = {:.4e} m ({how}), hardness F_max/A(h_c) = {:.4e} Pa",
+                        rec.contact_depth_or_max(),
+                        rec.hardness_after_turn(d)
                     )
                 }
             });
