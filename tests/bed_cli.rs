@@ -100,3 +100,33 @@ fn bad_input_fails_by_name_and_writes_nothing() {
     assert_eq!(names, vec!["junk.bed".to_string(), "many.json".to_string()]);
     std::fs::remove_dir_all(&d).unwrap();
 }
+
+/// Every bed scene shipped in `scenes/` loads and fills as its comment says: the sphere count, the
+/// die, and (for the seed's Ch. 5 scenes) the glass beads' time step at E = 55 GPa, which the cost
+/// estimates of docs/indentation.md are built on.
+#[test]
+fn every_shipped_bed_scene_fills() {
+    let d = dir("scenes");
+    let mut seen = 0;
+    for entry in std::fs::read_dir("scenes").unwrap() {
+        let path = entry.unwrap().path();
+        let name = path.file_name().unwrap().to_string_lossy().to_string();
+        if !(name.starts_with("bed_") && name.ends_with(".json")) {
+            continue;
+        }
+        let scene: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+        let out_bed = d.join(name.replace(".json", ".pfbed"));
+        let (code, out, err) = run(&["bed", "prepare", path.to_str().unwrap(), "--until", "fill", "-o", out_bed.to_str().unwrap()]);
+        assert_eq!(code, 0, "{name}: {err}");
+        assert!(out.contains("prepared through `fill`"), "{name}: {out}");
+        let count = scene["particle_count"].as_u64().unwrap_or(16000);
+        assert!(out.contains(&format!("particles:            {count}")), "{name}: {out}");
+        let step: f64 = out.lines().find(|l| l.starts_with("time step:")).unwrap().split_whitespace().nth(2).unwrap().parse().unwrap();
+        if name.starts_with("bed_004_ch5") || name == "bed_004_indentation.json" {
+            // Table 5.2 as printed: the Rayleigh step of the 0.59 mm beads at 55 GPa.
+            assert!((step - 6.75e-8).abs() < 0.01e-8, "{name}: time step {step:e} s");
+        }
+        seen += 1;
+    }
+    assert!(seen >= 9, "{seen} bed scenes found");
+}
