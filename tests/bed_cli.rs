@@ -130,3 +130,42 @@ fn every_shipped_bed_scene_fills() {
     }
     assert!(seen >= 9, "{seen} bed scenes found");
 }
+
+/// `bed indent --change`: a one-change experiment on the same prepared bed. The bed's own value changes
+/// nothing (to the byte of the force-depth CSV); another value changes the forces; a change of law, a
+/// law too stiff for the bed's step, or text that is not a JSON object is refused by name, with exit 2.
+#[test]
+fn indent_change_lays_a_scene_over_the_same_bed() {
+    let d = dir("change");
+    let bed = "beds/bed_004_ch6_quarter.pfbed";
+    let indent = |name: &str, change: Option<&str>| {
+        let out = d.join(name);
+        let mut args = vec!["bed", "indent", bed, "--speed", "0.5", "--max-penetration", "1e-4", "--every", "2e-5", "--fidelity", "fast", "--threads", "1", "--out", out.to_str().unwrap()];
+        if let Some(c) = change {
+            args.extend(["--change", c]);
+        }
+        let (code, _, err) = run(&args);
+        (code, err, std::fs::read_to_string(&out).unwrap_or_default())
+    };
+    let (code, err, plain) = indent("plain.csv", None);
+    assert_eq!(code, 0, "{err}");
+    assert!(plain.lines().count() > 10, "{plain}");
+    // The shipped bed's rolling friction is 0.01 (scenes/bed_004_ch6_quarter.json).
+    let (code, err, same) = indent("same.csv", Some(r#"{"rolling_friction": 0.01}"#));
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("scene changed by"), "{err}");
+    assert_eq!(same, plain, "the bed's own value must change nothing");
+    let (code, err, free) = indent("free.csv", Some(r#"{"rolling_friction": 0, "particle_particle": {"damping_factor_plastic": 0.1}}"#));
+    assert_eq!(code, 0, "{err}");
+    assert_ne!(free, plain, "no rolling friction and a tenth of the damping change the forces");
+    for (change, name) in [
+        (r#"{"particle_particle": {"contact_model": "hertz"}}"#, "contact_model"),
+        (r#"{"particle_particle": {"elastic_stiffness": 1e9}}"#, "time_step"),
+        (r#"{"rolling_friction": -1}"#, "rolling_friction"),
+        ("[1]", "JSON object"),
+    ] {
+        let (code, err, _) = indent("refused.csv", Some(change));
+        assert_eq!(code, 2, "{change}: {err}");
+        assert!(err.contains("--change") && err.contains(name), "{change}: {err}");
+    }
+}

@@ -109,6 +109,12 @@ pub struct IndentArgs {
     /// JSON object): softer walls allow a longer time step
     #[arg(long, value_name = "JSON")]
     walls: Option<String>,
+    /// Bed scene keys over the bed's own for this test (a JSON object; `particle_particle` and
+    /// `particle_wall` merge key by key): a one-change experiment on the same prepared bed, e.g.
+    /// '{"rolling_friction": 0}' or '{"particle_particle": {"surface_energy": 0}}'. The law
+    /// (contact_model) stays the bed's; every contact keeps its memory
+    #[arg(long, value_name = "JSON")]
+    change: Option<String>,
     /// A fixed time step [s] (refused above the bed's stability limit)
     #[arg(long, value_name = "S", value_parser = options::positive("s"))]
     time_step: Option<f64>,
@@ -482,8 +488,40 @@ fn bench_cmd(a: BenchArgs) -> Result<(), String> {
     Ok(())
 }
 
+/// The bed's scene with `overlay` (a JSON object of bed scene keys) laid over it, given to the running
+/// bed: the objects `particle_particle` and `particle_wall` merge key by key, other keys replace.
+fn changed_scene(engine: &mut AnyEngine, scene: &BedScene, overlay: &str) -> Result<BedScene, String> {
+    let overlay: serde_json::Map<String, serde_json::Value> = serde_json::from_str(overlay).map_err(|e| format!("must be a JSON object of bed scene keys: {e}"))?;
+    for group in ["particle_particle", "particle_wall"] {
+        if let Some(model) = overlay.get(group).and_then(|g| g.get("contact_model")) {
+            if model.as_str() != Some(scene.model.name()) {
+                return Err(format!("contact_model must stay the bed's ({}), got {model}: the contacts' memory is that law's", scene.model.name()));
+            }
+        }
+    }
+    let serde_json::Value::Object(mut map) = scene.to_json() else { unreachable!("a bed scene is a JSON object") };
+    for (key, value) in overlay {
+        match (map.get_mut(&key), value) {
+            (Some(serde_json::Value::Object(base)), serde_json::Value::Object(keys)) => base.extend(keys),
+            (_, value) => {
+                map.insert(key, value);
+            }
+        }
+    }
+    let changed = BedScene::from_map(&map).map_err(|e| e.to_string())?;
+    if changed.model != scene.model {
+        return Err(format!("contact_model must stay the bed's ({}): the contacts' memory is that law's", scene.model.name()));
+    }
+    engine.set_scene(&changed).map_err(|e| e.to_string())?;
+    Ok(changed)
+}
+
 fn indent_cmd(a: IndentArgs) -> Result<(), String> {
-    let (engine, scene) = load(&a.bed, a.threads.map(usize::from))?;
+    let (mut engine, mut scene) = load(&a.bed, a.threads.map(usize::from))?;
+    if let Some(text) = &a.change {
+        scene = changed_scene(&mut engine, &scene, text).map_err(|e| format!("--change: {e}"))?;
+        eprintln!("indentation: the bed's scene changed by {text}");
+    }
     let mean = scene.size_distribution.mean_diameter();
     let d = a.diameter.unwrap_or(16.0 * mean);
     let tuned = a.mobile_zone.is_some() || a.release.is_some();

@@ -187,6 +187,24 @@ impl<L: BedLaw> Engine<L> {
         Ok(())
     }
 
+    /// Gives every pair of species and every wall new interactions of the same law (a one-change
+    /// experiment on a prepared bed: less damping, no rolling friction, no cohesion), keeping every
+    /// contact's memory. Refused when the tables do not fit the bed or an adhesive neck would reach
+    /// beyond the skin.
+    pub fn set_interactions(&mut self, pairs: Vec<Interaction<L>>, wall_pairs: Vec<Vec<Interaction<L>>>) -> Result<(), String> {
+        if pairs.len() != self.species * self.species || wall_pairs.len() != self.walls.len() || wall_pairs.iter().any(|r| r.len() != self.species) {
+            return Err("the interaction tables do not fit this bed's species and walls".into());
+        }
+        let reach = pairs.iter().chain(wall_pairs.iter().flatten()).map(|it| it.reach).fold(0.0, f64::max);
+        if !(self.list.skin > reach) {
+            return Err(format!("the changed law's adhesive necks reach {reach:e} m, beyond the bed's skin {:e} m", self.list.skin));
+        }
+        self.pairs = pairs;
+        self.wall_pairs = wall_pairs;
+        self.reach = reach;
+        Ok(())
+    }
+
     /// Widens the engine's reach to a wall's new interactions (one per species), refused when its
     /// adhesive necks would reach beyond the skin.
     fn reach_for(&mut self, wall: &str, row: &[Interaction<L>]) -> Result<(), String> {
