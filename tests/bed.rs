@@ -546,3 +546,35 @@ fn a_colliding_cloud_steps_to_the_same_bits_with_every_instruction_set_this_cpu_
         assert!(refused.contains(isa.name()), "{refused}");
     }
 }
+
+/// A changed scene on a running bed (`AnyEngine::set_scene`, behind `bed indent --change`): a pair that
+/// never touched takes the changed law's initial history (Pasha's alpha_0 = 8/9 f_ce / k_e depends on the
+/// interface energy), a pair that touched keeps its memory, and a change of law is refused.
+#[test]
+fn a_changed_scene_keeps_the_memory_and_renews_the_untouched_pairs() {
+    let law = |gamma: f64| json!({"contact_model": "pasha", "particle_youngs_modulus": 55e6, "particle_yield_pressure": 2e6, "surface_energy": gamma});
+    let scene_of = |gamma: f64| {
+        BedScene::from_json(&json!({"particle_particle": law(gamma), "size_distribution": {"diameters": [1e-3], "frequencies": [1.0]}, "gravity": 0.0}).to_string())
+            .unwrap()
+    };
+    let mut p = Particles::default();
+    // 0 and 1 pressed together; 2 near 1 within the list's skin but apart.
+    p.push(Vec3::new(0.0, 0.0, 0.0), 0.5e-3, 2456.0, 0);
+    p.push(Vec3::new(0.999e-3, 0.0, 0.0), 0.5e-3, 2456.0, 0);
+    p.push(Vec3::new(2.03e-3, 0.0, 0.0), 0.5e-3, 2456.0, 0);
+    let mut e = AnyEngine::build(&scene_of(0.5), p, vec![]).unwrap();
+    e.step();
+    let slot = |e: &AnyEngine, i: usize, j: u32| with_engine!(e, inner => inner.list.start[i] as usize + inner.list.row(i).binary_search(&j).unwrap());
+    let (touched, apart) = (slot(&e, 0, 1), slot(&e, 1, 2));
+    let history = |e: &AnyEngine, k: usize| with_engine!(e, inner => format!("{:?}", inner.normal[k]));
+    let initial = |e: &AnyEngine| with_engine!(e, inner => format!("{:?}", inner.pairs[0].initial));
+    let (kept, old_initial) = (history(&e, touched), initial(&e));
+    assert_eq!(history(&e, apart), old_initial, "the apart pair never touched");
+    assert_ne!(kept, old_initial, "the pressed pair has a history");
+    e.set_scene(&scene_of(0.0)).unwrap();
+    assert_ne!(initial(&e), old_initial, "alpha_0 follows the interface energy");
+    assert_eq!(history(&e, apart), initial(&e), "an untouched pair takes the changed law's initial history");
+    assert_eq!(history(&e, touched), kept, "a touched pair keeps its memory");
+    let hertz = BedScene::from_json(&json!({"particle_particle": {"contact_model": "hertz", "particle_youngs_modulus": 55e6}, "size_distribution": {"diameters": [1e-3], "frequencies": [1.0]}, "gravity": 0.0}).to_string()).unwrap();
+    assert!(e.set_scene(&hertz).is_err(), "another law's tables do not fit this engine");
+}

@@ -199,6 +199,27 @@ impl<L: BedLaw> Engine<L> {
         if !(self.list.skin > reach) {
             return Err(format!("the changed law's adhesive necks reach {reach:e} m, beyond the bed's skin {:e} m", self.list.skin));
         }
+        // A pair that never touched holds its law's initial history, which may depend on the changed
+        // parameters (Pasha's alpha_0 on f_ce): it takes the new one; every other memory stays.
+        let s = self.species;
+        let sp = &self.particles.species;
+        for i in 0..self.list.rows() {
+            let a = sp[i] as usize;
+            for (k, &j) in (self.list.start[i] as usize..).zip(self.list.row(i)) {
+                let b = sp[j as usize] as usize;
+                if self.normal[k] == self.pairs[a * s + b].initial {
+                    self.normal[k] = pairs[a * s + b].initial;
+                }
+            }
+        }
+        for (w, wc) in self.wall_contacts.iter_mut().enumerate() {
+            for (k, &i) in wc.particle.iter().enumerate() {
+                let a = sp[i as usize] as usize;
+                if wc.normal[k] == self.wall_pairs[w][a].initial {
+                    wc.normal[k] = wall_pairs[w][a].initial;
+                }
+            }
+        }
         self.pairs = pairs;
         self.wall_pairs = wall_pairs;
         self.reach = reach;
