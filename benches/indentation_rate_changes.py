@@ -1,7 +1,8 @@
 """The rate question of issue 31 (benches/indentation_rate_changes.sh): one row per run with gamma*, the
 inertial number, the change, the plateau hardness with its standard error and the hardness after
 unloading; each change beside the unchanged bed at the same gamma*, and the slow end over gamma* = 0.08
-for the unchanged bed and each change (what makes the slow end harder).
+for the unchanged bed and each change (what makes the slow end harder); where replicas were run (steps a few
+parts in 10^4 apart), the run-to-run scatter at each nominal step.
 
     python benches/indentation_rate_changes.py OUT_DIR [--csv docs/data/rate_changes.csv]
 
@@ -43,9 +44,17 @@ def read(path):
     }
 
 
+def nominal_step(dt):
+    """The step a run stands for: 2.5e-7 s or its half; a step a few parts in 10^4 off is a replica."""
+    return min((2.5e-7, 1.25e-7), key=lambda n: abs(dt - n))
+
+
 def label(row):
-    if row["time_step_s"] != 2.5e-7:
-        return f"time step {row['time_step_s']:g} s"
+    dt = row["time_step_s"]
+    if dt != nominal_step(dt):
+        return f"replica: time step {dt:g} s"
+    if dt != 2.5e-7:
+        return f"time step {dt:g} s"
     names = {
         "none": "none",
         '{"rolling_friction": 0}': "no rolling friction",
@@ -89,6 +98,21 @@ def main():
             ratio = s["plateau_Pa"] / f["plateau_Pa"]
             err = ratio * math.hypot(s["plateau_se_Pa"] / s["plateau_Pa"], f["plateau_se_Pa"] / f["plateau_Pa"])
             print(f"| {name} | {ratio:.3f} | {err:.3f} |")
+    replicas = {}
+    for r in rows:
+        if r["change"] == "none":
+            replicas.setdefault((r["gamma"], nominal_step(r["time_step_s"])), []).append(r["plateau_Pa"])
+    if any(len(v) > 1 for v in replicas.values()):
+        print()
+        print("Run-to-run scatter (the unchanged bed at one nominal step, steps a few parts in 10^4 apart):")
+        print()
+        print("| gamma* | nominal time step [s] | runs | plateau hardness [Pa] | mean [Pa] | standard deviation [Pa] |")
+        print("|---:|---:|---:|---|---:|---:|")
+        for (g, dt), v in sorted(replicas.items()):
+            if len(v) > 1:
+                m = sum(v) / len(v)
+                sd = math.sqrt(sum((x - m) ** 2 for x in v) / (len(v) - 1))
+                print(f"| {g:g} | {dt:g} | {len(v)} | {', '.join(f'{x:.0f}' for x in v)} | {m:.0f} | {sd:.0f} ({100 * sd / m:.1f} %) |")
     if a.csv:
         keys = ["run", "change", "gamma", "inertial_number", "speed_m_per_s", "time_step_s", "plateau_Pa", "plateau_se_Pa", "samples",
                 "correlation_time", "over_unchanged", "hardness_after_unloading_Pa", "wall_time_s"]

@@ -3,8 +3,10 @@
 # every sphere moving, 2.5e-7 s steps unless halved): the four gamma* of 004 Ch. 7 (0.0115, 0.2297,
 # 0.4594, 2.2969), then one change at a time against the same bed (`bed indent --change`) at the slow
 # end (gamma* = 0.0115) and at gamma* = 0.08: a tenth of the particle-particle damping, no rolling
-# friction, no cohesion, and the time step halved. One run per row; a row whose log holds a result is
-# not run again, so the study can be stopped and resumed.
+# friction, no cohesion, and the time step halved. Replicas at gamma* = 0.08 with steps a few parts in
+# 10^4 shorter (the same physics, other rounding: the bed's dynamics are chaotic, so they follow
+# independent paths) give the run-to-run scatter the changes are judged against. One run per row; a row
+# whose log holds a result is not run again, so the study can be stopped and resumed.
 #
 #   bash benches/indentation_rate_changes.sh OUT_DIR [BIN]
 #   then: python benches/indentation_rate_changes.py OUT_DIR --csv docs/data/rate_changes.csv
@@ -37,4 +39,7 @@ for g in 0.08 0.0115; do
     run "coh0_g$g" "$g" "$COH" 2.5e-7
 done
 run "dthalf_g0.08" 0.08 "" 1.25e-7
+run "replica1_g0.08" 0.08 "" 2.4975e-7
+run "replica2_g0.08" 0.08 "" 2.495e-7
+run "dthalf_replica1_g0.08" 0.08 "" 1.24875e-7
 run "dthalf_g0.0115" 0.0115 "" 1.25e-7

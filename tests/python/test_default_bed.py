@@ -10,7 +10,7 @@ import math
 import pytest
 from fmpy import simulate_fmu
 
-from fmu_support import REPO, rel
+from fmu_support import REPO
 
 DONE = 2
 DATA = REPO / "docs" / "data" / "ch6_indentation"
@@ -103,13 +103,16 @@ WHOLE_FAST = DATA / "gamma0.08_fast_dt2.5e-7.csv"
 
 def test_the_whole_bed_runs_with_fidelity_fast_as_the_command_line_does(shipped_indentation):
     """`fidelity = fast` loads the FMU's whole bed (29000 spheres) and holds the far spheres: the
-    command-line run of the same bed and settings, to seven digits, over the first 6 ms of loading (the
-    whole test takes 83 s; its hardness against the quarter's is in docs/indentation.md)."""
-    r = simulate_fmu(str(shipped_indentation.path), start_values={"fidelity": "fast", "indentation_speed": 0.1429}, stop_time=0.006)
+    command-line run of the same bed and settings, to seven digits, over the first 2 ms of loading (the
+    indenter touches from the first row on: 20 rows of force over 8000 engine steps. The whole test takes
+    83 s; its hardness against the quarter's is in docs/indentation.md)."""
+    stop = 0.002
+    r = simulate_fmu(str(shipped_indentation.path), start_values={"fidelity": "fast", "indentation_speed": 0.1429}, stop_time=stop)
     cli = rows(WHOLE_FAST)
     by_time = {round(t / 1e-4): k for k, t in enumerate(r["time"])}
-    loading = [row for row in cli if row["state"] == 0 and row["time_s"] <= 0.006 + 1e-9]
-    assert len(loading) >= 55 and max(r["penetration_depth"]) > 0.1 * shipped_indentation.start("max_penetration")
+    loading = [row for row in cli if row["state"] == 0 and row["time_s"] <= stop + 1e-9]
+    assert len(loading) >= 19 and all(row["force_N"] > 0 for row in loading)
+    assert max(r["penetration_depth"]) > 0.1 * shipped_indentation.start("max_penetration")
     for row in loading:
         k = by_time[round(row["time_s"] / 1e-4)]
         assert r["indenter_force"][k] == pytest.approx(row["force_N"], rel=1e-6, abs=1e-9), row["time_s"]
@@ -121,12 +124,32 @@ def test_the_quarter_reports_the_whole_die(default_run):
     assert touching and all(c % 4 == 0 for c in touching)
 
 
+# The default's setting in the table of benches/indentation_halfwidth.py: the quarter beds' scatter from bed
+# to bed and the reference of record it is judged against, measured from the recorded runs.
+HALFWIDTH = REPO / "docs" / "data" / "indentation_halfwidth.csv"
+
+
+def default_setting():
+    with open(HALFWIDTH) as f:
+        return {k: (v if k == "setting" else float(v)) for k, v in next(r for r in csv.DictReader(f) if "(the default)" in r["setting"]).items()}
+
+
+def test_the_default_interval_contains_the_reference_of_record(default_run):
+    """Issue 31's interval: the plateau with its own standard error and the bed-to-bed scatter of the quarter
+    beds (s_bed, two beds), at 95 %, contains the reference of record (the seed's speed on three whole
+    beds). Met by the default run; over the ten recorded replicas of the default, 7 intervals of 10 contain
+    it (docs/indentation.md, "What a 5 % interval costs")."""
+    last, d = default_run[-1], default_setting()
+    half_width = 1.96 * math.hypot(last["plateau_hardness_standard_error"], d["s_bed_Pa"])
+    assert abs(last["plateau_hardness"] - d["reference_Pa"]) <= half_width, (last["plateau_hardness"], half_width, d)
+
+
 @pytest.mark.xfail(
     strict=True,
-    reason="not met: this run of the default (the quarter bed at gamma* = 0.02) reads the plateau 7 % below the full run at "
-    "the seed's gamma* = 0.01, and ten runs of it 18 % below the whole beds at that speed, with 8 % from run to run "
-    "(docs/indentation.md, 'The outputs as a measurement'); choosing the default again is issue 31's",
+    reason="not met: the default's 95 % interval is about 33 % of the reference wide (its own error and the quarter beds' "
+    "12 % bed-to-bed scatter), not 5 %; a 5 % interval takes about six seed's-speed tests on six whole beds, 73 minutes on "
+    "two cores (docs/indentation.md, 'What a 5 % interval costs', benches/indentation_halfwidth.py)",
 )
-def test_the_default_plateau_is_within_5_percent_of_the_seeds_speed(default_run):
-    assert rel(default_run[-1]["plateau_hardness"], plateau_of(REFERENCE)) < 0.05
-
+def test_the_default_interval_is_within_5_percent_of_the_reference(default_run):
+    last, d = default_run[-1], default_setting()
+    assert 1.96 * math.hypot(last["plateau_hardness_standard_error"], d["s_bed_Pa"]) <= 0.05 * d["reference_Pa"]

@@ -1,0 +1,147 @@
+"""What a 5 % interval on the seed's test costs: for each way of running the test on the seed's Ch. 6 bed
+(whole or quarter die, gamma*), the recorded runs' mean over beds, its bias against the reference of
+record, the scatter from run to run on one bed and from bed to bed, and the half-width of the 95 %
+interval of a mean over n tests against the wall time of those n tests on two cores.
+
+    python benches/indentation_halfwidth.py [--plot docs/figures/indentation_halfwidth.png]
+        [--csv docs/data/indentation_halfwidth.csv]
+
+The runs are the recorded ones (docs/data/ch6_indentation: `powderfmu bed indent` CSVs, plateau = mean
+F/A(h) over 0.1 <= h/r <= 0.2 while loading; docs/data/default_replicas.csv: the FMU's default ten times).
+Runs on one bed differ only by a step a few parts in 10^4 shorter (the dynamics are chaotic, so they are
+independent samples of that bed). The scatter from run to run, s_run, is pooled over the beds with more
+than one run; the bed-to-bed part, s_bed, is what the spread of the beds' means leaves after s_run/n_b:
+s_bed^2 = var(bed means) - mean(s_run^2 / n_b), at least 0. A mean over n tests has the half-width
+1.96 (s_run^2 + s_bed^2)^(1/2) / n^(1/2) when every test has its own bed, and 1.96 (s_run^2 / n +
+s_bed^2)^(1/2) when all run on one bed (the bed's own offset does not average out).
+"""
+
+import argparse
+import csv
+import math
+import os
+import statistics
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+DATA = os.path.join(HERE, "..", "docs", "data")
+RUNS = os.path.join(DATA, "ch6_indentation")
+
+# (name, gamma*, wall time of one test on two cores [s], preparation of one bed [min], {bed: [run CSVs]})
+SETTINGS = [
+    ("whole, gamma* 0.01", 0.01, 730, 120,
+     {"whole 1": ["gamma0.01_full_dt2.5e-7.csv", "gamma0.01_full_dt2.4975e-7.csv"],
+      "whole 2": ["seed2_gamma0.01_full_dt2.5e-7.csv"], "whole 3": ["seed3_gamma0.01_full_dt2.5e-7.csv"]}),
+    ("whole, gamma* 0.08, fast", 0.08, 85, 120,
+     {"whole 1": ["gamma0.08_fast_dt2.5e-7.csv"], "whole 2": ["seed2_gamma0.08_fast_dt2.5e-7.csv"],
+      "whole 3": ["seed3_gamma0.08_fast_dt2.5e-7.csv"]}),
+    ("quarter, gamma* 0.01", 0.01, 240, 45,
+     {"quarter 1": ["quarter1_gamma0.01_full_dt2.5e-7.csv", "quarter1_gamma0.01_full_dt2.4975e-7.csv"],
+      "quarter 2": ["quarter2_gamma0.01_full_dt2.5e-7.csv"]}),
+    ("quarter, gamma* 0.02 (the default)", 0.02, 145, 45,
+     {"quarter 1": ["default_replicas.csv"], "quarter 2": ["quarter2_gamma0.02_full_dt2.5e-7.csv"]}),
+]
+
+
+def plateau(name):
+    """The plateau of one recorded run, or the ten plateaus of the default's replicas."""
+    if name == "default_replicas.csv":
+        with open(os.path.join(DATA, name)) as f:
+            return [float(r["plateau_hardness"]) for r in csv.DictReader(f)]
+    with open(os.path.join(RUNS, name)) as f:
+        h = [float(r["hardness_Pa"]) for r in csv.DictReader(f) if float(r["state"]) == 0 and 0.1 <= float(r["depth_over_r"]) <= 0.2]
+    return [sum(h) / len(h)]
+
+
+def reference():
+    with open(os.path.join(DATA, "reference_of_record.csv")) as f:
+        rows = list(csv.DictReader(f))
+    mean = next(r for r in rows if r["bed_fill_seed"] == "mean")
+    return float(mean["plateau_Pa"]), float(mean["own_standard_error_Pa"])
+
+
+def scatter(beds):
+    """(mean over beds, s_run, s_bed, their sum in quadrature, runs) from {bed: [plateau, ...]}."""
+    means = [statistics.mean(v) for v in beds.values()]
+    repeated = [v for v in beds.values() if len(v) > 1]
+    dof = sum(len(v) - 1 for v in repeated)
+    s_run = math.sqrt(sum(sum((x - statistics.mean(v)) ** 2 for x in v) for v in repeated) / dof) if dof else float("nan")
+    between = statistics.variance(means) if len(means) > 1 else float("nan")
+    within = statistics.mean(s_run**2 / len(v) for v in beds.values())
+    if math.isnan(s_run):
+        # One run per bed: their spread is s_run and s_bed together, not separable.
+        return statistics.mean(means), float("nan"), float("nan"), math.sqrt(between), sum(len(v) for v in beds.values())
+    s_bed = math.sqrt(max(between - within, 0.0))
+    return statistics.mean(means), s_run, s_bed, math.hypot(s_run, s_bed), sum(len(v) for v in beds.values())
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("--plot", help="write the half-width against wall time figure here")
+    p.add_argument("--csv", help="write each setting's mean, bias and scatter here (tests/python/test_default_bed.py reads it)")
+    a = p.parse_args()
+    ref, ref_se = reference()
+    target = 0.05 * ref
+    print(f"reference of record: {ref:.0f} +- {ref_se:.0f} Pa (whole beds at gamma* 0.01); 5 % of it: {target:.0f} Pa\n")
+    print("| setting | beds | runs | mean over beds [Pa] | against the reference (+- standard error over beds) | s_run [Pa] | s_bed [Pa] | one test [s] |"
+          " half-width, one test | tests for 5 %, each on its own bed | their wall time [min] | beds to prepare [h] |")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+    curves = []
+    table = []
+    for name, gamma, wall, prep, files in SETTINGS:
+        beds = {b: [x for f in fs for x in plateau(f)] for b, fs in files.items()}
+        mean, s_run, s_bed, s_tot, runs = scatter(beds)
+        bias_se = statistics.stdev([statistics.mean(v) for v in beds.values()]) / math.sqrt(len(beds))
+        one = 1.96 * s_tot
+        n = math.ceil((1.96 * s_tot / target) ** 2)
+        pct = lambda s: "together: " + f"{s_tot:.0f} ({100 * s_tot / mean:.1f} %)" if math.isnan(s) else f"{s:.0f} ({100 * s / mean:.1f} %)"  # noqa: E731
+        print(f"| {name} | {len(beds)} | {runs} | {mean:.0f} | {100 * (mean / ref - 1):+.1f} +- {100 * bias_se / ref:.1f} % | {pct(s_run)} |"
+              f" {pct(s_bed)} | {wall} | {100 * one / ref:.1f} % | {n} | {n * wall / 60:.0f} | {n * prep / 60:.0f} |")
+        curves.append((name, wall, s_run, s_bed, s_tot, mean))
+        table.append({"setting": name, "gamma": gamma, "beds": len(beds), "runs": runs, "mean_Pa": mean, "bias_standard_error_Pa": bias_se,
+                      "s_run_Pa": s_run, "s_bed_Pa": s_bed, "s_total_Pa": s_tot, "wall_s": wall, "reference_Pa": ref})
+    print("\nOne bed, n tests (step replicas): the half-width never falls below 1.96 s_bed:")
+    print("\n| setting | n = 1 | n = 4 | n = 16 | limit |")
+    print("|---|---:|---:|---:|---:|")
+    for name, wall, s_run, s_bed, s_tot, mean in curves:
+        if math.isnan(s_bed):
+            continue
+        hw = [1.96 * math.sqrt(s_run**2 / n + s_bed**2) / ref for n in (1, 4, 16)]
+        print(f"| {name} | {100 * hw[0]:.1f} % | {100 * hw[1]:.1f} % | {100 * hw[2]:.1f} % | {100 * 1.96 * s_bed / ref:.1f} % |")
+    if a.csv:
+        with open(a.csv, "w", newline="") as f:
+            w = csv.DictWriter(f, fieldnames=list(table[0]))
+            w.writeheader()
+            for r in table:
+                w.writerow({k: (f"{v:.6g}" if isinstance(v, float) else v) for k, v in r.items()})
+        print(f"\n{len(table)} settings -> {a.csv}")
+    if a.plot:
+        import matplotlib
+
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+
+        fig, ax = plt.subplots(figsize=(7.5, 4.8))
+        for name, wall, s_run, s_bed, s_tot, mean in curves:
+            n = [1, 2, 3, 4, 6, 8, 12, 16, 24, 32, 48, 64]
+            hw = [100 * 1.96 * s_tot / math.sqrt(k) / ref for k in n]
+            line = ax.loglog([k * wall / 60 for k in n], hw, marker="o", ms=3,
+                             label=f"{name}: bias {100 * (mean / ref - 1):+.0f} %")[0]
+            if not math.isnan(s_bed):
+                ax.loglog([k * wall / 60 for k in n], [100 * 1.96 * math.sqrt(s_run**2 / k + s_bed**2) / ref for k in n],
+                          ls=":", color=line.get_color())
+        ax.axhline(5, color="k", lw=0.8)
+        ax.axvline(2, color="grey", lw=0.8, ls="--")
+        ax.text(2.1, 2.0, "2 minutes", color="grey", rotation=90)
+        ax.text(300, 5.3, "5 %")
+        ax.set_xlabel("wall time of n tests on two cores [min]")
+        ax.set_ylabel("half-width of the 95 % interval [% of the reference]")
+        ax.set_title("A mean over n tests: each on its own bed (solid), all on one bed (dotted)", fontsize=10)
+        ax.legend(fontsize=8)
+        ax.grid(True, which="both", alpha=0.3)
+        fig.tight_layout()
+        fig.savefig(a.plot, dpi=120)
+        print(f"\nfigure -> {a.plot}")
+
+
+if __name__ == "__main__":
+    main()
