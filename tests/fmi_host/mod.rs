@@ -8,22 +8,28 @@ use powderfmu::units;
 use std::ffi::{c_void, CStr, CString};
 use std::sync::Mutex;
 
-/// The cdylib of the current sources. `cargo test` links tests against the rlib and does not refresh the
-/// cdylib, so it is built here once (`cargo build --lib`, same profile, next to this test binary).
+/// The cdylib of the current sources. `cargo test` compiles the library once with both its crate types,
+/// so the cdylib sits next to this test binary (`target/<profile>/deps`; cargo does not copy it up a level
+/// in a test run). Building it again with `cargo build --lib` cost about two minutes per clean test run:
+/// without the dev-dependencies two crates get other features, and the library is compiled a second time.
+/// That build stays as the fallback when the file is not there.
 pub fn library() -> Library {
-    static BUILT: std::sync::OnceLock<()> = std::sync::OnceLock::new();
-    BUILT.get_or_init(|| {
-        let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
-        let status = std::process::Command::new(cargo)
-            .args(["build", "--quiet", "--lib", "-p", "powderfmu"])
-            .current_dir(env!("CARGO_MANIFEST_DIR"))
-            .status()
-            .expect("cargo runs");
-        assert!(status.success(), "cargo build --lib failed");
-    });
     let exe = std::env::current_exe().unwrap();
-    let dir = exe.parent().and_then(|d| d.parent()).unwrap();
-    let path = dir.join("libpowderfmu.so");
+    let deps = exe.parent().unwrap();
+    let mut path = deps.join("libpowderfmu.so");
+    if !path.exists() {
+        static BUILT: std::sync::OnceLock<()> = std::sync::OnceLock::new();
+        BUILT.get_or_init(|| {
+            let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
+            let status = std::process::Command::new(cargo)
+                .args(["build", "--quiet", "--lib", "-p", "powderfmu"])
+                .current_dir(env!("CARGO_MANIFEST_DIR"))
+                .status()
+                .expect("cargo runs");
+            assert!(status.success(), "cargo build --lib failed");
+        });
+        path = deps.parent().unwrap().join("libpowderfmu.so");
+    }
     // SAFETY: our own library; its initialisers have no preconditions.
     unsafe { Library::new(&path) }.unwrap_or_else(|e| panic!("cannot load {}: {e}", path.display()))
 }
