@@ -146,7 +146,7 @@ def test_the_default_interval_contains_the_reference_of_record(default_run):
 
 @pytest.mark.xfail(
     strict=True,
-    reason="not met: the default's 95 % interval is about 33 % of the reference wide (its own error and the quarter beds' "
+    reason="not met: the half-width of the default's 95 % interval is about 33 % of the reference (its own error and the quarter beds' "
     "12 % bed-to-bed scatter), not 5 %; a 5 % interval takes about six seed's-speed tests on six whole beds, 73 minutes on "
     "two cores (docs/indentation.md, 'What a 5 % interval costs', benches/indentation_halfwidth.py)",
 )
