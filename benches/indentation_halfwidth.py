@@ -21,6 +21,10 @@ import csv
 import math
 import os
 import statistics
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from indentation_work_precision import plateau as run_plateau  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 DATA = os.path.join(HERE, "..", "docs", "data")
@@ -47,9 +51,7 @@ def plateau(name):
     if name == "default_replicas.csv":
         with open(os.path.join(DATA, name)) as f:
             return [float(r["plateau_hardness"]) for r in csv.DictReader(f)]
-    with open(os.path.join(RUNS, name)) as f:
-        h = [float(r["hardness_Pa"]) for r in csv.DictReader(f) if float(r["state"]) == 0 and 0.1 <= float(r["depth_over_r"]) <= 0.2]
-    return [sum(h) / len(h)]
+    return [run_plateau(os.path.join(RUNS, name))[0]]
 
 
 def reference():
