@@ -230,7 +230,8 @@ fn a_bed_at_rest_stays_at_rest_for_1e5_steps() {
     let d = scene.size_distribution.mean_diameter();
     e.run(100_000);
     let p = e.particles();
-    let drift = p.position.iter().zip(&x0).map(|(a, b)| ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()).fold(0.0, f64::max);
+    let drift =
+        p.position.iter().zip(&x0).map(|(a, b)| ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()).fold(0.0, f64::max);
     assert!(drift < 1e-3 * d, "largest displacement over 1e5 steps: {drift:e} m ({:.2e} d)", drift / d);
     let weight: f64 = p.mass.iter().sum::<f64>() * scene.gravity;
     let ke = p.kinetic_energy();
@@ -360,7 +361,13 @@ fn contact_memory_survives_list_rebuilds_and_bed_files() {
         every.step();
     }
     let d = scene.size_distribution.mean_diameter();
-    let worst = again.particles().position.iter().zip(&every.particles().position).map(|(a, b)| (0..3).map(|c| (a[c] - b[c]).abs()).fold(0.0, f64::max)).fold(0.0, f64::max);
+    let worst = again
+        .particles()
+        .position
+        .iter()
+        .zip(&every.particles().position)
+        .map(|(a, b)| (0..3).map(|c| (a[c] - b[c]).abs()).fold(0.0, f64::max))
+        .fold(0.0, f64::max);
     assert!(worst < 1e-12 * d, "rebuilding at every step moved a sphere by {worst:e} m");
     let springs = with_engine!(&every, x => x.spring.iter().filter(|s| **s != Vec3::zeros()).count());
     assert!(springs > 50, "the bed must have loaded tangential springs ({springs})");
@@ -462,7 +469,13 @@ fn an_indenter_added_to_a_prepared_bed_keeps_every_contact_and_feels_the_bed() {
     assert_eq!(springs(&with), loaded, "adding a wall must keep every tangential spring");
     plain.run(300);
     with.run(300);
-    let worst = plain.particles().position.iter().zip(&with.particles().position).map(|(a, b)| (0..3).map(|c| (a[c] - b[c]).abs()).fold(0.0, f64::max)).fold(0.0, f64::max);
+    let worst = plain
+        .particles()
+        .position
+        .iter()
+        .zip(&with.particles().position)
+        .map(|(a, b)| (0..3).map(|c| (a[c] - b[c]).abs()).fold(0.0, f64::max))
+        .fold(0.0, f64::max);
     assert!(worst < 1e-12 * d, "an indenter clear of the bed moved a sphere by {worst:e} m");
     assert_eq!(with.walls().last().unwrap().force, Vec3::zeros());
     // Lowered into the bed by 0.3 d, it is pushed back up.
@@ -504,7 +517,10 @@ fn bad_bed_files_are_refused_by_what_is_wrong() {
 fn bad_scenes_are_refused_by_name() {
     let build = |extra: Value| -> String {
         let scene = soft(extra);
-        match prepare::fill(&scene).map_err(|e| e.to_string()).and_then(|p| AnyEngine::build(&scene, p, prepare::die(&scene)).map(|_| ()).map_err(|e| e.to_string())) {
+        match prepare::fill(&scene)
+            .map_err(|e| e.to_string())
+            .and_then(|p| AnyEngine::build(&scene, p, prepare::die(&scene)).map(|_| ()).map_err(|e| e.to_string()))
+        {
             Ok(()) => "ok".into(),
             Err(e) => e,
         }
@@ -552,10 +568,13 @@ fn a_colliding_cloud_steps_to_the_same_bits_with_every_instruction_set_this_cpu_
 /// interface energy), a pair that touched keeps its memory, and a change of law is refused.
 #[test]
 fn a_changed_scene_keeps_the_memory_and_renews_the_untouched_pairs() {
-    let law = |gamma: f64| json!({"contact_model": "pasha", "particle_youngs_modulus": 55e6, "particle_yield_pressure": 2e6, "surface_energy": gamma});
+    let law =
+        |gamma: f64| json!({"contact_model": "pasha", "particle_youngs_modulus": 55e6, "particle_yield_pressure": 2e6, "surface_energy": gamma});
     let scene_of = |gamma: f64| {
-        BedScene::from_json(&json!({"particle_particle": law(gamma), "size_distribution": {"diameters": [1e-3], "frequencies": [1.0]}, "gravity": 0.0}).to_string())
-            .unwrap()
+        BedScene::from_json(
+            &json!({"particle_particle": law(gamma), "size_distribution": {"diameters": [1e-3], "frequencies": [1.0]}, "gravity": 0.0}).to_string(),
+        )
+        .unwrap()
     };
     let mut p = Particles::default();
     // 0 and 1 pressed together; 2 near 1 within the list's skin but apart.
@@ -564,7 +583,8 @@ fn a_changed_scene_keeps_the_memory_and_renews_the_untouched_pairs() {
     p.push(Vec3::new(2.03e-3, 0.0, 0.0), 0.5e-3, 2456.0, 0);
     let mut e = AnyEngine::build(&scene_of(0.5), p, vec![]).unwrap();
     e.step();
-    let slot = |e: &AnyEngine, i: usize, j: u32| with_engine!(e, inner => inner.list.start[i] as usize + inner.list.row(i).binary_search(&j).unwrap());
+    let slot =
+        |e: &AnyEngine, i: usize, j: u32| with_engine!(e, inner => inner.list.start[i] as usize + inner.list.row(i).binary_search(&j).unwrap());
     let (touched, apart) = (slot(&e, 0, 1), slot(&e, 1, 2));
     let history = |e: &AnyEngine, k: usize| with_engine!(e, inner => format!("{:?}", inner.normal[k]));
     let initial = |e: &AnyEngine| with_engine!(e, inner => format!("{:?}", inner.pairs[0].initial));

@@ -12,7 +12,8 @@ use std::sync::OnceLock;
 fn bed() -> &'static (BedFile, BedScene) {
     static BED: OnceLock<(BedFile, BedScene)> = OnceLock::new();
     BED.get_or_init(|| {
-        let scene = BedScene::from_json(r#"{"particle_particle": {"particle_youngs_modulus": 55e6}, "particle_count": 800, "die_diameter": 0.007}"#).unwrap();
+        let scene =
+            BedScene::from_json(r#"{"particle_particle": {"particle_youngs_modulus": 55e6}, "particle_count": 800, "die_diameter": 0.007}"#).unwrap();
         let (engine, _) = prepare::prepare(&scene, &mut |_| {}).unwrap();
         (file::decode(&file::encode(&engine.to_file(&scene))).unwrap(), scene)
     })
@@ -181,7 +182,8 @@ fn the_fast_fidelity_holds_the_far_spheres_still_and_keeps_the_hardness() {
     // released, a held sphere never moves.
     let (e_never, s_never) = engine();
     let start = e_never.particles().position.clone();
-    let mut never = Indentation::new(e_never, s_never, Setup { shortcut: Some(Shortcut { zone: 1.0, release: f64::INFINITY }), ..setup() }, None, None).unwrap();
+    let mut never =
+        Indentation::new(e_never, s_never, Setup { shortcut: Some(Shortcut { zone: 1.0, release: f64::INFINITY }), ..setup() }, None, None).unwrap();
     let held: Vec<usize> = (0..start.len()).filter(|&i| never.engine.particles().held[i]).collect();
     assert!(held.len() > start.len() / 4, "{} of {} spheres held", held.len(), start.len());
     final_hardness(&mut never);
@@ -290,8 +292,11 @@ fn hardness_falls_to_a_plateau_beyond_a_tenth_of_the_radius() {
     let mut test = Indentation::new(engine, scene, setup(), None, None).unwrap();
     let readings = run(&mut test, 2e-5);
     let mean = |lo: f64, hi: f64| {
-        let h: Vec<f64> =
-            readings.iter().filter(|r| r.state == TestState::Loading && r.dimensionless_depth >= lo && r.dimensionless_depth < hi).map(|r| r.hardness).collect();
+        let h: Vec<f64> = readings
+            .iter()
+            .filter(|r| r.state == TestState::Loading && r.dimensionless_depth >= lo && r.dimensionless_depth < hi)
+            .map(|r| r.hardness)
+            .collect();
         assert!(h.len() > 20, "{} readings in [{lo}, {hi})", h.len());
         h.iter().sum::<f64>() / h.len() as f64
     };

@@ -2,7 +2,7 @@
 //! its law with no dispatch inside it. `with_engine!` runs one expression on whichever is inside.
 
 use super::engine::Engine;
-use super::interaction::{BedLaw, Interaction, ContactTemplate};
+use super::interaction::{BedLaw, ContactTemplate, Interaction};
 use super::particles::Particles;
 use super::scene::BedScene;
 use super::walls::Wall;
@@ -71,10 +71,8 @@ pub fn interactions<L: BedLaw>(scene: &BedScene, walls: &[Wall]) -> Result<Inter
             pairs.push(Interaction::particle_pair(&particle, r1, m1, r2, m2, scene.rolling_friction)?);
         }
     }
-    let wall_pairs = walls
-        .iter()
-        .map(|w| if w.is_mirror() { mirror_row(scene, &particle) } else { wall_row(scene, &wall, w) })
-        .collect::<Result<_, _>>()?;
+    let wall_pairs =
+        walls.iter().map(|w| if w.is_mirror() { mirror_row(scene, &particle) } else { wall_row(scene, &wall, w) }).collect::<Result<_, _>>()?;
     Ok((pairs, wall_pairs))
 }
 
@@ -104,7 +102,12 @@ fn wall_row<L: BedLaw>(scene: &BedScene, template: &ContactTemplate, w: &Wall) -
 
 /// A wall's interaction with each species from the particle-wall scene keys `pair`, refused when its
 /// contacts would need a shorter step than `dt` (`add_wall`, `set_wall_pair`).
-fn checked_wall_row<L: BedLaw>(scene: &BedScene, dt: f64, wall: &Wall, pair: &serde_json::Map<String, serde_json::Value>) -> Result<Vec<Interaction<L>>, BedError> {
+fn checked_wall_row<L: BedLaw>(
+    scene: &BedScene,
+    dt: f64,
+    wall: &Wall,
+    pair: &serde_json::Map<String, serde_json::Value>,
+) -> Result<Vec<Interaction<L>>, BedError> {
     let r0 = scene.species().first().map_or(0.5e-3, |s| s.0);
     let template = ContactTemplate::wall(pair, r0, scene.density)?;
     let row = wall_row(scene, &template, wall)?;

@@ -138,7 +138,8 @@ impl<L: BedLaw> Engine<L> {
                 return Err(BedError::Setup(format!("bed file: contact ({i}, {j}) names a particle beyond {n}")));
             }
             let row = self.list.row(i as usize);
-            let k = row.binary_search(&j).map_err(|_| BedError::Setup(format!("bed file: contact ({i}, {j}) is not within range of the positions")))?;
+            let k =
+                row.binary_search(&j).map_err(|_| BedError::Setup(format!("bed file: contact ({i}, {j}) is not within range of the positions")))?;
             let slot = self.list.start[i as usize] as usize + k;
             self.normal[slot] = h;
             self.spring[slot] = s;
@@ -150,7 +151,10 @@ impl<L: BedLaw> Engine<L> {
         for (w, list) in walls.into_iter().enumerate() {
             let wc: &mut WallContacts<L::History> = &mut self.wall_contacts[w];
             for (i, h, s, a) in list {
-                let k = wc.particle.binary_search(&i).map_err(|_| BedError::Setup(format!("bed file: wall contact of particle {i} is not within range")))?;
+                let k = wc
+                    .particle
+                    .binary_search(&i)
+                    .map_err(|_| BedError::Setup(format!("bed file: wall contact of particle {i} is not within range")))?;
                 wc.normal[k] = h;
                 wc.spring[k] = s;
                 wc.radius[k] = a;
@@ -196,7 +200,8 @@ impl AnyEngine {
         let mut p = Particles::default();
         for k in 0..n {
             let s = file.species[k] as usize;
-            let &(r, _) = sp.get(s).ok_or_else(|| BedError::Setup(format!("bed file: particle {k} has species {s} beyond the {} classes", sp.len())))?;
+            let &(r, _) =
+                sp.get(s).ok_or_else(|| BedError::Setup(format!("bed file: particle {k} has species {s} beyond the {} classes", sp.len())))?;
             p.push(file.position[k], r, scene.density, s as u16);
             p.velocity[k] = file.velocity[k];
             p.angular_velocity[k] = file.angular_velocity[k];
@@ -243,7 +248,9 @@ pub fn decode(bytes: &[u8]) -> Result<BedFile, BedError> {
         )));
     }
     if version != VERSION {
-        return Err(bad(format!("format version {version}, this powderfmu reads version {VERSION}; prepare the bed again with `powderfmu bed prepare`")));
+        return Err(bad(format!(
+            "format version {version}, this powderfmu reads version {VERSION}; prepare the bed again with `powderfmu bed prepare`"
+        )));
     }
     let len = u64::from_le_bytes(bytes[12..20].try_into().unwrap_or([0; 8]));
     let want = 20u64.saturating_add(len).saturating_add(8);

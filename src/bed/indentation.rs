@@ -191,7 +191,8 @@ impl Record {
     /// (`benches/indentation_outputs.py`).
     pub fn turn_force(&self, d: f64) -> f64 {
         let from = self.h_max * (1.0 - TURN_FIT);
-        let hardness: Vec<f64> = self.loading.iter().filter(|&&(h, _)| h >= from && projected_area(d, h) > 0.0).map(|&(h, f)| f / projected_area(d, h)).collect();
+        let hardness: Vec<f64> =
+            self.loading.iter().filter(|&&(h, _)| h >= from && projected_area(d, h) > 0.0).map(|&(h, f)| f / projected_area(d, h)).collect();
         if hardness.is_empty() {
             return self.f_max;
         }
@@ -334,11 +335,19 @@ impl Indentation {
     /// depth beyond the bed, a start inside the bed, an empty plateau window, and a bed with nothing
     /// under the indenter (a window beyond the turn is allowed: its plateau stays without samples). `indenter_pair`: the particle-indenter scene keys (none: the
     /// bed's particle-wall keys).
-    pub fn new(mut engine: AnyEngine, scene: BedScene, setup: Setup, start_depth: Option<f64>, indenter_pair: Option<&Map<String, Value>>) -> Result<Indentation, BedError> {
+    pub fn new(
+        mut engine: AnyEngine,
+        scene: BedScene,
+        setup: Setup,
+        start_depth: Option<f64>,
+        indenter_pair: Option<&Map<String, Value>>,
+    ) -> Result<Indentation, BedError> {
         let d = setup.indenter_diameter;
         let die = scene.die_diameter;
         if !(d > 0.0 && d < die) {
-            return Err(ParamError::OutOfRange { name: "indenter_diameter", value: d, allowed: format!("(0, {die:e}) m: narrower than the die") }.into());
+            return Err(
+                ParamError::OutOfRange { name: "indenter_diameter", value: d, allowed: format!("(0, {die:e}) m: narrower than the die") }.into()
+            );
         }
         let height = super::prepare::bed_height(engine.particles());
         if !(setup.max_penetration > 0.0 && setup.max_penetration < height.min(0.5 * d)) {

@@ -168,9 +168,10 @@ impl BedScene {
             None | Some(Value::Null) => SizeDistribution::table_5_1(scale),
             Some(Value::Object(d)) => {
                 let list = |k: &str| -> Result<Vec<f64>, ParamError> {
-                    d.get(k).and_then(Value::as_array).map(|a| a.iter().map(|x| x.as_f64().unwrap_or(f64::NAN)).collect()).ok_or_else(|| {
-                        ParamError::Malformed { what: format!("size_distribution needs a number list `{k}`") }
-                    })
+                    d.get(k)
+                        .and_then(Value::as_array)
+                        .map(|a| a.iter().map(|x| x.as_f64().unwrap_or(f64::NAN)).collect())
+                        .ok_or_else(|| ParamError::Malformed { what: format!("size_distribution needs a number list `{k}`") })
                 };
                 let dia = list("diameters")?.iter().map(|d| d * scale).collect();
                 SizeDistribution::new(dia, list("frequencies")?)?
@@ -188,7 +189,11 @@ impl BedScene {
         check_closed_low("skin", skin, 0.0, 1.0, "m")?;
         let die_sector = num("die_sector", 1.0)?;
         if ![1.0, 0.5, 0.25].contains(&die_sector) {
-            return Err(ParamError::OutOfRange { name: "die_sector", value: die_sector, allowed: "1 (the whole die), 0.5 (half) or 0.25 (a quarter)".into() });
+            return Err(ParamError::OutOfRange {
+                name: "die_sector",
+                value: die_sector,
+                allowed: "1 (the whole die), 0.5 (half) or 0.25 (a quarter)".into(),
+            });
         }
         let threads = num("threads", 1.0)?;
         check_closed_low("threads", threads, 1.0, 257.0, "")?;
@@ -252,11 +257,7 @@ impl BedScene {
 
     /// Radius [m] and mass [kg] of each species (size class).
     pub fn species(&self) -> Vec<(f64, f64)> {
-        self.size_distribution
-            .diameters
-            .iter()
-            .map(|d| (0.5 * d, std::f64::consts::PI / 6.0 * d.powi(3) * self.density))
-            .collect()
+        self.size_distribution.diameters.iter().map(|d| (0.5 * d, std::f64::consts::PI / 6.0 * d.powi(3) * self.density)).collect()
     }
 
     /// The Rayleigh time of the smallest sphere (000 Eq. 71) [s]: the stability limit of the step.

@@ -1,14 +1,14 @@
 //! `powderfmu bed ...`: prepare a bed, describe it, look at it, export it, time it.
 
+use crate::options;
+use clap::Subcommand;
+use indicatif::{ProgressBar, ProgressStyle};
 use powderfmu::bed::file::{self, BedFile};
 use powderfmu::bed::indentation::{DepthOrigin, Indentation, Motion, Setup, Shortcut, TestState, FAST, PLATEAU};
 use powderfmu::bed::prepare::{self, Progress};
 use powderfmu::bed::stress::{bagi, Region};
 use powderfmu::bed::{export, render, AnyEngine, BedScene};
 use powderfmu::with_engine;
-use crate::options;
-use clap::Subcommand;
-use indicatif::{ProgressBar, ProgressStyle};
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -254,7 +254,14 @@ fn clock(s: f64) -> String {
     }
 }
 
-fn prepare_cmd(scene_path: Option<PathBuf>, output: Option<PathBuf>, threads: Option<usize>, until: &str, resume: Option<PathBuf>, every: f64) -> Result<(), String> {
+fn prepare_cmd(
+    scene_path: Option<PathBuf>,
+    output: Option<PathBuf>,
+    threads: Option<usize>,
+    until: &str,
+    resume: Option<PathBuf>,
+    every: f64,
+) -> Result<(), String> {
     let (mut scene, saved, default_out) = match (&resume, scene_path) {
         (Some(bed), _) => {
             let (engine, scene) = load(bed, threads)?;
@@ -303,13 +310,7 @@ fn prepare_cmd(scene_path: Option<PathBuf>, output: Option<PathBuf>, threads: Op
         }
         None => prepare::prepare_until(&scene, until, &mut show),
     }
-    .map_err(|e| {
-        if checkpoint.exists() {
-            format!("{e}\nthe last checkpoint is {}", checkpoint.display())
-        } else {
-            e.to_string()
-        }
-    })?;
+    .map_err(|e| if checkpoint.exists() { format!("{e}\nthe last checkpoint is {}", checkpoint.display()) } else { e.to_string() })?;
     bar.finish();
     file::save(&out, &engine, &scene).map_err(|e| format!("cannot write bed file `{}`: {e}", out.display()))?;
     let _ = std::fs::remove_file(&checkpoint);
@@ -349,7 +350,11 @@ fn describe(engine: &mut AnyEngine, scene: &BedScene) {
     let (contacts, mean_overlap) = with_engine!(&*engine, e => e.contact_statistics());
     let mean_d = 2.0 * p.radius.iter().sum::<f64>() / n.max(1) as f64;
     if scene.die_sector < 1.0 {
-        println!("particles:            {n} in {} of the die (mirror planes; the whole die would hold {:.0})", scene.die_sector, n as f64 / scene.die_sector);
+        println!(
+            "particles:            {n} in {} of the die (mirror planes; the whole die would hold {:.0})",
+            scene.die_sector,
+            n as f64 / scene.die_sector
+        );
     } else {
         println!("particles:            {n}");
     }
@@ -361,7 +366,10 @@ fn describe(engine: &mut AnyEngine, scene: &BedScene) {
     println!("kinetic energy:       {:.4e} J", p.kinetic_energy());
     println!("time step:            {:.4e} s", engine.dt());
     println!("bed time:             {:.5e} s, prepared through `{}`", engine.time(), prepare::phase_done(engine, scene));
-    println!("memory:               {:.0} bytes per particle (the engine on one thread, as loaded from the file)", engine.memory_bytes() as f64 / n.max(1) as f64);
+    println!(
+        "memory:               {:.0} bytes per particle (the engine on one thread, as loaded from the file)",
+        engine.memory_bytes() as f64 / n.max(1) as f64
+    );
     // Bagi's stress in the middle of the bed, a die radius wide minus two diameters.
     let region = Region { radius: 0.5 * scene.die_diameter - 2.0 * mean_d, z_low: 0.25 * height, z_high: 0.75 * height };
     let s = bagi(engine, &region).of_whole_die(scene.die_sector);
@@ -491,7 +499,8 @@ fn bench_cmd(a: BenchArgs) -> Result<(), String> {
 /// The bed's scene with `overlay` (a JSON object of bed scene keys) laid over it, given to the running
 /// bed: the objects `particle_particle` and `particle_wall` merge key by key, other keys replace.
 fn changed_scene(engine: &mut AnyEngine, scene: &BedScene, overlay: &str) -> Result<BedScene, String> {
-    let overlay: serde_json::Map<String, serde_json::Value> = serde_json::from_str(overlay).map_err(|e| format!("must be a JSON object of bed scene keys: {e}"))?;
+    let overlay: serde_json::Map<String, serde_json::Value> =
+        serde_json::from_str(overlay).map_err(|e| format!("must be a JSON object of bed scene keys: {e}"))?;
     for group in ["particle_particle", "particle_wall"] {
         if let Some(model) = overlay.get(group).and_then(|g| g.get("contact_model")) {
             if model.as_str() != Some(scene.model.name()) {
@@ -582,7 +591,15 @@ fn indent_cmd(a: IndentArgs) -> Result<(), String> {
         let r = test.reading();
         csv += &format!(
             "{t:.6e},{:.6e},{:.5},{:.6e},{:.6e},{:.6e},{:.6e},{},{:.4e},{}\n",
-            r.depth, r.dimensionless_depth, r.force, r.hardness, r.hydrostatic_stress, r.deviatoric_stress, r.contacts, r.kinetic_energy, r.state as u8
+            r.depth,
+            r.dimensionless_depth,
+            r.force,
+            r.hardness,
+            r.hydrostatic_stress,
+            r.deviatoric_stress,
+            r.contacts,
+            r.kinetic_energy,
+            r.state as u8
         );
         if r.state == TestState::Done || t > limit {
             let wall = started.elapsed().as_secs_f64();

@@ -161,7 +161,14 @@ pub fn info() -> UnitInfo {
         stop_time: 0.1,
         step_size: 1e-4,
         new_model: |u, resources| {
-            Box::new(BallIndentation { variables: u.variables.clone(), resources: resources.map(Path::to_path_buf), test: None, reported: None, events: vec![], fresh: false })
+            Box::new(BallIndentation {
+                variables: u.variables.clone(),
+                resources: resources.map(Path::to_path_buf),
+                test: None,
+                reported: None,
+                events: vec![],
+                fresh: false,
+            })
         },
         guid_cache: std::sync::OnceLock::new(),
         token_cache: std::sync::OnceLock::new(),
@@ -204,7 +211,10 @@ impl BallIndentation {
         }
         match &self.resources {
             Some(dir) => Ok(dir.join(if quarter { RESOURCE_QUARTER_BED } else { RESOURCE_BED })),
-            None => Err(variable("bed_file", "no bed_file given and the host named no resources folder (fmuResourceLocation) holding the FMU's bed".into())),
+            None => Err(variable(
+                "bed_file",
+                "no bed_file given and the host named no resources folder (fmuResourceLocation) holding the FMU's bed".into(),
+            )),
         }
     }
 
@@ -220,7 +230,9 @@ impl BallIndentation {
         let motion = match values[REFS.indenter_motion].as_str() {
             "prescribed" => Motion::Prescribed,
             "input" => Motion::Input,
-            other => return Err(variable("indenter_motion", format!("parameter `indenter_motion` = \"{other}\" is not known: allowed prescribed, input"))),
+            other => {
+                return Err(variable("indenter_motion", format!("parameter `indenter_motion` = \"{other}\" is not known: allowed prescribed, input")))
+            }
         };
         let shortcut = match values[REFS.fidelity].as_str() {
             "fast" => Some(FAST),
@@ -231,7 +243,10 @@ impl BallIndentation {
             Some(o) => o,
             None => {
                 let other = values[REFS.depth_origin].as_str();
-                return Err(variable("depth_origin", format!("parameter `depth_origin` = \"{other}\" is not known: allowed first_touch, mean_surface")));
+                return Err(variable(
+                    "depth_origin",
+                    format!("parameter `depth_origin` = \"{other}\" is not known: allowed first_touch, mean_surface"),
+                ));
             }
         };
         Ok(Setup {
@@ -470,8 +485,6 @@ impl Model for BallIndentation {
         Ok(())
     }
 }
-
-
 
 #[cfg(test)]
 mod tests {
