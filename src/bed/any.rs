@@ -71,8 +71,10 @@ pub fn interactions<L: BedLaw>(scene: &BedScene, walls: &[Wall]) -> Result<Inter
             pairs.push(Interaction::particle_pair(&particle, r1, m1, r2, m2, scene.rolling_friction)?);
         }
     }
-    let wall_pairs =
-        walls.iter().map(|w| if w.is_mirror() { mirror_row(scene, &particle) } else { wall_row(scene, &wall, w) }).collect::<Result<_, _>>()?;
+    let wall_pairs = walls
+        .iter()
+        .map(|w| if w.is_mirror() { mirror_row(scene, &particle) } else { wall_row(scene, &wall, w, scene.wall_rolling_friction) })
+        .collect::<Result<_, _>>()?;
     Ok((pairs, wall_pairs))
 }
 
@@ -95,22 +97,30 @@ fn mirror_row<L: BedLaw>(scene: &BedScene, particle: &ContactTemplate) -> Result
         .collect()
 }
 
-/// One wall's interaction with each species, from the bed's particle-wall template.
-fn wall_row<L: BedLaw>(scene: &BedScene, template: &ContactTemplate, w: &Wall) -> Result<Vec<Interaction<L>>, ParamError> {
-    scene.species().iter().map(|&(r, m)| Interaction::particle_wall(template, r, m, w.curvature_radius(), scene.wall_rolling_friction)).collect()
+/// One wall's interaction with each species, from a particle-wall template and the rolling friction
+/// coefficient against that wall.
+fn wall_row<L: BedLaw>(scene: &BedScene, template: &ContactTemplate, w: &Wall, rolling_friction: f64) -> Result<Vec<Interaction<L>>, ParamError> {
+    scene.species().iter().map(|&(r, m)| Interaction::particle_wall(template, r, m, w.curvature_radius(), rolling_friction)).collect()
 }
 
-/// A wall's interaction with each species from the particle-wall scene keys `pair`, refused when its
-/// contacts would need a shorter step than `dt` (`add_wall`, `set_wall_pair`).
+/// A wall's interaction with each species from the particle-wall scene keys `pair` and the rolling
+/// friction coefficient `rolling` against it, refused when its contacts would need a shorter step than
+/// `dt` (`add_wall`, `set_wall_pair`).
 fn checked_wall_row<L: BedLaw>(
     scene: &BedScene,
     dt: f64,
     wall: &Wall,
     pair: &serde_json::Map<String, serde_json::Value>,
+    rolling: f64,
 ) -> Result<Vec<Interaction<L>>, BedError> {
+    if !(0.0..=10.0).contains(&rolling) {
+        return Err(
+            ParamError::OutOfRange { name: "rolling_friction", value: rolling, allowed: format!("[0, 10] against wall `{}`", wall.name) }.into()
+        );
+    }
     let r0 = scene.species().first().map_or(0.5e-3, |s| s.0);
     let template = ContactTemplate::wall(pair, r0, scene.density)?;
-    let row = wall_row(scene, &template, wall)?;
+    let row = wall_row(scene, &template, wall, rolling)?;
     let limit = stability_limit(scene, &[], std::slice::from_ref(&row));
     if dt > limit {
         return Err(BedError::Param(ParamError::OutOfRange {
@@ -197,29 +207,41 @@ impl AnyEngine {
     }
 
     /// Adds a wall to a running bed (the indenter onto a prepared bed), its interactions from the
-    /// particle-wall scene keys `pair` (the bed's own `particle_wall`, or the indenter's); every contact
-    /// keeps its memory. Refused when the wall would need a shorter time step than the bed's, or a law
-    /// other than the bed's.
-    pub fn add_wall(&mut self, scene: &BedScene, wall: Wall, pair: &serde_json::Map<String, serde_json::Value>) -> Result<(), BedError> {
+    /// particle-wall scene keys `pair` (the bed's own `particle_wall`, or the indenter's) and the rolling
+    /// friction coefficient `rolling` against it; every contact keeps its memory. Refused when the wall
+    /// would need a shorter time step than the bed's, or a law other than the bed's.
+    pub fn add_wall(
+        &mut self,
+        scene: &BedScene,
+        wall: Wall,
+        pair: &serde_json::Map<String, serde_json::Value>,
+        rolling: f64,
+    ) -> Result<(), BedError> {
         with_engine!(self, e => {
-            let row = checked_wall_row(scene, e.dt, &wall, pair)?;
+            let row = checked_wall_row(scene, e.dt, &wall, pair, rolling)?;
             e.add_wall(wall, row)?;
             Ok(())
         })
     }
 
-    /// Gives wall `w` of a running bed its interactions from the particle-wall scene keys `pair`, every
-    /// contact keeping its memory: the indenter's own keys when a saved test is restored, or the die's
+    /// Gives wall `w` of a running bed its interactions from the particle-wall scene keys `pair` and the
+    /// rolling friction coefficient `rolling`, every contact keeping its memory: the indenter's own keys when a saved test is restored, or the die's
     /// for a test (`Indentation::set_die_walls`). Refused for a mirror plane (its interaction is the
     /// particles' own), when the wall would need a shorter time step than the bed's, or a law other
     /// than the bed's.
-    pub fn set_wall_pair(&mut self, scene: &BedScene, w: usize, pair: &serde_json::Map<String, serde_json::Value>) -> Result<(), BedError> {
+    pub fn set_wall_pair(
+        &mut self,
+        scene: &BedScene,
+        w: usize,
+        pair: &serde_json::Map<String, serde_json::Value>,
+        rolling: f64,
+    ) -> Result<(), BedError> {
         with_engine!(self, e => {
             let wall = &e.walls[w];
             if wall.is_mirror() {
                 return Err(BedError::Setup(format!("wall `{}` is a mirror plane: its contacts are the particles' own", wall.name)));
             }
-            let row = checked_wall_row(scene, e.dt, wall, pair)?;
+            let row = checked_wall_row(scene, e.dt, wall, pair, rolling)?;
             e.set_wall_row(w, row)?;
             Ok(())
         })

@@ -188,7 +188,7 @@ impl AnyEngine {
 
     /// Rebuilds the engine of a bed file (with `threads` threads, or the scene's).
     pub fn from_file(file: &BedFile, threads: Option<usize>) -> Result<(AnyEngine, BedScene), BedError> {
-        let mut scene = BedScene::from_json(&file.scene)?;
+        let mut scene = BedScene::from_stored_json(&file.scene)?;
         if let Some(t) = threads {
             scene.threads = t;
         }

@@ -255,9 +255,11 @@ pub struct Indentation {
     pub record: Record,
     /// The indenter's index among the walls.
     indenter: usize,
-    /// The particle-indenter scene keys, and the die's, floor's and piston's for this test if not the
-    /// bed's own (`set_die_walls`): a saved state carries them, as the bed file holds only the bed's.
+    /// The particle-indenter scene keys and rolling friction coefficient, and the die's, floor's and
+    /// piston's keys for this test if not the bed's own (`set_die_walls`): a saved state carries them,
+    /// as the bed file holds only the bed's.
     indenter_pair: Map<String, Value>,
+    indenter_rolling_friction: f64,
     die_pair: Option<Map<String, Value>>,
     /// The plateau of the last reading and how many loading samples it saw: a host reading at every
     /// short communication step does not repeat the autocorrelation sums (O(n W)) between checks.
@@ -334,7 +336,8 @@ impl Indentation {
     /// origin (negative = above it; none: at the first touch). Refuses an indenter wider than the die, a
     /// depth beyond the bed, a start inside the bed, an empty plateau window, and a bed with nothing
     /// under the indenter (a window beyond the turn is allowed: its plateau stays without samples). `indenter_pair`: the particle-indenter scene keys (none: the
-    /// bed's particle-wall keys).
+    /// bed's, `BedScene::indenter_pair`); the rolling friction against the indenter is the bed's
+    /// (`BedScene::indenter_rolling_friction`).
     pub fn new(
         mut engine: AnyEngine,
         scene: BedScene,
@@ -400,8 +403,9 @@ impl Indentation {
             .into());
         }
         let bottom = origin - start_depth;
-        let pair = indenter_pair.unwrap_or(&scene.particle_wall).clone();
-        engine.add_wall(&scene, Wall::sphere("indenter", Vec3::new(0.0, 0.0, bottom + r_i), r_i), &pair)?;
+        let pair = indenter_pair.cloned().unwrap_or_else(|| scene.indenter_pair());
+        let rolling = scene.indenter_rolling_friction();
+        engine.add_wall(&scene, Wall::sphere("indenter", Vec3::new(0.0, 0.0, bottom + r_i), r_i), &pair, rolling)?;
         let indenter = engine.walls().len() - 1;
         if let Some(Shortcut { zone, release }) = setup.shortcut {
             if !(zone > 0.0 && zone.is_finite()) {
@@ -426,7 +430,17 @@ impl Indentation {
             steps: 0,
             loading: vec![],
         };
-        let mut test = Indentation { engine, scene, setup, record, indenter, indenter_pair: pair, die_pair: None, plateau_cache: None };
+        let mut test = Indentation {
+            engine,
+            scene,
+            setup,
+            record,
+            indenter,
+            indenter_pair: pair,
+            indenter_rolling_friction: rolling,
+            die_pair: None,
+            plateau_cache: None,
+        };
         if setup.motion == Motion::Prescribed {
             test.set_indenter_velocity(-setup.indentation_speed);
         }
@@ -639,6 +653,7 @@ impl Indentation {
             held: self.engine.particles().held.clone(),
             held_reference: self.engine.held_reference(),
             indenter_pair: Value::Object(self.indenter_pair.clone()).to_string(),
+            indenter_rolling_friction: self.indenter_rolling_friction,
             die_pair: self.die_pair.as_ref().map(|m| Value::Object(m.clone()).to_string()),
         };
         crate::codec::to_bytes(&saved).expect("an indentation state serializes")
@@ -663,7 +678,7 @@ impl Indentation {
             }
         };
         let indenter_pair = object(&saved.indenter_pair)?;
-        engine.set_wall_pair(&scene, indenter, &indenter_pair)?;
+        engine.set_wall_pair(&scene, indenter, &indenter_pair, saved.indenter_rolling_friction)?;
         let die_pair = saved.die_pair.as_deref().map(object).transpose()?;
         if let Some(pair) = &die_pair {
             set_die_pair(&mut engine, &scene, indenter, pair)?;
@@ -678,7 +693,17 @@ impl Indentation {
             }
             engine.restore_held(saved.held, saved.held_reference);
         }
-        Ok(Indentation { engine, scene, setup: saved.setup, record: saved.record, indenter, indenter_pair, die_pair, plateau_cache: None })
+        Ok(Indentation {
+            engine,
+            scene,
+            setup: saved.setup,
+            record: saved.record,
+            indenter,
+            indenter_pair,
+            indenter_rolling_friction: saved.indenter_rolling_friction,
+            die_pair,
+            plateau_cache: None,
+        })
     }
 }
 
@@ -687,7 +712,7 @@ impl Indentation {
 fn set_die_pair(engine: &mut AnyEngine, scene: &BedScene, indenter: usize, pair: &Map<String, Value>) -> Result<(), BedError> {
     for w in 0..engine.walls().len() {
         if w != indenter && !engine.walls()[w].is_mirror() {
-            engine.set_wall_pair(scene, w, pair)?;
+            engine.set_wall_pair(scene, w, pair, scene.wall_rolling_friction)?;
         }
     }
     Ok(())
@@ -704,8 +729,10 @@ struct Saved {
     /// The spheres held by the shortcut, and the force on each when it was held.
     held: Vec<bool>,
     held_reference: Vec<Vec3>,
-    /// The particle-indenter keys and the test's die keys (JSON objects).
+    /// The particle-indenter keys and the test's die keys (JSON objects), and the indenter's rolling
+    /// friction coefficient.
     indenter_pair: String,
+    indenter_rolling_friction: f64,
     die_pair: Option<String>,
 }
 

@@ -43,7 +43,7 @@ pub mod walls;
 
 pub use any::{AnyEngine, BedError};
 pub use engine::{Engine, Isa};
-pub use scene::BedScene;
+pub use scene::{BedScene, IndenterMaterial};
 
 /// A 3-vector [m], [m/s], [N], ...: nalgebra's, so the geometry reads as vector algebra (`x - wall.position`,
 /// `d.dot(&normal)`, `n * lever`, Bagi's `n F^T`). The engine still stores them structure-of-arrays

@@ -6,11 +6,43 @@
 //! `particle_particle` holds scene keys of the contact-law core (`Scene`): the law and its parameters
 //! between particles. `particle_wall` holds the keys that differ against the die, the floor and the
 //! piston (Table 5.3's second column); every other key is taken from `particle_particle`.
+//! `indenter_material` says which of the two the indenter is made of: 004 Sec. 5.1.3's indenter is
+//! "a cohesionless spherical indenter made of Material 1" (the particles' material), 004 Sec. 6.1's is
+//! one of the "non-cohesive elastic geometries" with the walls' interaction (Table 6.3).
 
 use super::psd::SizeDistribution;
 use crate::error::{check_closed_low, check_open, ParamError};
 use crate::scene::{ModelKind, Scene};
 use serde_json::{json, Map, Value};
+
+/// What the indenter is made of.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum IndenterMaterial {
+    /// The particles' material (004 Sec. 5.1.3: "a cohesionless spherical indenter made of Material 1"):
+    /// `particle_particle`'s keys with the interface energy 0, and `rolling_friction`.
+    Particle,
+    /// A geometry like the die (004 Sec. 6.1, Table 6.3): `particle_wall`'s keys and `wall_rolling_friction`.
+    Wall,
+}
+
+impl IndenterMaterial {
+    pub const NAMES: [&'static str; 2] = ["particle", "wall"];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            IndenterMaterial::Particle => "particle",
+            IndenterMaterial::Wall => "wall",
+        }
+    }
+
+    pub fn from_name(name: &str) -> Option<IndenterMaterial> {
+        match name {
+            "particle" => Some(IndenterMaterial::Particle),
+            "wall" => Some(IndenterMaterial::Wall),
+            _ => None,
+        }
+    }
+}
 
 #[derive(Debug, Clone, PartialEq)]
 pub struct BedScene {
@@ -24,6 +56,8 @@ pub struct BedScene {
     pub poisson_ratio: f64,
     pub rolling_friction: f64,
     pub wall_rolling_friction: f64,
+    /// What the indenter of a test is made of (`indenter_pair`, `indenter_rolling_friction`).
+    pub indenter_material: IndenterMaterial,
     pub size_distribution: SizeDistribution,
     pub particle_count: usize,
     pub die_diameter: f64,
@@ -49,11 +83,16 @@ pub struct BedScene {
 }
 
 /// The keys of a bed scene, with their defaults and units, for the docs and for typo hints.
-pub const BED_KEYS: [(&str, &str, &str); 21] = [
+pub const BED_KEYS: [(&str, &str, &str); 22] = [
     ("particle_particle", "-", "scene keys of the particle-particle law (004 Tables 5.2-5.3, column 1)"),
     ("particle_wall", "-", "scene keys that differ against the die, floor and piston (Table 5.3, column 2)"),
     ("rolling_friction", "-", "particle-particle rolling friction coefficient mu_r (Table 5.3: 0.1)"),
     ("wall_rolling_friction", "-", "particle-wall rolling friction coefficient (Table 5.3: 0)"),
+    (
+        "indenter_material",
+        "-",
+        "particle (default: the particles' material and friction without cohesion, 004 Sec. 5.1.3) or wall (the walls' contact, 004 Table 6.3)",
+    ),
     ("size_distribution", "m, -", "{\"diameters\": [...], \"frequencies\": [...]} by number; default Table 5.1"),
     ("size_scale", "-", "factor on every diameter (default 1)"),
     ("particle_count", "-", "number of spheres (default 16000, 004 Sec. 5.1.3)"),
@@ -107,13 +146,15 @@ impl BedScene {
                 Some(other) => Err(ParamError::Malformed { what: format!("`{name}` must be an object of scene keys, got {other}") }),
             }
         };
-        // 004 Tables 5.2-5.3 and Sec. 5.1.1.
+        // 004 Tables 5.2-5.3 and Sec. 5.1.1. The interface energy: Table 5.3's 0.5 J/m^2 is EDEM's
+        // surface energy gamma, whose JKR force -4 (pi gamma E*)^(1/2) a^(3/2) is 004 Eq. 3.41's with
+        // Gamma = 2 gamma (docs/models.md, "The seed's Ch. 5 material"; measured in docs/indentation.md).
         let mut pp = json!({
             "contact_model": "jkr_modified",
             "particle_density": 2456.0,
             "particle_youngs_modulus": 55e9,
             "particle_poisson_ratio": 0.25,
-            "surface_energy": 0.5,
+            "surface_energy": 1.0,
             "restitution_coefficient": 0.5,
             "friction_coefficient": 0.15,
         })
@@ -197,6 +238,19 @@ impl BedScene {
         }
         let threads = num("threads", 1.0)?;
         check_closed_low("threads", threads, 1.0, 257.0, "")?;
+        let indenter_material = match map.get("indenter_material") {
+            None | Some(Value::Null) => IndenterMaterial::Particle,
+            Some(Value::String(name)) => IndenterMaterial::from_name(name).ok_or_else(|| ParamError::UnknownChoice {
+                name: "indenter_material".into(),
+                value: name.clone(),
+                allowed: IndenterMaterial::NAMES.join(", "),
+            })?,
+            Some(other) => {
+                return Err(ParamError::Malformed {
+                    what: format!("`indenter_material` must be one of {}, got {other}", IndenterMaterial::NAMES.join(", ")),
+                })
+            }
+        };
         Ok(BedScene {
             model: scene_pp.contact_model,
             density: scene_pp.particle_density,
@@ -206,6 +260,7 @@ impl BedScene {
             particle_wall: pw,
             rolling_friction: check_closed_low("rolling_friction", num("rolling_friction", 0.1)?, 0.0, 10.0, "-")?,
             wall_rolling_friction: check_closed_low("wall_rolling_friction", num("wall_rolling_friction", 0.0)?, 0.0, 10.0, "-")?,
+            indenter_material,
             size_distribution,
             particle_count: count as usize,
             die_diameter: check_open("die_diameter", num("die_diameter", 0.039)?, 0.0, 100.0, "m")?,
@@ -232,6 +287,7 @@ impl BedScene {
             "particle_wall": self.particle_wall,
             "rolling_friction": self.rolling_friction,
             "wall_rolling_friction": self.wall_rolling_friction,
+            "indenter_material": self.indenter_material.name(),
             "size_distribution": {"diameters": d.diameters, "frequencies": d.fractions},
             "particle_count": self.particle_count,
             "die_diameter": self.die_diameter,
@@ -248,6 +304,43 @@ impl BedScene {
             "seed": self.seed,
             "threads": self.threads,
         })
+    }
+
+    /// A scene stored in a bed file. Beds written before `indenter_material` existed were indented with
+    /// the walls' contact: they keep it.
+    pub fn from_stored_json(text: &str) -> Result<BedScene, ParamError> {
+        let mut value: Value = serde_json::from_str(text).map_err(|e| ParamError::Malformed { what: format!("not valid JSON: {e}") })?;
+        if let Some(map) = value.as_object_mut() {
+            map.entry("indenter_material").or_insert_with(|| Value::from(IndenterMaterial::Wall.name()));
+        }
+        let map = value.as_object().ok_or_else(|| ParamError::Malformed { what: "the top level of a bed scene must be a JSON object".into() })?;
+        BedScene::from_map(map)
+    }
+
+    /// The particle-indenter scene keys. Made of the particles' material: `particle_particle` with the
+    /// particles' Young's modulus and Poisson ratio as the wall's and no interface energy (004 Sec.
+    /// 5.1.3); a yield pressure of the wall is not set, so the indenter does not yield (it is elastic in
+    /// both of the seed's set-ups). Otherwise the walls' keys (004 Table 6.3).
+    pub fn indenter_pair(&self) -> Map<String, Value> {
+        match self.indenter_material {
+            IndenterMaterial::Wall => self.particle_wall.clone(),
+            IndenterMaterial::Particle => {
+                let mut pair = self.particle_particle.clone();
+                pair.insert("wall_youngs_modulus".into(), Value::from(self.youngs_modulus));
+                pair.insert("wall_poisson_ratio".into(), Value::from(self.poisson_ratio));
+                pair.insert("surface_energy".into(), Value::from(0.0));
+                pair
+            }
+        }
+    }
+
+    /// The rolling friction coefficient against the indenter: `rolling_friction` when it is made of the
+    /// particles' material, `wall_rolling_friction` otherwise.
+    pub fn indenter_rolling_friction(&self) -> f64 {
+        match self.indenter_material {
+            IndenterMaterial::Particle => self.rolling_friction,
+            IndenterMaterial::Wall => self.wall_rolling_friction,
+        }
     }
 
     /// The cross-section of the die the bed fills: the sector's share of pi D^2 / 4 [m^2].

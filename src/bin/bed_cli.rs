@@ -102,7 +102,7 @@ pub struct IndentArgs {
     /// Time between CSV rows [s]
     #[arg(long, value_name = "S", default_value_t = 1e-3, value_parser = options::positive("s"))]
     every: f64,
-    /// Scene keys of the particle-indenter contact over the bed's walls' (a JSON object)
+    /// Scene keys of the particle-indenter contact over the bed's own (its `indenter_material`: the particles' material without cohesion, or the walls' contact) (a JSON object)
     #[arg(long, value_name = "JSON")]
     indenter: Option<String>,
     /// Scene keys of the die's, floor's and piston's contacts for this test, over the bed's walls' (a
@@ -393,7 +393,7 @@ fn info_cmd(path: &Path) -> Result<(), String> {
 fn params_cmd(path: &Path) -> Result<(), String> {
     let bytes = std::fs::read(path).map_err(|e| format!("cannot read `{}`: {e}", path.display()))?;
     let bed = file::decode(&bytes).map_err(|e| format!("`{}`: {e}", path.display()))?;
-    let scene = BedScene::from_json(&bed.scene).map_err(|e| format!("`{}`: its scene: {e}", path.display()))?;
+    let scene = BedScene::from_stored_json(&bed.scene).map_err(|e| format!("`{}`: its scene: {e}", path.display()))?;
     let absolute = std::fs::canonicalize(path).map_err(|e| format!("`{}`: {e}", path.display()))?;
     let mut params = serde_json::Map::new();
     params.insert("bed_file".into(), absolute.display().to_string().into());
@@ -556,16 +556,19 @@ fn indent_cmd(a: IndentArgs) -> Result<(), String> {
         },
     };
     let every = a.every;
-    let over_walls = |option: &str, text: &Option<String>| -> Result<Option<serde_json::Map<String, serde_json::Value>>, String> {
+    let over = |option: &str,
+                text: &Option<String>,
+                base: serde_json::Map<String, serde_json::Value>|
+     -> Result<Option<serde_json::Map<String, serde_json::Value>>, String> {
         let Some(text) = text else { return Ok(None) };
         let overlay: serde_json::Map<String, serde_json::Value> =
             serde_json::from_str(text).map_err(|e| format!("{option} must be a JSON object of scene keys: {e}"))?;
-        let mut pair = scene.particle_wall.clone();
+        let mut pair = base;
         pair.extend(overlay);
         Ok(Some(pair))
     };
-    let indenter = over_walls("--indenter", &a.indenter)?;
-    let walls = over_walls("--walls", &a.walls)?;
+    let indenter = over("--indenter", &a.indenter, scene.indenter_pair())?;
+    let walls = over("--walls", &a.walls, scene.particle_wall.clone())?;
     let mut test = Indentation::new(engine, scene, setup, None, indenter.as_ref()).map_err(|e| e.to_string())?;
     if let Some(pair) = &walls {
         test.set_die_walls(pair).map_err(|e| format!("--walls: {e}"))?;

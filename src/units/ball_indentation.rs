@@ -61,13 +61,22 @@ fn contact_key(contact: &str, key: &Key) -> bool {
     !bed_sets.contains(&key.name) && (contact == "particle_particle" || !particle_only.contains(&key.name))
 }
 
+/// A bed's scene keys of one of the three contacts (the indenter's as `BedScene::indenter_pair`).
+fn contact_map(bed: &BedScene, contact: &str) -> Map<String, Json> {
+    match contact {
+        "particle_particle" => bed.particle_particle.clone(),
+        "particle_wall" => bed.particle_wall.clone(),
+        _ => bed.indenter_pair(),
+    }
+}
+
 /// The unit's variables: its own, then the scene keys of the three contacts, starting at the shipped bed's.
 fn variables() -> Vec<Variable> {
     let bed = BedScene::from_json(DEFAULT_BED_SCENE).expect("the shipped bed scene is valid");
     let mut vars = own_variables();
     for contact in CONTACTS {
-        let map = if contact == "particle_particle" { &bed.particle_particle } else { &bed.particle_wall };
-        vars.extend(scene_params::group_variables(contact, map, |k| contact_key(contact, k)));
+        let map = contact_map(&bed, contact);
+        vars.extend(scene_params::group_variables(contact, &map, |k| contact_key(contact, k)));
     }
     vars
 }
@@ -87,14 +96,14 @@ fn resolved(key: &Key, map: &Map<String, Json>) -> Option<Json> {
 }
 
 /// The contact parameters that make the unit accept a bed made with `bed`, as start values for an
-/// importer (`powderfmu bed params`): its two contacts, and the particle-indenter contact at the bed's
-/// walls' (as `powderfmu bed indent` takes it); a derived key left to derive is 0.
+/// importer (`powderfmu bed params`): its two contacts, and the particle-indenter contact the bed's
+/// `indenter_material` gives (as `powderfmu bed indent` takes it); a derived key left to derive is 0.
 pub fn parameters_of_bed(bed: &BedScene) -> Map<String, Json> {
     let mut out = Map::new();
     for contact in CONTACTS {
-        let map = if contact == "particle_particle" { &bed.particle_particle } else { &bed.particle_wall };
+        let map = contact_map(bed, contact);
         for key in KEYS.iter().filter(|k| contact_key(contact, k)) {
-            out.insert(format!("{contact}.{}", key.name), resolved(key, map).unwrap_or_else(|| Json::from(0.0)));
+            out.insert(format!("{contact}.{}", key.name), resolved(key, &map).unwrap_or_else(|| Json::from(0.0)));
         }
     }
     out
