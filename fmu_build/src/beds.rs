@@ -22,7 +22,7 @@ fn shipped_bed(root: &Path, bed: &str, scene: &str) -> Result<Vec<u8>, String> {
     let path = root.join(bed);
     let bytes = std::fs::read(&path).map_err(|e| format!("cannot read the shipped bed {}: {e} (beds/README.md says how to prepare it)", path.display()))?;
     let bed = file::decode(&bytes).map_err(|e| format!("the shipped bed {}: {e}", path.display()))?;
-    let theirs = BedScene::from_json(&bed.scene).map_err(|e| format!("the shipped bed {}: its scene: {e}", path.display()))?;
+    let theirs = BedScene::from_stored_json(&bed.scene).map_err(|e| format!("the shipped bed {}: its scene: {e}", path.display()))?;
     let ours = BedScene::from_json(scene).map_err(|e| format!("the unit's bed scene: {e}"))?;
     if let Some(key) = first_difference("", &ours.to_json(), &theirs.to_json()) {
         return Err(format!(
