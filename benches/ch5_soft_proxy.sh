@@ -20,16 +20,31 @@
 #            restitution 0.5, E = the particles') instead of the steel wall's column (friction 0)
 #   indm1r   the same, and rolling friction 0.1 against the indenter (given as the walls' rolling
 #            friction, so die and floor get it too; their sliding friction stays 0)
-# The scenes name the interface energy and the walls' contact for the indenter explicitly, so the rows
-# mean the same whatever the bed scene's defaults (since this study: 1.0 J/m^2 and the particles'
-# material, which `gamma1_indm1r` runs by hand).
+#   gamma1_indm1r  both
+#   default  the bed scene's defaults after this study: both, with the rolling friction on the indenter
+#            alone (one thread: it ran beside a stiff test)
+# The other rows' scenes name the interface energy and the walls' contact for the indenter explicitly,
+# so they mean the same whatever the bed scene's defaults.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 OUT=${1:?usage: ch5_soft_proxy.sh OUT_DIR [BIN]}
 BIN=$(realpath "${2:-target/release/powderfmu}")
 [ -x "$BIN" ] || cargo build --locked --quiet --release --bin powderfmu
 mkdir -p "$OUT"
-scene() { # name gamma seed
+T=2 # threads; the `default` rows ran on one, beside a stiff test
+scene() { # name gamma seed; gamma "default": the bed scene's own interface energy and indenter
+    if [ "$2" = default ]; then
+        cat >"$OUT/$1.json" <<JSON
+{
+  "comment": "Soft proxy of scenes/bed_004_indentation_quarter.json (E = 55 MPa) with the bed scene's defaults, fill seed $3",
+  "particle_count": 4000,
+  "die_sector": 0.25,
+  "seed": $3,
+  "particle_particle": {"particle_youngs_modulus": 55e6}
+}
+JSON
+        return
+    fi
     cat >"$OUT/$1.json" <<JSON
 {
   "comment": "Soft proxy of scenes/bed_004_indentation_quarter.json (E = 55 MPa), interface energy $2 J/m^2, fill seed $3",
@@ -46,7 +61,7 @@ bed() { # name gamma seed
     [ -f "$b" ] && return
     scene "$1" "$2" "$3"
     echo "$(date +%T) prepare $1" >&2
-    "$BIN" bed prepare "$OUT/$1.json" --threads 2 -o "$b.part" >"$OUT/$1.prepare.log" 2>&1 && mv "$b.part" "$b"
+    "$BIN" bed prepare "$OUT/$1.json" --threads "$T" -o "$b.part" >"$OUT/$1.prepare.log" 2>&1 && mv "$b.part" "$b"
 }
 M1='{"friction_coefficient": 0.15, "restitution_coefficient": 0.5, "wall_youngs_modulus": 55e6, "wall_poisson_ratio": 0.25}'
 run() { # name bed [extra args...]
@@ -54,7 +69,7 @@ run() { # name bed [extra args...]
     if [ -f "$log" ] && grep -q "plateau hardness" "$log"; then return; fi
     echo "$(date +%T) indent $name" >&2
     { echo "bed=$(basename "$b") args=$*"
-      "$BIN" bed indent "$b" --diameter 0.013 --max-penetration 0.00325 --speed 0.013 --threads 2 --every 1e-3 \
+      "$BIN" bed indent "$b" --diameter 0.013 --max-penetration 0.00325 --speed 0.013 --threads "$T" --every 1e-3 \
           --fidelity full --plateau-start 0.35 --plateau-end 0.5 --out "$OUT/$name.csv" "$@" 2>&1 >/dev/null
     } >"$log.part" && mv "$log.part" "$log"
 }
@@ -66,4 +81,11 @@ for s in 1 2; do
     run "indm1_s$s" "g0.5_s$s" --indenter "$M1"
     run "indm1r_s$s" "g0.5_s$s" --indenter "$M1" --change '{"wall_rolling_friction": 0.1}'
     run "gamma1_indm1r_s$s" "g1.0_s$s" --indenter "$M1" --change '{"wall_rolling_friction": 0.1}'
+done
+# The bed scene's defaults since this study (Gamma = 1.0 J/m^2, the indenter of Material 1 with rolling
+# friction 0.1 on it alone), as a user's new Ch. 5 bed has them.
+T=1
+for s in 1 2; do
+    bed "default_s$s" default "$s"
+    run "default_s$s" "default_s$s"
 done
