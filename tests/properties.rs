@@ -1,6 +1,7 @@
 //! Property tests for every law over random materials and random load / unload / reload / detach /
 //! re-contact sequences: no NaN or infinity, no panic, force continuous except at the documented jumps
-//! (which all sit at a boundary with the separated state), and history monotone.
+//! (which all sit at a boundary with the separated state), history monotone, and a history the law says
+//! rests apart left as it is at every negative overlap.
 
 use powderfmu::law::{AnyHistory, AnyLaw, Branch, Evaluation, NormalLaw};
 use powderfmu::law::nan::{PullOffLaw, UnloadingStiffnessLaw};
@@ -147,6 +148,16 @@ fn walk(c: &Case) -> Result<(), String> {
                 return Err(format!("branch interval [{}, {}] is empty at {next:e}", en.lower, en.upper));
             }
             continuous(&law, h, alpha, &e, next, f_ref, c.radius * 1e-3, 80)?;
+            // A law that says it rests apart with this history (the bed then skips evaluating it) must
+            // leave it separated and unchanged at every negative overlap.
+            if law.rests_apart(&h) {
+                for apart in [next.min(-f64::MIN_POSITIVE), -1e-12 * c.radius, -0.1 * c.radius] {
+                    let ea = law.evaluate(apart, &h);
+                    if ea.branch != Branch::Separated || ea.force != 0.0 || ea.history != h {
+                        return Err(format!("rests apart, but at {apart:e} it is {:?} with {:e} N and {:?}", ea.branch, ea.force, ea.history));
+                    }
+                }
+            }
             let after = history_measure(&en.history);
             let reset_allowed = forgets_on_separation(c.model) && en.branch == Branch::Separated;
             if after < before && !reset_allowed {

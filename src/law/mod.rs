@@ -151,6 +151,14 @@ pub trait NormalLaw {
     fn vertical_end(&self, _branch: Branch, _history: &Self::History) -> Option<f64> {
         None
     }
+
+    /// Whether a contact with this history is separated at every negative overlap and keeps the history
+    /// there unchanged, as a pair that never touched does. The bed's force loop then skips the pair while
+    /// it is beyond reach with no tangential spring: evaluating it would change nothing. `false` (always
+    /// evaluate) unless a law says otherwise.
+    fn rests_apart(&self, _history: &Self::History) -> bool {
+        false
+    }
 }
 
 /// What a law says about itself beyond its force, for the table (`law_table!`): its options, how a pair
@@ -334,5 +342,9 @@ impl NormalLaw for AnyLaw {
 
     fn vertical_end(&self, branch: Branch, history: &AnyHistory) -> Option<f64> {
         dispatch!(self, history, l, h => l.vertical_end(branch, h), plain, None)
+    }
+
+    fn rests_apart(&self, history: &AnyHistory) -> bool {
+        dispatch!(self, history, l, h => l.rests_apart(h), plain, false)
     }
 }

@@ -79,6 +79,13 @@ impl NormalLaw for PashaSimplified {
     fn plastic_overlap(&self, h: &PashaHistory) -> f64 {
         self.points(h.alpha_max).alpha_p
     }
+
+    /// A detached contact re-forms only at max(alpha_fp, 0) >= 0 (`pasha_evaluate`): below zero overlap it
+    /// stays separated with alpha_max kept.
+    #[inline]
+    fn rests_apart(&self, h: &PashaHistory) -> bool {
+        !h.established
+    }
 }
 
 crate::scene_options! {
