@@ -1,12 +1,13 @@
 #!/usr/bin/env bash
-# Issue 31, the seed's Ch. 5 on a soft proxy: why does the quarter 39 mm die on Tables 5.1-5.3 read 3.0 kPa
-# where 004 Sec. 5.2 reads about 8 kPa? Each candidate is run on the quarter die of
-# scenes/bed_004_indentation_quarter.json with Young's modulus 55 MPa instead of 55 GPa (a 32 times longer
-# step: a bed in 80 s and a test in 60 s instead of 1.5 h and 43 min). The proxy is checked against the
-# stiff bed's recorded run (docs/data/ch5_quarter39_13mm_gamma_piston.csv) by the base rows. Every row:
-# the 13 mm indenter to h/r 0.5 at 13 mm/s (the piston's speed, 004 Sec. 5.1.3), every sphere moving,
-# plateau over h/r 0.35-0.5 (004 Figs. 5.3-5.4). Two fill seeds per candidate. A row whose log holds a
-# result is not run again, so the study can be stopped and resumed.
+# Issue 31, the seed's Ch. 5 on a soft proxy: why does the quarter 39 mm die on Tables 5.1-5.3 read 3.0
+# kPa where 004 Sec. 5.2 reads about 8 kPa, and what do the seed's other indenters and the whole die read?
+# Each candidate is run on the quarter die of scenes/bed_004_indentation_quarter.json with Young's modulus
+# 55 MPa instead of 55 GPa (a 32 times longer step: a bed in 80 s and a test in 60 s instead of 1.5 h and
+# 43 min). The proxy is checked against the stiff bed's recorded run
+# (docs/data/ch5_quarter39_13mm_gamma_piston.csv) by the base rows. Every row: the 13 mm indenter (unless
+# named) to h/r 0.5 at 13 mm/s (the piston's speed, 004 Sec. 5.1.3), every sphere moving, plateau over h/r
+# 0.35-0.5 (004 Figs. 5.3-5.4). Two fill seeds per candidate. A row whose log holds a result is not run
+# again, so the study can be stopped and resumed.
 #
 #   bash benches/ch5_soft_proxy.sh OUT_DIR [BIN]
 #   then: python benches/ch5_soft_proxy.py OUT_DIR --csv docs/data/ch5_soft_proxy.csv
@@ -22,7 +23,9 @@
 #            friction, so die and floor get it too; their sliding friction stays 0)
 #   gamma1_indm1r  both
 #   default  the bed scene's defaults after this study: both, with the rolling friction on the indenter
-#            alone (one thread: it ran beside a stiff test)
+#            alone (fill seeds 1 and 2 on one thread: they ran beside a stiff test; 3 and 4 on two)
+#   defaultDDmm  the seed's other indenters, DD = 16, 19, 22, 25 mm, on the default beds 1 and 2
+#   whole    the defaults on the whole 39 mm die (16000 spheres), the 13 mm indenter
 # The other rows' scenes name the interface energy and the walls' contact for the indenter explicitly,
 # so they mean the same whatever the bed scene's defaults.
 set -euo pipefail
@@ -31,14 +34,18 @@ OUT=${1:?usage: ch5_soft_proxy.sh OUT_DIR [BIN]}
 BIN=$(realpath "${2:-target/release/powderfmu}")
 [ -x "$BIN" ] || cargo build --locked --quiet --release --bin powderfmu
 mkdir -p "$OUT"
-T=2 # threads; the `default` rows ran on one, beside a stiff test
-scene() { # name gamma seed; gamma "default": the bed scene's own interface energy and indenter
-    if [ "$2" = default ]; then
+T=2 # threads; the first `default` rows ran on one, beside a stiff test
+D=0.013 # indenter diameter [m]; every test goes to h/r 0.5
+scene() { # name gamma seed; gamma "default": the bed scene's own interface energy and indenter;
+    # "whole": the same on the whole die (scenes/bed_004_indentation.json, 16000 spheres)
+    if [ "$2" = default ] || [ "$2" = whole ]; then
+        local count=4000 sector='"die_sector": 0.25,' of=bed_004_indentation_quarter.json
+        [ "$2" = whole ] && { count=16000; sector=''; of=bed_004_indentation.json; }
         cat >"$OUT/$1.json" <<JSON
 {
-  "comment": "Soft proxy of scenes/bed_004_indentation_quarter.json (E = 55 MPa) with the bed scene's defaults, fill seed $3",
-  "particle_count": 4000,
-  "die_sector": 0.25,
+  "comment": "Soft proxy of scenes/$of (E = 55 MPa) with the bed scene's defaults, fill seed $3",
+  "particle_count": $count,
+  $sector
   "seed": $3,
   "particle_particle": {"particle_youngs_modulus": 55e6}
 }
@@ -68,8 +75,8 @@ run() { # name bed [extra args...]
     local name=$1 b="$OUT/$2.pfbed" log="$OUT/$1.log"; shift 2
     if [ -f "$log" ] && grep -q "plateau hardness" "$log"; then return; fi
     echo "$(date +%T) indent $name" >&2
-    { echo "bed=$(basename "$b") args=$*"
-      "$BIN" bed indent "$b" --diameter 0.013 --max-penetration 0.00325 --speed 0.013 --threads "$T" --every 1e-3 \
+    { echo "bed=$(basename "$b") diameter=$D args=$*"
+      "$BIN" bed indent "$b" --diameter "$D" --max-penetration "$(python3 -c "print($D / 4)")" --speed 0.013 --threads "$T" --every 1e-3 \
           --fidelity full --plateau-start 0.35 --plateau-end 0.5 --out "$OUT/$name.csv" "$@" 2>&1 >/dev/null
     } >"$log.part" && mv "$log.part" "$log"
 }
@@ -88,4 +95,20 @@ T=1
 for s in 1 2; do
     bed "default_s$s" default "$s"
     run "default_s$s" "default_s$s"
+done
+# Two more beds of the defaults, and the seed's other indenters on the first two (004 Figs. 5.4, 5.6:
+# about 8 kPa with 16 and 19 mm, about 10 kPa with 22 and 25 mm, the die wall).
+T=2
+for s in 3 4; do
+    bed "default_s$s" default "$s"
+    run "default_s$s" "default_s$s"
+done
+for d in 16 19 22 25; do
+    for s in 1 2; do D=0.0$d run "default${d}mm_s$s" "default_s$s"; done
+done
+# The whole 39 mm die (16000 spheres, as the seed ran it) with the defaults: what the quarter's mirror
+# planes cost (a quarter read 9.6 % below the whole die on the Ch. 6 bed, docs/indentation.md).
+for s in 1 2; do
+    bed "whole_s$s" whole "$s"
+    run "whole_s$s" "whole_s$s"
 done
