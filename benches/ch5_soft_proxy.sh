@@ -26,6 +26,7 @@
 #            alone (fill seeds 1 and 2 on one thread: they ran beside a stiff test; 3 and 4 on two)
 #   defaultDDmm  the seed's other indenters, DD = 16, 19, 22, 25 mm, on the default beds 1 and 2
 #   whole    the defaults on the whole 39 mm die (16000 spheres), the 13 mm indenter
+#   d45h13, d45h20[_DDmm]  the defaults on a quarter of the 45 mm die, 13 and 20 mm beds (13: not a seed row)
 # The other rows' scenes name the interface energy and the walls' contact for the indenter explicitly,
 # so they mean the same whatever the bed scene's defaults.
 set -euo pipefail
@@ -37,21 +38,26 @@ mkdir -p "$OUT"
 T=2 # threads; the first `default` rows ran on one, beside a stiff test
 D=0.013 # indenter diameter [m]; every test goes to h/r 0.5
 scene() { # name gamma seed; gamma "default": the bed scene's own interface energy and indenter;
-    # "whole": the same on the whole die (scenes/bed_004_indentation.json, 16000 spheres)
-    if [ "$2" = default ] || [ "$2" = whole ]; then
-        local count=4000 sector='"die_sector": 0.25,' of=bed_004_indentation_quarter.json
-        [ "$2" = whole ] && { count=16000; sector=''; of=bed_004_indentation.json; }
+    # "whole": the same on the whole die (scenes/bed_004_indentation.json, 16000 spheres); "d45_13",
+    # "d45_20": a quarter of the 45 mm die's 13 and 20 mm beds (scenes/bed_004_ch5_45mm_*.json)
+    case "$2" in default | whole | d45_13 | d45_20)
+        local count=4000 sector='"die_sector": 0.25,' of=bed_004_indentation_quarter.json die=''
+        case "$2" in
+            whole) count=16000 sector='' of=bed_004_indentation.json ;;
+            d45_13) count=5325 of="bed_004_ch5_45mm_13mm.json, a quarter" die='"die_diameter": 0.045,' ;;
+            d45_20) count=8200 of="bed_004_ch5_45mm_20mm.json, a quarter" die='"die_diameter": 0.045,' ;;
+        esac
         cat >"$OUT/$1.json" <<JSON
 {
   "comment": "Soft proxy of scenes/$of (E = 55 MPa) with the bed scene's defaults, fill seed $3",
   "particle_count": $count,
-  $sector
+  $sector $die
   "seed": $3,
   "particle_particle": {"particle_youngs_modulus": 55e6}
 }
 JSON
         return
-    fi
+    esac
     cat >"$OUT/$1.json" <<JSON
 {
   "comment": "Soft proxy of scenes/bed_004_indentation_quarter.json (E = 55 MPa), interface energy $2 J/m^2, fill seed $3",
@@ -111,4 +117,13 @@ done
 for s in 1 2; do
     bed "whole_s$s" whole "$s"
     run "whole_s$s" "whole_s$s"
+done
+# The 45 mm die (004 Sec. 5.2, Figs. 5.12 and 5.15), a quarter of it: the seed's 20 mm bed (about 6 kPa with
+# 13, 16, 19 and 22 mm), and a 13 mm bed the seed did not run there (a check of the die's diameter).
+for s in 1 2; do
+    bed "d45_13_s$s" d45_13 "$s"
+    bed "d45_20_s$s" d45_20 "$s"
+    run "d45h13_s$s" "d45_13_s$s"
+    run "d45h20_s$s" "d45_20_s$s"
+    for d in 16 19 22; do D=0.0$d run "d45h20_${d}mm_s$s" "d45_20_s$s"; done
 done
