@@ -3,7 +3,7 @@
 //! and that it was made with the scene the unit's parameters start from, and refuses it otherwise.
 
 use powderfmu::bed::{file, BedScene};
-use powderfmu::units::ball_indentation::{DEFAULT_BED_SCENE, QUARTER_BED_SCENE, SHIPPED_BED, SHIPPED_QUARTER_BED};
+use powderfmu::units::ball_indentation::{DEFAULT_BED_SCENE, QUARTER_BED_SCENE, QUARTER_REPLICAS, SHIPPED_BED, SHIPPED_QUARTER_BED};
 use serde_json::Value;
 use std::path::Path;
 
@@ -16,6 +16,11 @@ pub fn shipped(root: &Path) -> Result<Vec<u8>, String> {
 /// The bytes of the shipped quarter bed (`fidelity = quarter`), checked against `QUARTER_BED_SCENE`.
 pub fn shipped_quarter(root: &Path) -> Result<Vec<u8>, String> {
     shipped_bed(root, SHIPPED_QUARTER_BED, QUARTER_BED_SCENE)
+}
+
+/// The quarter beds `replicas` adds (resource name, bytes), each checked against its own scene.
+pub fn shipped_quarter_replicas(root: &Path) -> Result<Vec<(&'static str, Vec<u8>)>, String> {
+    QUARTER_REPLICAS.iter().map(|&(name, scene, bed)| Ok((name, shipped_bed(root, bed, scene)?))).collect()
 }
 
 fn shipped_bed(root: &Path, bed: &str, scene: &str) -> Result<Vec<u8>, String> {
@@ -78,6 +83,25 @@ mod tests {
         let (bed, scene) = file::load(&root.join(SHIPPED_QUARTER_BED), Some(1)).unwrap();
         assert_eq!((scene.die_sector, bed.particles().len()), (0.25, 7250));
         assert!(quarter.len() < bytes.len() / 2);
+    }
+
+    #[test]
+    fn the_replica_beds_are_the_quarter_prepared_again_with_other_seeds() {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR")).parent().expect("the workspace root");
+        let replicas = shipped_quarter_replicas(root).expect("the replica beds are accepted");
+        let first = BedScene::from_json(QUARTER_BED_SCENE).unwrap().to_json();
+        let mut seeds = vec![first["seed"].clone()];
+        for ((name, bytes), (_, scene, _)) in replicas.iter().zip(QUARTER_REPLICAS) {
+            let scene = BedScene::from_json(scene).unwrap().to_json();
+            assert_eq!(first_difference("", &first, &scene).as_deref(), Some("seed"), "{name}: only the fill seed differs");
+            seeds.push(scene["seed"].clone());
+            let bed = file::decode(bytes).unwrap();
+            let (engine, _) = powderfmu::bed::AnyEngine::from_file(&bed, Some(1)).unwrap();
+            assert_eq!(engine.particles().len(), 7250, "{name}");
+        }
+        seeds.sort_by_key(|s| s.to_string());
+        seeds.dedup();
+        assert_eq!(seeds.len(), 1 + QUARTER_REPLICAS.len(), "every bed its own fill seed");
     }
 
     #[test]

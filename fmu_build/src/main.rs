@@ -175,6 +175,9 @@ fn entries(unit: &UnitInfo, binaries: &Binaries, root: &Path, version: Version) 
         let scene = units::ball_indentation::DEFAULT_BED_SCENE.as_bytes().to_vec();
         entries.push(Entry { name: format!("resources/{}", units::ball_indentation::RESOURCE_BED), data: beds::shipped(root)? });
         entries.push(Entry { name: format!("resources/{}", units::ball_indentation::RESOURCE_QUARTER_BED), data: beds::shipped_quarter(root)? });
+        for (name, data) in beds::shipped_quarter_replicas(root)? {
+            entries.push(Entry { name: format!("resources/{name}"), data });
+        }
         entries.push(Entry { name: "resources/bed_scene.json".into(), data: scene });
         entries.push(Entry { name: "documentation/bed.md".into(), data: read(root, "docs/bed.md")? });
     } else {

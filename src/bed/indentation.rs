@@ -482,12 +482,11 @@ impl Indentation {
         (self.engine.wall_touching(self.indenter) as f64 / self.scene.die_sector).round() as usize
     }
 
-    /// Advances the test by `h` seconds. With `Motion::Input`, `input` = (depth, rate) at the start of
-    /// the step: the indenter moves at constant speed to depth + rate h over the step.
-    pub fn advance(&mut self, h: f64, input: Option<(f64, f64)>) -> Result<(), BedError> {
-        let dt = self.engine.dt();
-        // The inputs are checked before anything moves: a refused step leaves the state as it was.
-        let target = match (self.setup.motion, input) {
+    /// The depth an input step asks for by its end, refused (naming the input) if not finite or past the
+    /// indenter's radius; none with a prescribed motion. Nothing moves: callers check every bed before
+    /// stepping any (`bed::replicas`).
+    pub fn input_target(&self, h: f64, input: Option<(f64, f64)>) -> Result<Option<f64>, BedError> {
+        Ok(match (self.setup.motion, input) {
             (Motion::Input, Some((depth, rate))) => {
                 let target = depth + rate * h;
                 if !(target.is_finite() && target < 0.5 * self.setup.indenter_diameter) {
@@ -501,7 +500,15 @@ impl Indentation {
                 Some(target)
             }
             _ => None,
-        };
+        })
+    }
+
+    /// Advances the test by `h` seconds. With `Motion::Input`, `input` = (depth, rate) at the start of
+    /// the step: the indenter moves at constant speed to depth + rate h over the step.
+    pub fn advance(&mut self, h: f64, input: Option<(f64, f64)>) -> Result<(), BedError> {
+        let dt = self.engine.dt();
+        // The inputs are checked before anything moves: a refused step leaves the state as it was.
+        let target = self.input_target(h, input)?;
         if self.setup.motion == Motion::Prescribed && self.record.state == TestState::Done {
             // The prescribed test is over: the bed is not stepped any more (it would cost as much as the
             // test itself, for a bed nobody reads), so a host's stop time past the end is free.

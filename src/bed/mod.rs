@@ -36,6 +36,7 @@ pub mod prepare;
 mod psd;
 mod random;
 pub mod render;
+pub mod replicas;
 mod scene;
 pub mod series;
 pub mod stress;

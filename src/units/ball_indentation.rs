@@ -13,6 +13,7 @@ use super::variables::{Value, VarType, Variable};
 use super::{Model, UnitError, UnitInfo};
 use crate::bed::file;
 use crate::bed::indentation::{DepthOrigin, Indentation, Motion, Setup, TestState, FAST, PLATEAU};
+use crate::bed::replicas::Replicas;
 use crate::bed::{BedError, BedScene};
 use crate::scene::{Key, KeyDefault, KEYS};
 use serde_json::{Map, Value as Json};
@@ -35,6 +36,13 @@ pub const SHIPPED_BED: &str = "beds/bed_004_ch6.pfbed";
 pub const RESOURCE_QUARTER_BED: &str = "bed_quarter.pfbed";
 pub const QUARTER_BED_SCENE: &str = include_str!("../../scenes/bed_004_ch6_quarter.json");
 pub const SHIPPED_QUARTER_BED: &str = "beds/bed_004_ch6_quarter.pfbed";
+
+/// The quarter beds `replicas` runs on beside the first: prepared as it is from its scene with other fill
+/// seeds (resource name, scene, repository path).
+pub const QUARTER_REPLICAS: [(&str, &str, &str); 2] = [
+    ("bed_quarter_2.pfbed", include_str!("../../scenes/bed_004_ch6_quarter_seed2.json"), "beds/bed_004_ch6_quarter_seed2.pfbed"),
+    ("bed_quarter_3.pfbed", include_str!("../../scenes/bed_004_ch6_quarter_seed3.json"), "beds/bed_004_ch6_quarter_seed3.pfbed"),
+];
 
 /// The default speed [m/s]: gamma* = (v/H)(d/g)^(1/2) = 0.02 on the shipped bed (`004` Eq. 7.1; H =
 /// 18.0 mm, d = 1.0 mm), run on its quarter (`fidelity = quarter`): the test in 103-156 s on two cores.
@@ -128,7 +136,8 @@ variable_table! {
     force_at_turn: Variable::output("force_at_turn", VarType::Real, "N", "F_max of the hardness: A(h_max) times the mean of F/A(h) over the loading samples in the last tenth of the loading depth (h_max the deepest so far): a local reading of the fluctuating force at the turn, not its largest sample"),
     plateau_hardness: Variable::output("plateau_hardness", VarType::Real, "Pa", "mean of F/A(h) over the loading samples (every 100 engine steps) at plateau_start <= h/r <= plateau_end, where it levels off (004 Figs. 5.2-5.3, 5.19); 0 until the indenter reaches plateau_start"),
     plateau_hardness_standard_error: Variable::output("plateau_hardness_standard_error", VarType::Real, "Pa", "standard error of plateau_hardness from this run's fluctuations: sqrt(sigma^2 tau / n), sigma^2 the samples' variance and tau their integrated autocorrelation time in samples (Sokal's window); 0 below 8 samples. It holds neither the bed-to-bed scatter nor, below about 50 correlation times of samples, a reliable error of itself (docs/indentation.md)"),
-    plateau_samples: Variable::output("plateau_samples", VarType::Integer, "", "n, the samples behind plateau_hardness"),
+    plateau_samples: Variable::output("plateau_samples", VarType::Integer, "", "n, the samples behind plateau_hardness (over every replica)"),
+    plateau_hardness_standard_error_over_beds: Variable::output("plateau_hardness_standard_error_over_beds", VarType::Real, "Pa", "with replicas > 1: the standard error of plateau_hardness from the replicas' spread, s / sqrt(replicas) with s the sample standard deviation of their plateaus; it holds the bed-to-bed scatter one bed cannot show (about 12 % of the plateau for a quarter bed at the default speed, docs/indentation.md). 0 with one replica"),
     depth_origin_offset: Variable::output("depth_origin_offset", VarType::Real, "m", "height of the indenter's first touch above the depth origin (0 with depth_origin = first_touch)"),
     indenter_motion: Variable::parameter("indenter_motion", Value::String("prescribed".into()), "", "prescribed (load at indentation_speed to max_penetration, unload at the same speed until the indenter leaves the bed) or input (follow indenter_displacement and indenter_velocity)"),
     indenter_diameter: Variable::parameter("indenter_diameter", Value::Real(0.016), "m", "d, diameter of the spherical indenter, narrower than the die (default 16 mm, 16 mean diameters of the shipped bed: 004 Ch. 5's smallest reliable size)")
@@ -144,8 +153,9 @@ variable_table! {
     plateau_end: Variable::parameter("plateau_end", Value::Real(PLATEAU.1), "", "h/r where the plateau window ends, above plateau_start (default 0.2, the default max_penetration)")
         .with_range(Some(0.0), None),
     depth_origin: Variable::parameter("depth_origin", Value::String("first_touch".into()), "", "where h is measured from: first_touch (the indenter's lowest point when it first touches a sphere, lowered along the die axis) or mean_surface (the bed's mean surface under the footprint of max_penetration, probed before the test with a sphere of the mean particle radius on a grid of a quarter mean diameter); depth_origin_offset gives the difference"),
-    bed_file: Variable::parameter("bed_file", Value::String(String::new()), "", "a bed file of `powderfmu bed prepare`; empty: the bed in the FMU's resources"),
-    threads: Variable::parameter("threads", Value::Integer(2), "", "threads of the bed engine's force loop, in [1, 256] (results differ from one thread's by round-off, which the bed's dynamics then grow)"),
+    bed_file: Variable::parameter("bed_file", Value::String(String::new()), "", "a bed file of `powderfmu bed prepare`, or several separated by ';' (one per replica, as many as replicas); empty: the beds in the FMU's resources"),
+    threads: Variable::parameter("threads", Value::Integer(2), "", "threads of the bed engine's force loop, in [1, 256] (results differ from one thread's by round-off, which the bed's dynamics then grow); with replicas, every bed steps on all of them, one bed after the other"),
+    replicas: Variable::parameter("replicas", Value::Integer(1), "", "how many independently prepared beds the test runs on, side by side (the same indenter motion in each): the FMU's quarter beds (fidelity = quarter: 1 to 3, fill seeds 1-3; fast and full: 1), or the beds bed_file lists. Every output is then the mean over the beds, and plateau_hardness_standard_error_over_beds their spread; the first bed reads what it reads alone, to the bit; the cost is replicas times one bed's"),
     time_step: Variable::parameter("time_step", Value::Real(DEFAULT_TIME_STEP), "s", "the bed engine's time step, refused above the bed's stability limit; the default is half the shipped bed's limit (its error is in docs/indentation.md); 0 = the bed's own (its scene's time_step or rayleigh_fraction of its stability limit)")
         .with_range(Some(0.0), None),
     fidelity: Variable::parameter("fidelity", Value::String("quarter".into()), "", "quarter (the FMU's quarter of the seed's die, 7250 spheres between two mirror planes, every sphere moving; with a bed_file, that bed with every sphere moving), fast (the whole bed; the spheres farther than 3 contact radii a_max from the deepest indentation are held where the bed left them until the force on one changes by 0.1 consolidation_stress x d^2) or full (the whole bed, every sphere moving); their errors are measured in docs/indentation.md"),
@@ -188,7 +198,7 @@ pub struct BallIndentation {
     /// The unit's variable table (the contacts' parameters are read from it by name prefix).
     variables: Vec<Variable>,
     resources: Option<PathBuf>,
-    test: Option<Indentation>,
+    test: Option<Replicas>,
     /// The test's state at the last report, and what to report (`take_events`).
     reported: Option<TestState>,
     events: Vec<String>,
@@ -210,21 +220,52 @@ impl From<BedError> for UnitError {
 }
 
 impl BallIndentation {
-    /// The bed file the parameters name: `bed_file` (whatever `fidelity`: a sector of one's own bed is
-    /// prepared with die_sector 0.25), or the FMU's own, its quarter for `fidelity = quarter`.
-    fn bed_path(&self, values: &[Value]) -> Result<PathBuf, UnitError> {
+    /// The bed files the parameters name, one per replica: `bed_file`'s (whatever `fidelity`: a sector of
+    /// one's own bed is prepared with die_sector 0.25), or the FMU's own, its quarters for `fidelity =
+    /// quarter`.
+    fn bed_paths(&self, values: &[Value]) -> Result<Vec<PathBuf>, UnitError> {
+        let replicas = Self::replicas(values)?;
         let given = values[REFS.bed_file].as_str();
         let quarter = values[REFS.fidelity].as_str() == "quarter";
         if !given.is_empty() {
-            return Ok(PathBuf::from(given));
+            let paths: Vec<PathBuf> = given.split(';').map(str::trim).filter(|p| !p.is_empty()).map(PathBuf::from).collect();
+            if paths.len() != replicas {
+                return Err(variable(
+                    "replicas",
+                    format!("parameter `replicas` = {replicas}, but bed_file lists {} bed(s): list one bed per replica, separated by ';'", paths.len()),
+                ));
+            }
+            return Ok(paths);
+        }
+        let shipped = if quarter { 1 + QUARTER_REPLICAS.len() } else { 1 };
+        if replicas > shipped {
+            return Err(variable(
+                "replicas",
+                format!(
+                    "parameter `replicas` = {replicas} is out of range: the FMU ships {shipped} bed(s) for fidelity = {}, allowed [1, {shipped}]; more beds: prepare them (`powderfmu bed prepare` with other seeds) and list them in bed_file",
+                    values[REFS.fidelity].as_str()
+                ),
+            ));
         }
         match &self.resources {
-            Some(dir) => Ok(dir.join(if quarter { RESOURCE_QUARTER_BED } else { RESOURCE_BED })),
+            Some(dir) if quarter => {
+                let names = std::iter::once(RESOURCE_QUARTER_BED).chain(QUARTER_REPLICAS.iter().map(|r| r.0));
+                Ok(names.take(replicas).map(|n| dir.join(n)).collect())
+            }
+            Some(dir) => Ok(vec![dir.join(RESOURCE_BED)]),
             None => Err(variable(
                 "bed_file",
                 "no bed_file given and the host named no resources folder (fmuResourceLocation) holding the FMU's bed".into(),
             )),
         }
+    }
+
+    fn replicas(values: &[Value]) -> Result<usize, UnitError> {
+        let n = values[REFS.replicas].as_real();
+        if !(1.0..=64.0).contains(&n) {
+            return Err(variable("replicas", format!("parameter `replicas` = {n} is out of range: allowed [1, 64]")));
+        }
+        Ok(n as usize)
     }
 
     fn threads(values: &[Value]) -> Result<usize, UnitError> {
@@ -326,13 +367,7 @@ impl Model for BallIndentation {
     fn initialize(&mut self, values: &[Value], _t0: f64, _model_exchange: bool) -> Result<(), UnitError> {
         let setup = Self::setup(values)?;
         let threads = Self::threads(values)?;
-        let path = self.bed_path(values)?;
-        let (engine, scene) = file::load(&path, Some(threads)).map_err(|e| match e {
-            BedError::Setup(why) => variable("bed_file", format!("bed_file {}: {why}", path.display())),
-            other => UnitError::from(other),
-        })?;
-        self.check_bed(values, &scene, &path)?;
-        let indenter = self.indenter_pair(values, &scene)?;
+        let paths = self.bed_paths(values)?;
         let start = match setup.motion {
             Motion::Prescribed => None,
             Motion::Input => {
@@ -346,28 +381,40 @@ impl Model for BallIndentation {
                 Some(u)
             }
         };
-        let mut test = Indentation::new(engine, scene, setup, start, Some(&indenter))?;
-        let dt = values[REFS.time_step].as_real();
-        if dt != 0.0 {
-            // After the indenter is in: the limit covers its contacts too.
-            test.engine.set_time_step(&test.scene, dt)?;
+        let mut tests = Vec::with_capacity(paths.len());
+        for (k, path) in paths.iter().enumerate() {
+            let (engine, scene) = file::load(path, Some(threads)).map_err(|e| match e {
+                BedError::Setup(why) => variable("bed_file", format!("bed_file {}: {why}", path.display())),
+                other => UnitError::from(other),
+            })?;
+            self.check_bed(values, &scene, path)?;
+            let indenter = self.indenter_pair(values, &scene)?;
+            let mut test = Indentation::new(engine, scene, setup, start, Some(&indenter))?;
+            let dt = values[REFS.time_step].as_real();
+            if dt != 0.0 {
+                // After the indenter is in: the limit covers its contacts too.
+                test.engine.set_time_step(&test.scene, dt)?;
+            }
+            let p = test.engine.particles();
+            self.events.push(format!(
+                "{}bed {}: {} spheres{}, {:.4e} m high, time step {:.4e} s; indenter d = {:.4e} m, first touch at z = {:.6e} m, depth origin ({}) {:.4e} m below it{}",
+                if paths.len() > 1 { format!("replica {} of {}: ", k + 1, paths.len()) } else { String::new() },
+                path.display(),
+                p.len(),
+                match test.scene.die_sector {
+                    s if s < 1.0 => format!(" in {s} of the die (mirror planes: every output is the whole die's)"),
+                    _ => String::new(),
+                },
+                crate::bed::prepare::bed_height(p),
+                test.engine.dt(),
+                setup.indenter_diameter,
+                test.record.touch,
+                setup.depth_origin.name(),
+                test.record.touch - test.record.origin,
+                if paths.len() > 1 { format!("; the beds step one after the other, each on {threads} engine thread(s)") } else { String::new() }
+            ));
+            tests.push(test);
         }
-        let p = test.engine.particles();
-        self.events.push(format!(
-            "bed {}: {} spheres{}, {:.4e} m high, time step {:.4e} s; indenter d = {:.4e} m, first touch at z = {:.6e} m, depth origin ({}) {:.4e} m below it",
-            path.display(),
-            p.len(),
-            match test.scene.die_sector {
-                s if s < 1.0 => format!(" in {s} of the die (mirror planes: every output is the whole die's)"),
-                _ => String::new(),
-            },
-            crate::bed::prepare::bed_height(p),
-            test.engine.dt(),
-            setup.indenter_diameter,
-            test.record.touch,
-            setup.depth_origin.name(),
-            test.record.touch - test.record.origin
-        ));
         let r = 0.5 * setup.indenter_diameter;
         if setup.motion == Motion::Prescribed && setup.plateau.0 >= setup.max_penetration / r {
             self.events.push(format!(
@@ -376,7 +423,8 @@ impl Model for BallIndentation {
                 setup.max_penetration / r
             ));
         }
-        self.reported = Some(test.record.state);
+        let test = Replicas::new(tests);
+        self.reported = Some(test.state());
         self.test = Some(test);
         self.fresh = false;
         Ok(())
@@ -388,6 +436,7 @@ impl Model for BallIndentation {
         }
         let Some(test) = self.test.as_mut() else { return };
         let r = test.reading();
+        let over_beds = test.plateau_over_beds();
         for (vr, x) in [
             (REFS.indenter_force, r.force),
             (REFS.penetration_depth, r.depth),
@@ -403,6 +452,7 @@ impl Model for BallIndentation {
             (REFS.plateau_hardness, r.plateau.mean),
             (REFS.plateau_hardness_standard_error, r.plateau.standard_error),
             (REFS.depth_origin_offset, r.depth_origin_offset),
+            (REFS.plateau_hardness_standard_error_over_beds, over_beds.standard_error),
         ] {
             values[vr] = Value::Real(x);
         }
@@ -426,7 +476,7 @@ impl Model for BallIndentation {
 
     fn do_step(&mut self, values: &[Value], _t: f64, h: f64) -> Result<(), UnitError> {
         let test = self.test.as_mut().ok_or(UnitError::NotInitialized)?;
-        let input = match test.setup.motion {
+        let input = match test.first().setup.motion {
             Motion::Prescribed => None,
             Motion::Input => Some(Self::inputs(values)?),
         };
@@ -434,37 +484,50 @@ impl Model for BallIndentation {
         test.advance(h, input)?;
         self.fresh = false;
         // Every change of the test's state since the last report, in order (one step may hold several).
-        let d = test.setup.indenter_diameter;
-        while let Some(from) = self.reported.filter(|&s| s != test.record.state) {
-            let next = match (from, test.record.state) {
+        let d = test.first().setup.indenter_diameter;
+        let beds = test.len();
+        let of_beds = if beds > 1 { format!(" (means over the {beds} beds)") } else { String::new() };
+        while let Some(from) = self.reported.filter(|&s| s != test.state()) {
+            let next = match (from, test.state()) {
                 (TestState::Loading, _) => TestState::Unloading,
                 (TestState::Unloading, TestState::Loading) => TestState::Loading,
                 _ => TestState::Done,
             };
             self.events.push(match next {
-                TestState::Loading => format!("loading again at h = {:.4e} m", test.depth()),
+                TestState::Loading => format!("loading again at h = {:.4e} m{of_beds}", test.mean_of(Indentation::depth)),
                 TestState::Unloading => {
                     let p = test.plateau();
-                    let rec = &test.record;
-                    format!(
-                        "unloading from h_max = {:.4e} m, F_max = {:.4e} N (the loading curve's force there, read over its last tenth; largest sample {:.4e} N); plateau hardness {:.4e} +- {:.2e} Pa (standard error, {} samples, correlation time {:.1} samples{})",
-                        rec.h_max,
-                        rec.turn_force(d),
-                        rec.f_max,
+                    let mut text = format!(
+                        "unloading from h_max = {:.4e} m, F_max = {:.4e} N (the loading curve's force there, read over its last tenth; largest sample {:.4e} N); plateau hardness {:.4e} +- {:.2e} Pa (standard error, {} samples, correlation time {:.1} samples{}){of_beds}",
+                        test.mean_of(|t| t.record.h_max),
+                        test.mean_of(|t| t.record.turn_force(d)),
+                        test.mean_of(|t| t.record.f_max),
                         p.mean,
                         p.standard_error,
                         p.samples,
                         p.correlation_time,
                         if p.reliable() { "" } else { ": fewer than 50 correlation times, the error is itself uncertain" }
-                    )
+                    );
+                    if beds > 1 {
+                        let each: Vec<String> = test.plateaus().iter().map(|p| format!("{:.4e}", p.mean)).collect();
+                        let o = test.plateau_over_beds();
+                        text += &format!(
+                            "; over the beds {:.4e} +- {:.2e} Pa (standard error from their spread, SD {:.2e} Pa; each bed: {} Pa)",
+                            o.mean,
+                            o.standard_error,
+                            o.standard_deviation,
+                            each.join(", ")
+                        );
+                    }
+                    text
                 }
                 TestState::Done => {
-                    let rec = &test.record;
-                    let how = if rec.contact_depth.is_some() { "from the tangent to the unloading curve" } else { "= h_max: the bed let go of the indenter too fast for a tangent" };
+                    let all = test.tests.iter().all(|t| t.record.contact_depth.is_some());
+                    let how = if all { "from the tangent to the unloading curve" } else { "= h_max: the bed let go of the indenter too fast for a tangent" };
                     format!(
-                        "the indenter has left the bed: h_c = {:.4e} m ({how}), hardness F_max/A(h_c) = {:.4e} Pa",
-                        rec.contact_depth_or_max(),
-                        rec.hardness_after_turn(d)
+                        "the indenter has left the bed: h_c = {:.4e} m ({how}), hardness F_max/A(h_c) = {:.4e} Pa{of_beds}",
+                        test.mean_of(|t| t.record.contact_depth_or_max()),
+                        test.mean_of(|t| t.record.hardness_after_turn(d))
                     )
                 }
             });
@@ -474,7 +537,7 @@ impl Model for BallIndentation {
     }
 
     fn save(&self) -> Result<Vec<u8>, UnitError> {
-        Ok(self.test.as_ref().map(Indentation::save).unwrap_or_default())
+        Ok(self.test.as_ref().map(Replicas::save).unwrap_or_default())
     }
 
     fn take_events(&mut self) -> Vec<String> {
@@ -487,8 +550,8 @@ impl Model for BallIndentation {
             return Ok(());
         }
         let threads = Self::threads(values)?;
-        let test = Indentation::restore(bytes, Some(threads)).map_err(|e| UnitError::SavedState(e.to_string()))?;
-        self.reported = Some(test.record.state);
+        let test = Replicas::restore(bytes, threads).map_err(|e| UnitError::SavedState(e.to_string()))?;
+        self.reported = Some(test.state());
         self.test = Some(test);
         self.fresh = false;
         Ok(())
