@@ -302,6 +302,16 @@ impl AnyEngine {
         with_engine!(self, e => e.release_disturbed(threshold))
     }
 
+    /// See `Engine::list_reference`.
+    pub fn list_reference(&self) -> (Vec<Vec3>, Vec<Vec3>) {
+        with_engine!(self, e => e.list_reference())
+    }
+
+    /// See `Engine::rebuild_at`.
+    pub fn rebuild_at(&mut self, reference: &[Vec3], wall_reference: &[Vec3]) -> bool {
+        with_engine!(self, e => e.rebuild_at(reference, wall_reference))
+    }
+
     pub fn held_reference(&self) -> Vec<Vec3> {
         with_engine!(self, e => e.held_reference().to_vec())
     }

@@ -651,6 +651,7 @@ impl Indentation {
     /// The whole state as bytes: the bed (with the indenter, every contact's memory and the last
     /// forces, `bed::file`) and the record.
     pub fn save(&self) -> Vec<u8> {
+        let (list_reference, wall_reference) = self.engine.list_reference();
         let saved = Saved {
             bed: file::encode(&self.engine.to_file(&self.scene)),
             setup: self.setup,
@@ -662,6 +663,8 @@ impl Indentation {
             indenter_pair: Value::Object(self.indenter_pair.clone()).to_string(),
             indenter_rolling_friction: self.indenter_rolling_friction,
             die_pair: self.die_pair.as_ref().map(|m| Value::Object(m.clone()).to_string()),
+            list_reference,
+            wall_reference,
         };
         crate::codec::to_bytes(&saved).expect("an indentation state serializes")
     }
@@ -699,6 +702,9 @@ impl Indentation {
                 return Err(BedError::Setup("the saved indentation state has no reference forces for its held spheres".into()));
             }
             engine.restore_held(saved.held, saved.held_reference);
+        }
+        if !engine.rebuild_at(&saved.list_reference, &saved.wall_reference) {
+            return Err(BedError::Setup("the saved indentation state's list positions do not match its bed".into()));
         }
         Ok(Indentation {
             engine,
@@ -741,6 +747,10 @@ struct Saved {
     indenter_pair: String,
     indenter_rolling_friction: f64,
     die_pair: Option<String>,
+    /// The positions of the engine's last list build, the spheres' and the walls' (`Engine::rebuild_at`):
+    /// a restored test rebuilds its list there, so it continues bit for bit on any number of threads.
+    list_reference: Vec<Vec3>,
+    wall_reference: Vec<Vec3>,
 }
 
 /// h_c = h_0 - F_0 / S: where the tangent to the unloading curve at its start (h_0, F_0) = `points[0]`

@@ -100,9 +100,12 @@ def _outputs(indentation, fmu):
     return fmu.getReal([indentation.vr[n] for n in names])
 
 
-def test_a_saved_state_continues_bit_for_bit(indentation):
+@pytest.mark.parametrize("threads", [1, 2])
+def test_a_saved_state_continues_bit_for_bit(indentation, threads):
+    """On two threads too: a restored bed rebuilds its Verlet list where the running one last built it, so
+    its partition over threads, and each sphere's sum of forces, is the running one's."""
     fmu = indentation.slave("saved")
-    indentation.initialize(fmu)
+    indentation.initialize(fmu, {"threads": threads})
     t, h = 0.0, 2e-4
     for _ in range(20):
         fmu.doStep(t, h)

@@ -56,11 +56,8 @@ def test_the_replicas_outputs_are_the_means_of_the_single_runs(indentation, quic
 
 
 def test_a_saved_state_of_replicas_continues_bit_for_bit(indentation, quick_bed, second_bed):
-    # One thread, as test_ball_indentation's saved-state test: with two, a restored bed's kinetic energy
-    # (one bed or several) can differ from the unrestored one's in its last bit while every force stays
-    # the same (docs/units/BallIndentation.md, "Saved states": the likely cause and the fix).
     fmu = indentation.slave("replicas-saved")
-    indentation.initialize(fmu, {"bed_file": f"{quick_bed['bed_file']};{second_bed}", "replicas": 2, "threads": 1})
+    indentation.initialize(fmu, {"bed_file": f"{quick_bed['bed_file']};{second_bed}", "replicas": 2, "threads": 2})
     names = ["indenter_force", "plateau_hardness", "plateau_hardness_standard_error_over_beds", "kinetic_energy"]
     vrs = [indentation.vr[n] for n in names]
     t, h = 0.0, 1e-3

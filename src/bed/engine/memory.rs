@@ -18,6 +18,33 @@ pub struct WallContacts<H> {
 }
 
 impl<L: BedLaw> Engine<L> {
+    /// The positions of the last list build: the spheres' and the walls'.
+    pub fn list_reference(&self) -> (Vec<Vec3>, Vec<Vec3>) {
+        (self.list.reference().to_vec(), self.wall_reference.clone())
+    }
+
+    /// Rebuilds the lists as a running engine built them at its last rebuild, from the positions of that
+    /// build (`list_reference`), carrying every contact's memory across. A restored engine then has the
+    /// running one's list, partition over threads and rebuild schedule: with two threads a sphere's
+    /// forces are summed in part order, and a list built at the restored positions gave another
+    /// partition, so another last bit. Refused (false, nothing changed) if the lengths do not match.
+    pub fn rebuild_at(&mut self, reference: &[Vec3], wall_reference: &[Vec3]) -> bool {
+        if reference.len() != self.particles.len() || wall_reference.len() != self.walls.len() {
+            return false;
+        }
+        let position = std::mem::replace(&mut self.particles.position, reference.to_vec());
+        let walls: Vec<Vec3> = self.walls.iter().map(|w| w.position).collect();
+        for (w, &r) in self.walls.iter_mut().zip(wall_reference) {
+            w.position = r;
+        }
+        self.rebuild();
+        self.particles.position = position;
+        for (w, p) in self.walls.iter_mut().zip(walls) {
+            w.position = p;
+        }
+        true
+    }
+
     /// Rebuilds the Verlet list and the wall contact lists, carrying every contact's memory across.
     pub fn rebuild(&mut self) {
         let old_start = std::mem::take(&mut self.list.start);
