@@ -6,6 +6,8 @@ three whole beds at the seed's speed, 8408 +- 313 Pa).
 
     .venv/bin/python benches/indentation_over_beds.py [--replicas 2 3] [--threads 2]
         [--fmu target/fmu/BallIndentation.fmu] [--csv docs/data/default_over_beds.csv]
+    .venv/bin/python benches/indentation_over_beds.py --from-csv docs/data/default_over_beds.csv
+        --plot docs/figures/default_over_beds.png
 """
 
 import argparse
@@ -60,7 +62,15 @@ def main():
     ap.add_argument("--threads", type=int, default=2)
     ap.add_argument("--fmu", type=Path, default=REPO / "target" / "fmu" / "BallIndentation.fmu")
     ap.add_argument("--csv", type=Path)
+    ap.add_argument("--from-csv", type=Path, help="plot a CSV this script wrote instead of running")
+    ap.add_argument("--plot", type=Path, help="each bed's plateau and the 95 % interval over the beds against the reference")
     args = ap.parse_args()
+    if args.from_csv:
+        with open(args.from_csv, newline="") as fh:
+            rows = list(csv.DictReader(fh))
+        if args.plot:
+            plot(rows, args.plot)
+        return
     rows = []
     for n in args.replicas:
         row = run(args.fmu, n, args.threads)
@@ -78,6 +88,45 @@ def main():
             for r in rows:
                 w.writerow({k: (f"{v:.6g}" if isinstance(v, float) else v) for k, v in r.items()})
         print(f"wrote {args.csv}")
+    if args.plot:
+        plot([{k: str(v) for k, v in r.items()} for r in rows], args.plot)
+
+
+def plot(rows: list, path: Path):
+    """Each bed's plateau (dots) and the mean over the beds with its 95 % interval (bars), one column per
+    run, the reference of record as a band."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(7.5, 4.2))
+    ax.axhspan(REFERENCE_PA - 313, REFERENCE_PA + 313, color="0.85", label="reference of record: 3 whole beds at the seed's speed, +- its standard error")
+    ax.axhline(REFERENCE_PA, color="0.4", lw=1)
+    labels = []
+    for k, r in enumerate(rows):
+        each = [float(x) for x in r["each_bed_Pa"].split()]
+        ax.plot([k] * len(each), each, "o", color="tab:blue", ms=5, alpha=0.7, label="each bed" if k == 0 else None)
+        half = float(r["half_width_95_Pa"])
+        mean = float(r["plateau_Pa"])
+        if half == half:  # not NaN: two beds or more
+            labelled = any(t.startswith("mean") for t in ax.get_legend_handles_labels()[1])
+            ax.errorbar([k + 0.15], [mean], yerr=[[min(half, mean)], [half]], fmt="s", color="tab:red", capsize=4,
+                        label=None if labelled else "mean over the beds, 95 % interval (Student's t, n - 1 degrees of freedom)")
+        else:
+            ax.plot([k + 0.15], [mean], "s", color="tab:red")
+        how = "side by side" if r["beds_step"].startswith("side") else ("one bed" if r["beds_step"] == "one bed" else "one after the other")
+        labels.append(f"{r['replicas']} bed(s)\n{how}\n{float(r['wall_s']):.0f} s")
+    ax.set_xticks(range(len(rows)))
+    ax.set_xticklabels(labels, fontsize=8)
+    ax.set_ylim(0, 20000)
+    ax.set_ylabel("plateau hardness, h/r 0.1-0.2 [Pa]")
+    ax.set_title("BallIndentation's default test on the shipped quarter beds (replicas)", fontsize=10)
+    ax.legend(fontsize=8, loc="upper left")
+    fig.tight_layout()
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=120)
+    print(f"wrote {path}")
 
 
 if __name__ == "__main__":
