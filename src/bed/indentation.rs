@@ -137,7 +137,8 @@ pub fn held_outside(p: &Particles, setup: &Setup, touch: f64, mean_diameter: f64
 }
 
 /// Where the test is.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+/// Ordered as the test runs: loading before unloading before done.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, serde::Serialize, serde::Deserialize)]
 pub enum TestState {
     Loading = 0,
     Unloading = 1,

@@ -78,7 +78,7 @@ pub fn combined_plateau(plateaus: &[MeanEstimate]) -> MeanEstimate {
 
 /// The state of the least advanced bed.
 fn least_advanced(states: impl Iterator<Item = TestState>) -> TestState {
-    states.min_by_key(|s| *s as u8).unwrap_or(TestState::Loading)
+    states.min().unwrap_or(TestState::Loading)
 }
 
 /// The test on each bed.

@@ -13,7 +13,7 @@ use super::variables::{Value, VarType, Variable};
 use super::{Model, UnitError, UnitInfo};
 use crate::bed::file;
 use crate::bed::indentation::{DepthOrigin, Indentation, Motion, Setup, TestState, FAST, PLATEAU};
-use crate::bed::replicas::Replicas;
+use crate::bed::replicas::{over_beds, Replicas};
 use crate::bed::{BedError, BedScene};
 use crate::scene::{Key, KeyDefault, KEYS};
 use serde_json::{Map, Value as Json};
@@ -509,8 +509,9 @@ impl Model for BallIndentation {
                         if p.reliable() { "" } else { ": fewer than 50 correlation times, the error is itself uncertain" }
                     );
                     if beds > 1 {
-                        let each: Vec<String> = test.plateaus().iter().map(|p| format!("{:.4e}", p.mean)).collect();
-                        let o = test.plateau_over_beds();
+                        let means: Vec<f64> = test.plateaus().iter().map(|p| p.mean).collect();
+                        let each: Vec<String> = means.iter().map(|m| format!("{m:.4e}")).collect();
+                        let o = over_beds(&means);
                         text += &format!(
                             "; over the beds {:.4e} +- {:.2e} Pa (standard error from their spread, SD {:.2e} Pa; each bed: {} Pa)",
                             o.mean,
