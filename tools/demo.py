@@ -221,7 +221,7 @@ def indentation(fmu, out):
     p0, p1 = float(start["plateau_start"]), float(start["plateau_end"])
     se = last["plateau_hardness_standard_error"]
     print(f"  plateau hardness (mean F/A(h) while loading at {p0} <= h/r <= {p1}, 004 Figs. 5.2-5.3): {last['plateau_hardness']:.4g} "
-          f"+- {se:.2g} Pa (standard error from this run's fluctuations, {last['plateau_samples']} samples; beds differ by about 6 % more), "
+          f"+- {se:.2g} Pa (standard error from this run's fluctuations, {last['plateau_samples']} samples; quarter beds differ by a further 8-12 %: docs/indentation.md; replicas = 3 measures it), "
           f"unconfined yield strength {last['plateau_hardness'] / float(start['constraint_factor']):.4g} Pa (C = {start['constraint_factor']})")
     how = "from the tangent to the unloading curve" if last["contact_depth_from_tangent"] else "= h_max: the bed let go of the indenter too fast for a tangent"
     print(f"  after unloading: F_max {last['force_at_turn']:.4f} N (the loading curve at the turn; largest output sample "
