@@ -41,8 +41,14 @@ SETTINGS = [
     ("quarter, gamma* 0.01", 0.01, 240, 45,
      {"quarter 1": ["quarter1_gamma0.01_full_dt2.5e-7.csv", "quarter1_gamma0.01_full_dt2.4975e-7.csv"],
       "quarter 2": ["quarter2_gamma0.01_full_dt2.5e-7.csv"]}),
+    # Beds 2 and 3 are the FMU's replica beds (fill seeds 2 and 3); `over_beds:K:T` is bed K's plateau in
+    # docs/data/default_over_beds.csv's three-bed run on T threads per bed (one and two threads step
+    # different trajectories, so they are two runs of the bed; bed 2's two-thread run is the command
+    # line's quarter2 run sampled by the FMU, so it is not counted twice).
     ("quarter, gamma* 0.02 (the default)", 0.02, 145, 45,
-     {"quarter 1": ["default_replicas.csv"], "quarter 2": ["quarter2_gamma0.02_full_dt2.5e-7.csv"]}),
+     {"quarter 1": ["default_replicas.csv", "over_beds:1:1"],
+      "quarter 2": ["quarter2_gamma0.02_full_dt2.5e-7.csv", "over_beds:2:1"],
+      "quarter 3": ["over_beds:3:2", "over_beds:3:1"]}),
 ]
 
 
@@ -51,6 +57,13 @@ def plateau(name):
     if name == "default_replicas.csv":
         with open(os.path.join(DATA, name)) as f:
             return [float(r["plateau_hardness"]) for r in csv.DictReader(f)]
+    if name.startswith("over_beds:"):
+        _, bed, threads = name.split(":")
+        # Three beds one after the other on two threads each, or side by side on one thread each.
+        kind = "one after the other" if threads == "2" else "side by side"
+        with open(os.path.join(DATA, "default_over_beds.csv")) as f:
+            row = next(r for r in csv.DictReader(f) if r["replicas"] == "3" and r["beds_step"].startswith(kind))
+        return [float(row["each_bed_Pa"].split()[int(bed) - 1])]
     return [run_plateau(os.path.join(RUNS, name))[0]]
 
 
