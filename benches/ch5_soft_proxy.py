@@ -12,10 +12,11 @@ from pathlib import Path
 
 # 004 Sec. 5.2 on the 13 mm bed in the 39 mm die: about 8 kPa with the 13, 16 and 19 mm indenters
 # (Figs. 5.3-5.4), about 10 kPa with 22 and 25 mm (Fig. 5.6, the die wall near).
-# In the 45 mm die (Figs. 5.12, 5.15): about 6 kPa on the 20 mm bed with the 13, 16, 19 and 22 mm indenters.
+# In the 45 mm die (Figs. 5.12, 5.15): about 6 kPa on the 20 mm bed with the 13, 16, 19 and 22 mm indenters,
+# and on the 30 and 50 mm beds with the 13 mm indenter.
 # The seed ran no 13 mm bed in that die (its 13 mm bed is the 39 mm die's): d45h13 has no seed level.
 SEED_KPA = {13: 8.0, 16: 8.0, 19: 8.0, 22: 10.0, 25: 10.0}
-SEED_KPA_45 = {"d45h13": float("nan"), "d45h20": 6.0}
+SEED_KPA_45 = {"d45h13": float("nan"), "d45h20": 6.0, "d45h30": 6.0, "d45h50": 6.0}
 INDENTER = re.compile(r"(?P<mm>\d+)mm$")
 RESULT = re.compile(
     r"plateau hardness (?P<plateau>[-+.\deE]+) \+- (?P<se>[-+.\deE]+) Pa .*?"

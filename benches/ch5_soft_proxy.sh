@@ -9,7 +9,7 @@
 # 0.35-0.5 (004 Figs. 5.3-5.4). Two fill seeds per candidate. A row whose log holds a result is not run
 # again, so the study can be stopped and resumed.
 #
-#   bash benches/ch5_soft_proxy.sh OUT_DIR [BIN]
+#   bash benches/ch5_soft_proxy.sh OUT_DIR [BIN]     (ONLY=REGEX: only the rows whose name matches)
 #   then: python benches/ch5_soft_proxy.py OUT_DIR --csv docs/data/ch5_soft_proxy.csv
 #
 # Candidates (004 Sec. 5.1 read against what we run):
@@ -27,6 +27,7 @@
 #   defaultDDmm  the seed's other indenters, DD = 16, 19, 22, 25 mm, on the default beds 1 and 2
 #   whole    the defaults on the whole 39 mm die (16000 spheres), the 13 mm indenter
 #   d45h13, d45h20[_DDmm]  the defaults on a quarter of the 45 mm die, 13 and 20 mm beds (13: not a seed row)
+#   d45h30, d45h50  the same on the 45 mm die's 30 and 50 mm beds, the 13 mm indenter (Fig. 5.12)
 # The other rows' scenes name the interface energy and the walls' contact for the indenter explicitly,
 # so they mean the same whatever the bed scene's defaults.
 set -euo pipefail
@@ -39,13 +40,15 @@ T=2 # threads; the first `default` rows ran on one, beside a stiff test
 D=0.013 # indenter diameter [m]; every test goes to h/r 0.5
 scene() { # name gamma seed; gamma "default": the bed scene's own interface energy and indenter;
     # "whole": the same on the whole die (scenes/bed_004_indentation.json, 16000 spheres); "d45_13",
-    # "d45_20": a quarter of the 45 mm die's 13 and 20 mm beds (scenes/bed_004_ch5_45mm_*.json)
-    case "$2" in default | whole | d45_13 | d45_20)
+    # "d45_20", "d45_30", "d45_50": a quarter of the 45 mm die's 13-50 mm beds (scenes/bed_004_ch5_45mm_*.json)
+    case "$2" in default | whole | d45_13 | d45_20 | d45_30 | d45_50)
         local count=4000 sector='"die_sector": 0.25,' of=bed_004_indentation_quarter.json die=''
         case "$2" in
             whole) count=16000 sector='' of=bed_004_indentation.json ;;
             d45_13) count=5325 of="bed_004_ch5_45mm_13mm.json, a quarter" die='"die_diameter": 0.045,' ;;
             d45_20) count=8200 of="bed_004_ch5_45mm_20mm.json, a quarter" die='"die_diameter": 0.045,' ;;
+            d45_30) count=11750 of="bed_004_ch5_45mm_30mm.json, a quarter" die='"die_diameter": 0.045,' ;;
+            d45_50) count=19575 of="bed_004_ch5_45mm_50mm.json, a quarter" die='"die_diameter": 0.045, "die_height": 0.1,' ;;
         esac
         cat >"$OUT/$1.json" <<JSON
 {
@@ -69,10 +72,12 @@ JSON
 }
 JSON
 }
-bed() { # name gamma seed
+bed() { # name gamma seed: the bed's scene; `run` prepares the bed when a row needs it
+    [ -f "$OUT/$1.pfbed" ] || scene "$1" "$2" "$3"
+}
+prepare() { # name: a bed whose rows are all done may be deleted and is not prepared again
     local b="$OUT/$1.pfbed"
     [ -f "$b" ] && return
-    scene "$1" "$2" "$3"
     echo "$(date +%T) prepare $1" >&2
     "$BIN" bed prepare "$OUT/$1.json" --threads "$T" -o "$b.part" >"$OUT/$1.prepare.log" 2>&1 && mv "$b.part" "$b"
 }
@@ -80,6 +85,8 @@ M1='{"friction_coefficient": 0.15, "restitution_coefficient": 0.5, "wall_youngs_
 run() { # name bed [extra args...]
     local name=$1 b="$OUT/$2.pfbed" log="$OUT/$1.log"; shift 2
     if [ -f "$log" ] && grep -q "plateau hardness" "$log"; then return; fi
+    [[ $name =~ ${ONLY:-.} ]] || return 0
+    prepare "$(basename "$b" .pfbed)"
     echo "$(date +%T) indent $name" >&2
     { echo "bed=$(basename "$b") diameter=$D args=$*"
       "$BIN" bed indent "$b" --diameter "$D" --max-penetration "$(python3 -c "print($D / 4)")" --speed 0.013 --threads "$T" --every 1e-3 \
@@ -126,4 +133,12 @@ for s in 1 2; do
     run "d45h13_s$s" "d45_13_s$s"
     run "d45h20_s$s" "d45_20_s$s"
     for d in 16 19 22; do D=0.0$d run "d45h20_${d}mm_s$s" "d45_20_s$s"; done
+done
+# The 45 mm die's deeper beds (004 Sec. 5.2, Fig. 5.12: 20, 30 and 50 mm all about 6 kPa with the 13 mm
+# indenter, "a relatively constant hardness", against about 8 kPa on the 13 mm bed in the 39 mm die).
+for s in 1 2; do
+    bed "d45_30_s$s" d45_30 "$s"
+    run "d45h30_s$s" "d45_30_s$s"
+    bed "d45_50_s$s" d45_50 "$s"
+    run "d45h50_s$s" "d45_50_s$s"
 done
