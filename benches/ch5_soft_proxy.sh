@@ -36,7 +36,7 @@ OUT=${1:?usage: ch5_soft_proxy.sh OUT_DIR [BIN]}
 BIN=$(realpath "${2:-target/release/powderfmu}")
 [ -x "$BIN" ] || cargo build --locked --quiet --release --bin powderfmu
 mkdir -p "$OUT"
-T=2 # threads; the first `default` rows ran on one, beside a stiff test
+T=${THREADS:-2} # threads (THREADS=N to change); the first `default` rows ran on one, beside a stiff test
 D=0.013 # indenter diameter [m]; every test goes to h/r 0.5
 scene() { # name gamma seed; gamma "default": the bed scene's own interface energy and indenter;
     # "whole": the same on the whole die (scenes/bed_004_indentation.json, 16000 spheres); "d45_13",
@@ -111,7 +111,7 @@ for s in 1 2; do
 done
 # Two more beds of the defaults, and the seed's other indenters on the first two (004 Figs. 5.4, 5.6:
 # about 8 kPa with 16 and 19 mm, about 10 kPa with 22 and 25 mm, the die wall).
-T=2
+T=${THREADS:-2}
 for s in 3 4; do
     bed "default_s$s" default "$s"
     run "default_s$s" "default_s$s"
