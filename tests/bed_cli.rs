@@ -150,6 +150,10 @@ fn indent_change_lays_a_scene_over_the_same_bed() {
     let (code, err, plain) = indent("plain.csv", None);
     assert_eq!(code, 0, "{err}");
     assert!(plain.lines().count() > 10, "{plain}");
+    // Off a terminal the progress is a line per 5 %: loading, unloading, done, each with the time left.
+    let progress: Vec<&str> = err.lines().filter(|l| l.contains("% ") && l.contains("left ~")).collect();
+    assert!(progress.iter().any(|l| l.contains("loading") && l.contains("h/r")), "{err}");
+    assert!(progress.last().is_some_and(|l| l.starts_with("100% done")), "{err}");
     // The shipped bed's rolling friction is 0.01 (scenes/bed_004_ch6_quarter.json).
     let (code, err, same) = indent("same.csv", Some(r#"{"rolling_friction": 0.01}"#));
     assert_eq!(code, 0, "{err}");

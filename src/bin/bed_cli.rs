@@ -200,8 +200,8 @@ pub fn run(command: BedCommand) -> Result<(), String> {
     }
 }
 
-/// The preparation's progress: an indicatif bar on a terminal (with the time left), or a plain line per
-/// 5 % elsewhere (logs, CI), which a reader of a log can follow.
+/// The progress of a preparation or an indentation: an indicatif bar on a terminal (with the time left),
+/// or a plain line per 5 % elsewhere (logs, CI), which a reader of a log can follow.
 struct Bar {
     start: Instant,
     bar: Option<ProgressBar>,
@@ -223,17 +223,22 @@ impl Bar {
     }
 
     fn show(&mut self, p: &Progress) {
-        let what = format!("{:<11} t = {:.4e} s  {}", p.phase, p.time, p.detail);
+        self.show_phase(p.phase, p.fraction, p.time, &p.detail);
+    }
+
+    /// `fraction` of the whole job done, in [0, 1]; `time` the simulated time [s].
+    fn show_phase(&mut self, phase: &str, fraction: f64, time: f64, detail: &str) {
+        let what = format!("{phase:<11} t = {time:.4e} s  {detail}");
         match &self.bar {
             Some(b) => {
-                b.set_position((p.fraction * 1000.0) as u64);
+                b.set_position((fraction * 1000.0) as u64);
                 b.set_message(what);
             }
-            None if p.fraction >= self.last_line + 0.05 || p.fraction >= 1.0 => {
-                self.last_line = p.fraction;
+            None if fraction >= self.last_line + 0.05 || fraction >= 1.0 => {
+                self.last_line = fraction;
                 let elapsed = self.start.elapsed().as_secs_f64();
-                let left = if p.fraction > 0.01 { elapsed * (1.0 - p.fraction) / p.fraction } else { f64::NAN };
-                eprintln!("{:3.0}% {what}  elapsed {}  left ~{}", 100.0 * p.fraction, clock(elapsed), clock(left));
+                let left = if fraction > 0.01 { elapsed * (1.0 - fraction) / fraction } else { f64::NAN };
+                eprintln!("{:3.0}% {what}  elapsed {}  left ~{}", 100.0 * fraction, clock(elapsed), clock(left));
             }
             None => {}
         }
@@ -588,10 +593,21 @@ fn indent_cmd(a: IndentArgs) -> Result<(), String> {
     let started = Instant::now();
     let mut t = 0.0;
     let limit = 4.0 * setup.max_penetration / setup.indentation_speed + 1.0;
+    let mut bar = Bar::new();
     loop {
         test.advance(every, None).map_err(|e| e.to_string())?;
         t += every;
         let r = test.reading();
+        // Loading to h_max is the first half of the job, unloading at the same speed the second (the bed
+        // often lets go sooner, so the bar then jumps to the end).
+        let to_go = (r.depth / setup.max_penetration).clamp(0.0, 1.0);
+        let (phase, fraction) = match r.state {
+            TestState::Loading => ("loading", 0.5 * to_go),
+            TestState::Unloading => ("unloading", (1.0 - 0.5 * to_go).min(0.99)),
+            TestState::Done => ("done", 1.0),
+        };
+        let detail = format!("h/r {:.3}  F {:.4e} N", r.dimensionless_depth, r.force);
+        bar.show_phase(phase, fraction, t, &detail);
         csv += &format!(
             "{t:.6e},{:.6e},{:.5},{:.6e},{:.6e},{:.6e},{:.6e},{},{:.4e},{}\n",
             r.depth,
@@ -605,6 +621,7 @@ fn indent_cmd(a: IndentArgs) -> Result<(), String> {
             r.state as u8
         );
         if r.state == TestState::Done || t > limit {
+            bar.finish();
             let wall = started.elapsed().as_secs_f64();
             let particle_steps = test.engine.particles().len() as f64 * test.record.steps as f64;
             let moving = test.engine.particles().held.iter().filter(|&&h| !h).count();
