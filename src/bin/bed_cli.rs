@@ -600,10 +600,10 @@ fn indent_cmd(a: IndentArgs) -> Result<(), String> {
         let r = test.reading();
         // Loading to h_max is the first half of the job, unloading at the same speed the second (the bed
         // often lets go sooner, so the bar then jumps to the end).
-        let to_go = (r.depth / setup.max_penetration).clamp(0.0, 1.0);
+        let depth_fraction = (r.depth / setup.max_penetration).clamp(0.0, 1.0);
         let (phase, fraction) = match r.state {
-            TestState::Loading => ("loading", 0.5 * to_go),
-            TestState::Unloading => ("unloading", (1.0 - 0.5 * to_go).min(0.99)),
+            TestState::Loading => ("loading", 0.5 * depth_fraction),
+            TestState::Unloading => ("unloading", (1.0 - 0.5 * depth_fraction).min(0.99)),
             TestState::Done => ("done", 1.0),
         };
         let detail = format!("h/r {:.3}  F {:.4e} N", r.dimensionless_depth, r.force);
