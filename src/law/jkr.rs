@@ -87,6 +87,16 @@ impl JkrCurve {
         df_da / dalpha_da
     }
 
+    /// The repulsive (Hertz) part 4 E* a^3 / (3 R) of a force f on the stable branch (a above the
+    /// pull-off radius): with x = a^(3/2), f = k x^2 - c x (k = 4 E*/(3R), c = 2 E* b) is a quadratic whose
+    /// larger root is that branch. For f below -f_c, off the curve, the root at the pull-off radius.
+    pub fn repulsive_part(&self, force: f64) -> f64 {
+        let k = 4.0 * self.youngs_modulus / (3.0 * self.radius);
+        let c = 2.0 * self.youngs_modulus * self.b;
+        let x = (c + (c * c + 4.0 * k * force).max(0.0).sqrt()) / (2.0 * k);
+        k * x * x
+    }
+
     /// Pull-off force f_c = 1.5 pi Gamma R (000 Eq. 5).
     pub fn pull_off_force(&self) -> f64 {
         1.5 * PI * self.surface_energy * self.radius

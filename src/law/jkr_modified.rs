@@ -1,6 +1,13 @@
 //! The EDEM-style modified JKR law (`004` Sec. 5.1.1, Fig. 5.1): the JKR curve for alpha > 0 only.
 //! At contact the force drops to -8/9 f_c as in JKR; on unloading the contact breaks as soon as the
 //! overlap is zero, so the extra adhesion work of JKR below alpha = 0 is never done. No history.
+//!
+//! `jkr_friction_limit` chooses the normal force of the Coulomb limit: `pull_off`, F_n + 2 f_c (Thornton
+//! and Yin's limit for adhesive contacts, 004 Eq. 3.49, as the `jkr` law), or `repulsive`, the repulsive
+//! (Hertz) part of the JKR force 4 E* a^3 / (3 R*), which is how EDEM's JKR cohesion limits its friction
+//! (its user manual: "it depends on the positive repulsive part of JKR normal force"). 004 ran its
+//! Ch. 5 beds in EDEM. At zero net force the repulsive part is 4 f_c, twice the pull-off reading's 2 f_c,
+//! and it grows with the contact (docs/models.md).
 
 use super::jkr::{on_curve_at, JkrCurve};
 use super::params::Effective;
@@ -8,16 +15,38 @@ use super::tangential::TangentialModel;
 use super::{LawInfo, LawOptions};
 use super::{Branch, Evaluation, NormalLaw};
 use crate::error::ParamError;
-use crate::scene::NoOptions;
+use crate::scene::Range;
+
+crate::choice_enum! {
+    /// The normal force a modified JKR contact's Coulomb limit is proportional to.
+    pub enum JkrFrictionLimit {
+        /// F_n + 2 f_c (004 Eq. 3.49, Thornton and Yin; the `jkr` law's).
+        PullOff = "pull_off",
+        /// The repulsive part of the JKR force, 4 E* a^3 / (3 R*) (EDEM's JKR cohesion).
+        Repulsive = "repulsive",
+    }
+}
+
+crate::scene_options! {
+    /// The modified JKR law's own scene keys.
+    pub struct JkrModifiedOptions {
+        jkr_friction_limit: choice(JkrFrictionLimit::PullOff), "-", Range::Names, "the normal force of a jkr_modified contact's Coulomb limit mu N: pull_off, N = F_n + 2 f_c (004 Eq. 3.49), or repulsive, N = 4 E* a^3/(3 R*), the Hertz part of the JKR force (EDEM's JKR cohesion, with which 004 ran Ch. 5)";
+    }
+}
 
 #[derive(Debug, Clone, PartialEq)]
 pub struct JkrModified {
     pub curve: JkrCurve,
+    pub friction_limit: JkrFrictionLimit,
 }
 
 impl JkrModified {
     pub fn new(radius: f64, youngs_modulus: f64, surface_energy: f64) -> JkrModified {
-        JkrModified { curve: JkrCurve::new(radius, youngs_modulus, surface_energy) }
+        JkrModified::with_friction_limit(radius, youngs_modulus, surface_energy, JkrFrictionLimit::PullOff)
+    }
+
+    pub fn with_friction_limit(radius: f64, youngs_modulus: f64, surface_energy: f64, friction_limit: JkrFrictionLimit) -> JkrModified {
+        JkrModified { curve: JkrCurve::new(radius, youngs_modulus, surface_energy), friction_limit }
     }
 }
 
@@ -51,10 +80,14 @@ impl NormalLaw for JkrModified {
         false
     }
 
-    /// As JKR: mu (F_n + 2 F_c) (004 Eq. 3.49).
+    /// `pull_off`: as JKR, F_n + 2 f_c (004 Eq. 3.49). `repulsive`: 4 E* a^3 / (3 R*), from the force in
+    /// closed form (`JkrCurve::repulsive_part`), so no second contact-radius solve.
     #[inline]
     fn sliding_normal_force(&self, force: f64, _alpha: f64, _h: &()) -> f64 {
-        force + 2.0 * self.curve.pull_off_force()
+        match self.friction_limit {
+            JkrFrictionLimit::PullOff => force + 2.0 * self.curve.pull_off_force(),
+            JkrFrictionLimit::Repulsive => self.curve.repulsive_part(force),
+        }
     }
 
     /// The largest tension on the curve for alpha > 0: 8/9 f_c, at alpha = 0.
@@ -99,8 +132,58 @@ impl NormalLaw for JkrModified {
 
 impl LawInfo for JkrModified {
     const TANGENTIAL: TangentialModel = TangentialModel::Mindlin;
-    type Options = NoOptions;
-    fn from_pair(eff: &Effective, _options: &LawOptions) -> Result<JkrModified, ParamError> {
-        Ok(JkrModified::new(eff.radius, eff.youngs_modulus, eff.surface_energy))
+    type Options = JkrModifiedOptions;
+    fn from_pair(eff: &Effective, options: &LawOptions) -> Result<JkrModified, ParamError> {
+        Ok(JkrModified::with_friction_limit(eff.radius, eff.youngs_modulus, eff.surface_energy, options.jkr_modified.jkr_friction_limit))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    // 004 Tables 5.1-5.3's glass beads: a pair of 0.5 mm spheres, E = 55 GPa, nu = 0.25, Gamma = 1.0 J/m^2.
+    fn law(limit: JkrFrictionLimit) -> JkrModified {
+        let e_star = 55e9 / (2.0 * (1.0 - 0.25 * 0.25));
+        JkrModified::with_friction_limit(0.25e-3, e_star, 1.0, limit)
+    }
+
+    #[test]
+    fn the_repulsive_limit_is_the_hertz_part_of_the_force_on_the_whole_curve() {
+        let l = law(JkrFrictionLimit::Repulsive);
+        let c = &l.curve;
+        for alpha in [1e-12, 1e-10, 1e-9, 1e-8, 1e-7, 1e-6] {
+            let a = c.contact_radius(alpha);
+            let hertz = 4.0 * c.youngs_modulus * a.powi(3) / (3.0 * c.radius);
+            let n = l.sliding_normal_force(l.evaluate(alpha, &()).force, alpha, &());
+            assert!((n / hertz - 1.0).abs() < 1e-9, "alpha {alpha:e}: {n:e} vs {hertz:e}");
+        }
+    }
+
+    #[test]
+    fn at_zero_net_force_the_repulsive_limit_is_four_pull_off_forces_and_the_pull_off_reading_two() {
+        let f_c = law(JkrFrictionLimit::PullOff).curve.pull_off_force();
+        let repulsive = law(JkrFrictionLimit::Repulsive).sliding_normal_force(0.0, 0.0, &());
+        let pull_off = law(JkrFrictionLimit::PullOff).sliding_normal_force(0.0, 0.0, &());
+        assert!((repulsive / (4.0 * f_c) - 1.0).abs() < 1e-12, "{repulsive:e} vs 4 f_c = {:e}", 4.0 * f_c);
+        assert!((pull_off / (2.0 * f_c) - 1.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn the_scene_key_chooses_the_limit() {
+        let scene = crate::scene::Scene::from_json(
+            r#"{"contact_model": "jkr_modified", "particle_radius": 5e-4, "particle_density": 2500,
+                "particle_youngs_modulus": 55e9, "particle_poisson_ratio": 0.25, "surface_energy": 1.0,
+                "jkr_friction_limit": "repulsive"}"#,
+        )
+        .unwrap();
+        assert_eq!(scene.laws.jkr_modified.jkr_friction_limit, JkrFrictionLimit::Repulsive);
+        let err = crate::scene::Scene::from_json(
+            r#"{"particle_radius": 5e-4, "particle_density": 2500, "particle_youngs_modulus": 55e9,
+                "particle_poisson_ratio": 0.25, "jkr_friction_limit": "edem"}"#,
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(err.contains("jkr_friction_limit") && err.contains("repulsive"), "{err}");
     }
 }
