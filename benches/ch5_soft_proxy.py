@@ -2,6 +2,9 @@
 against the base rows (the seed's Table 5.3 as printed) and against 004 Sec. 5.2's about 8 kPa.
 
     python benches/ch5_soft_proxy.py OUT_DIR [--csv docs/data/ch5_soft_proxy.csv]
+
+--csv keeps the rows of an existing file whose runs OUT_DIR does not hold (the study ran in parts, in
+several directories), and the tables count them too.
 """
 import argparse
 import csv
@@ -59,6 +62,17 @@ def main():
     rows = read_runs(a.out)
     if not rows:
         sys.exit(f"no finished runs in {a.out}")
+    if a.csv and a.csv.exists():
+        here = {r["run"] for r in rows}
+        with a.csv.open(newline="") as f:
+            kept = [r for r in csv.DictReader(f) if r["run"] not in here]
+        for r in kept:
+            for k in ("fill_seed", "indenter_mm"):
+                r[k] = int(r[k])
+            for k in ("plateau_Pa", "plateau_se_Pa", "correlation_time_samples", "wall_time_s"):
+                r[k] = float(r[k])
+        rows = sorted(rows + kept, key=lambda r: r["run"])
+        print(f"{len(kept)} rows kept from {a.csv}, {len(here)} read from {a.out}")
     print(f"{'run':<22} {'plateau [Pa]':>14} {'wall [s]':>9}")
     for r in rows:
         print(f"{r['run']:<22} {r['plateau_Pa']:>8.0f} +- {r['plateau_se_Pa']:<4.0f} {r['wall_time_s']:>9.1f}")

@@ -28,6 +28,10 @@
 #   whole    the defaults on the whole 39 mm die (16000 spheres), the 13 mm indenter
 #   d45h13, d45h20[_DDmm]  the defaults on a quarter of the 45 mm die, 13 and 20 mm beds (13: not a seed row)
 #   d45h30, d45h50  the same on the 45 mm die's 30 and 50 mm beds, the 13 mm indenter (Fig. 5.12)
+#   fric_on_default  EDEM's Coulomb limit on the JKR contacts (`jkr_friction_limit` = repulsive: mu times
+#            the Hertz part 4 E* a^3/(3 R*), at least 4 f_c, against F_n + 2 f_c of 004 Eq. 3.49), only
+#            for the test, on the default beds 1-4 as they were prepared
+#   fric     the same limit from the fill on: beds prepared with it, fill seeds 1-4
 # The other rows' scenes name the interface energy and the walls' contact for the indenter explicitly,
 # so they mean the same whatever the bed scene's defaults.
 set -euo pipefail
@@ -41,9 +45,10 @@ D=0.013 # indenter diameter [m]; every test goes to h/r 0.5
 scene() { # name gamma seed; gamma "default": the bed scene's own interface energy and indenter;
     # "whole": the same on the whole die (scenes/bed_004_indentation.json, 16000 spheres); "d45_13",
     # "d45_20", "d45_30", "d45_50": a quarter of the 45 mm die's 13-50 mm beds (scenes/bed_004_ch5_45mm_*.json)
-    case "$2" in default | whole | d45_13 | d45_20 | d45_30 | d45_50)
-        local count=4000 sector='"die_sector": 0.25,' of=bed_004_indentation_quarter.json die=''
+    case "$2" in default | fric | whole | d45_13 | d45_20 | d45_30 | d45_50)
+        local count=4000 sector='"die_sector": 0.25,' of=bed_004_indentation_quarter.json die='' law=''
         case "$2" in
+            fric) law=', "jkr_friction_limit": "repulsive"' of="bed_004_indentation_quarter.json with EDEM's friction limit" ;;
             whole) count=16000 sector='' of=bed_004_indentation.json ;;
             d45_13) count=5325 of="bed_004_ch5_45mm_13mm.json, a quarter" die='"die_diameter": 0.045,' ;;
             d45_20) count=8200 of="bed_004_ch5_45mm_20mm.json, a quarter" die='"die_diameter": 0.045,' ;;
@@ -56,7 +61,7 @@ scene() { # name gamma seed; gamma "default": the bed scene's own interface ener
   "particle_count": $count,
   $sector $die
   "seed": $3,
-  "particle_particle": {"particle_youngs_modulus": 55e6}
+  "particle_particle": {"particle_youngs_modulus": 55e6$law}
 }
 JSON
         return
@@ -141,4 +146,14 @@ for s in 1 2; do
     run "d45h30_s$s" "d45_30_s$s"
     bed "d45_50_s$s" d45_50 "$s"
     run "d45h50_s$s" "d45_50_s$s"
+done
+# EDEM's friction limit on the JKR contacts (the candidate left open by the stiff beds' 0.71): first only
+# in the test, on the default beds as prepared; then beds prepared with it.
+FRIC='{"particle_particle": {"jkr_friction_limit": "repulsive"}}'
+for s in 1 2 3 4; do
+    run "fric_on_default_s$s" "default_s$s" --change "$FRIC"
+done
+for s in 1 2 3 4; do
+    bed "fric_s$s" fric "$s"
+    run "fric_s$s" "fric_s$s"
 done
