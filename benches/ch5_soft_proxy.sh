@@ -33,7 +33,8 @@
 #            for the test, on the default beds 1-4 as they were prepared
 #   fric     the same limit from the fill on: beds prepared with it, fill seeds 1-4
 # The other rows' scenes name the interface energy and the walls' contact for the indenter explicitly,
-# so they mean the same whatever the bed scene's defaults.
+# so they mean the same whatever the bed scene's defaults. Every row but `fric` names 004 Eq. 3.49's
+# friction limit (`pull_off`), the bed scene's default when they ran; the default is EDEM's since.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 OUT=${1:?usage: ch5_soft_proxy.sh OUT_DIR [BIN]}
@@ -46,7 +47,7 @@ scene() { # name gamma seed; gamma "default": the bed scene's own interface ener
     # "whole": the same on the whole die (scenes/bed_004_indentation.json, 16000 spheres); "d45_13",
     # "d45_20", "d45_30", "d45_50": a quarter of the 45 mm die's 13-50 mm beds (scenes/bed_004_ch5_45mm_*.json)
     case "$2" in default | fric | whole | d45_13 | d45_20 | d45_30 | d45_50)
-        local count=4000 sector='"die_sector": 0.25,' of=bed_004_indentation_quarter.json die='' law=''
+        local count=4000 sector='"die_sector": 0.25,' of=bed_004_indentation_quarter.json die='' law=', "jkr_friction_limit": "pull_off"'
         case "$2" in
             fric) law=', "jkr_friction_limit": "repulsive"' of="bed_004_indentation_quarter.json with EDEM's friction limit" ;;
             whole) count=16000 sector='' of=bed_004_indentation.json ;;
@@ -73,7 +74,7 @@ JSON
   "die_sector": 0.25,
   "seed": $3,
   "indenter_material": "wall",
-  "particle_particle": {"particle_youngs_modulus": 55e6, "surface_energy": $2}
+  "particle_particle": {"particle_youngs_modulus": 55e6, "surface_energy": $2, "jkr_friction_limit": "pull_off"}
 }
 JSON
 }

@@ -562,7 +562,8 @@ fn bad_scenes_are_refused_by_name() {
 }
 
 /// 004 Sec. 5.1.3's defaults: Table 5.3's interface energy 0.5 J/m^2 is EDEM's surface energy gamma,
-/// the work of adhesion Gamma = 2 gamma of 004 Eq. 3.41; the indenter is Material 1 without cohesion.
+/// the work of adhesion Gamma = 2 gamma of 004 Eq. 3.41; the indenter is Material 1 without cohesion;
+/// the friction limited as EDEM's JKR limits it.
 #[test]
 fn the_default_bed_reads_table_5_3_as_edem_takes_it() {
     let s = BedScene::default();
@@ -575,9 +576,23 @@ fn the_default_bed_reads_table_5_3_as_edem_takes_it() {
     assert_eq!(pair["wall_youngs_modulus"], json!(55e9));
     assert_eq!(pair["wall_poisson_ratio"], json!(0.25));
     assert_eq!(s.indenter_rolling_friction(), 0.1);
+    // EDEM's friction limit on the JKR contacts; another law's scene does not get the key.
+    assert_eq!(s.particle_particle["jkr_friction_limit"], json!("repulsive"));
+    let hertz = BedScene::from_json(r#"{"particle_particle": {"contact_model": "hertz"}}"#).unwrap();
+    assert!(!hertz.particle_particle.contains_key("jkr_friction_limit"));
+    let given = BedScene::from_json(r#"{"particle_particle": {"jkr_friction_limit": "pull_off"}}"#).unwrap();
+    assert_eq!(given.particle_particle["jkr_friction_limit"], json!("pull_off"));
     // The scene a bed file stores says it, and reads back the same.
     let again = BedScene::from_stored_json(&s.to_json().to_string()).unwrap();
     assert_eq!(again, s);
+    // A bed stored before the key existed was packed with 004 Eq. 3.49's limit, and keeps it.
+    let mut old = s.to_json();
+    for pair in ["particle_particle", "particle_wall"] {
+        old[pair].as_object_mut().unwrap().remove("jkr_friction_limit");
+    }
+    let loaded = BedScene::from_stored_json(&old.to_string()).unwrap();
+    assert_eq!(loaded.particle_particle["jkr_friction_limit"], json!("pull_off"));
+    assert_eq!(loaded.particle_wall["jkr_friction_limit"], json!("pull_off"));
 }
 
 #[test]

@@ -9,13 +9,14 @@ use powderfmu::bed::{AnyEngine, BedError, BedScene};
 use std::sync::OnceLock;
 
 /// A soft bed of 800 spheres about 18 mean diameters high in a 7 mm die, prepared once for every test:
-/// Gamma = 0.5 J/m^2 and the walls' contact for the indenter, the bed the measured figures in these
-/// tests' comments were taken on (the Ch. 5 defaults are now 1.0 J/m^2 and the particles' material).
+/// Gamma = 0.5 J/m^2, the walls' contact for the indenter and 004 Eq. 3.49's friction limit, the bed the
+/// measured figures in these tests' comments were taken on (the Ch. 5 defaults are now 1.0 J/m^2, the
+/// particles' material and EDEM's friction limit).
 fn bed() -> &'static (BedFile, BedScene) {
     static BED: OnceLock<(BedFile, BedScene)> = OnceLock::new();
     BED.get_or_init(|| {
         let scene = BedScene::from_json(
-            r#"{"particle_particle": {"particle_youngs_modulus": 55e6, "surface_energy": 0.5}, "indenter_material": "wall", "particle_count": 800, "die_diameter": 0.007}"#,
+            r#"{"particle_particle": {"particle_youngs_modulus": 55e6, "surface_energy": 0.5, "jkr_friction_limit": "pull_off"}, "indenter_material": "wall", "particle_count": 800, "die_diameter": 0.007}"#,
         )
         .unwrap();
         let (engine, _) = prepare::prepare(&scene, &mut |_| {}).unwrap();

@@ -3,6 +3,9 @@
 //! diameter 1 mm, Hertz with the modified JKR adhesion and Mindlin's tangential law (004 Sec. 5.1.1),
 //! in a steel die of 39 mm, consolidated at 1/s to 10 kPa.
 //!
+//! The modified JKR's friction is limited by the repulsive part of its force, as in EDEM
+//! (`jkr_friction_limit` = `repulsive`).
+//!
 //! `particle_particle` holds scene keys of the contact-law core (`Scene`): the law and its parameters
 //! between particles. `particle_wall` holds the keys that differ against the die, the floor and the
 //! piston (Table 5.3's second column); every other key is taken from `particle_particle`.
@@ -171,6 +174,12 @@ impl BedScene {
             }
             pp.insert(k.clone(), v.clone());
         }
+        // The modified JKR as EDEM implements it: the friction limited by the repulsive part of the force
+        // (docs/models.md, "The friction limit of the modified JKR contacts"; measured in
+        // docs/indentation.md, "EDEM's friction limit").
+        if pp.get("contact_model") == Some(&Value::from("jkr_modified")) {
+            pp.entry("jkr_friction_limit").or_insert_with(|| Value::from("repulsive"));
+        }
         let mut pw = pp.clone();
         for (k, v) in json!({
             "wall_youngs_modulus": 182e9,
@@ -307,11 +316,17 @@ impl BedScene {
     }
 
     /// A scene stored in a bed file. Beds written before `indenter_material` existed were indented with
-    /// the walls' contact: they keep it.
+    /// the walls' contact: they keep it. Beds written before `jkr_friction_limit` existed were prepared
+    /// with 004 Eq. 3.49's limit: they keep it (a bed must be tested with the law it was packed with).
     pub fn from_stored_json(text: &str) -> Result<BedScene, ParamError> {
         let mut value: Value = serde_json::from_str(text).map_err(|e| ParamError::Malformed { what: format!("not valid JSON: {e}") })?;
         if let Some(map) = value.as_object_mut() {
             map.entry("indenter_material").or_insert_with(|| Value::from(IndenterMaterial::Wall.name()));
+            for pair in ["particle_particle", "particle_wall"] {
+                if let Some(Value::Object(keys)) = map.get_mut(pair) {
+                    keys.entry("jkr_friction_limit").or_insert_with(|| Value::from("pull_off"));
+                }
+            }
         }
         let map = value.as_object().ok_or_else(|| ParamError::Malformed { what: "the top level of a bed scene must be a JSON object".into() })?;
         BedScene::from_map(map)
