@@ -324,7 +324,9 @@ impl BedScene {
             map.entry("indenter_material").or_insert_with(|| Value::from(IndenterMaterial::Wall.name()));
             for pair in ["particle_particle", "particle_wall"] {
                 if let Some(Value::Object(keys)) = map.get_mut(pair) {
-                    keys.entry("jkr_friction_limit").or_insert_with(|| Value::from("pull_off"));
+                    if keys.get("contact_model") == Some(&Value::from("jkr_modified")) {
+                        keys.entry("jkr_friction_limit").or_insert_with(|| Value::from("pull_off"));
+                    }
                 }
             }
         }
