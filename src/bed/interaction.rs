@@ -10,6 +10,7 @@
 //! through m* (000 Sec. 3; 004 Eq. 3.15), and each law is built from these pair properties
 //! (`AnyLaw::from_pair`).
 
+use super::engine::LaneLaw;
 use crate::error::ParamError;
 use crate::law::damping::{gamma, NormalDamping};
 use crate::law::tangential::TangentialStiffness;
@@ -20,7 +21,7 @@ use serde::{de::DeserializeOwned, Serialize};
 use serde_json::{Map, Value};
 
 /// A normal law the bed can step: every law of the core.
-pub trait BedLaw: NormalLaw<History: Send + Sync + Serialize + DeserializeOwned> + Clone + Send + Sync + 'static {
+pub trait BedLaw: NormalLaw<History: Send + Sync + Serialize + DeserializeOwned> + LaneLaw + Clone + Send + Sync + 'static {
     fn from_any(law: AnyLaw) -> Option<Self>;
 }
 
@@ -34,7 +35,20 @@ macro_rules! bed_law {
                     _ => None,
                 }
             }
-        })*
+        }
+        no_lanes!($variant, $ty);)*
+    };
+}
+
+/// The laws without an evaluation on lanes (`engine::lanes`) take the trait's default, which keeps them
+/// on the scalar pair loop; the others implement it in `engine/lanes/`.
+macro_rules! no_lanes {
+    (PashaSimplified, $ty:ty) => {};
+    (Linear, $ty:ty) => {};
+    (Hertz, $ty:ty) => {};
+    ($variant:ident, $ty:ty) => {
+        #[cfg(target_arch = "x86_64")]
+        impl LaneLaw for $ty {}
     };
 }
 

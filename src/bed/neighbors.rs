@@ -12,6 +12,8 @@ pub struct NeighborList {
     /// Row starts: the partners of i are `partner[start[i]..start[i + 1]]`.
     pub start: Vec<u32>,
     pub partner: Vec<u32>,
+    /// The row of each slot (`partner[k]` is a partner of `owner[k]`), for loops over slots.
+    pub owner: Vec<u32>,
     /// Positions at the last build.
     reference: Vec<Vec3>,
     /// Extra distance beyond touching kept in the list [m].
@@ -142,6 +144,15 @@ impl NeighborList {
             self.partner[row_begin..].sort_unstable();
             self.start.push(self.partner.len() as u32);
         }
+        self.fill_owner();
+    }
+
+    fn fill_owner(&mut self) {
+        self.owner.clear();
+        for i in 0..self.rows() {
+            let len = (self.start[i + 1] - self.start[i]) as usize;
+            self.owner.extend(std::iter::repeat(i as u32).take(len));
+        }
     }
 
     /// Adds pairs (i < j) that are not in the list, keeping each row sorted: a saved contact that has
@@ -168,11 +179,12 @@ impl NeighborList {
         }
         self.start = start;
         self.partner = partner;
+        self.fill_owner();
     }
 
     /// Bytes held.
     pub fn memory_bytes(&self) -> usize {
-        (self.start.capacity() + self.partner.capacity() + self.cell_start.capacity() + self.cell_items.capacity() + self.cell_of.capacity())
+        (self.start.capacity() + self.partner.capacity() + self.owner.capacity() + self.cell_start.capacity() + self.cell_items.capacity() + self.cell_of.capacity())
             * std::mem::size_of::<u32>()
             + self.reference.capacity() * std::mem::size_of::<Vec3>()
     }

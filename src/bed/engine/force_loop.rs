@@ -10,8 +10,9 @@ use super::super::neighbors::NeighborList;
 use super::super::particles::Particles;
 use super::super::walls::Wall;
 use super::super::{cross, dot, sub, Vec3, ZERO};
-use super::partition::Sink;
 use super::isa::Isa;
+use super::lanes::LaneRow;
+use super::partition::Sink;
 use super::Engine;
 use rayon::prelude::*;
 
@@ -27,6 +28,8 @@ struct Shared<'a, L: BedLaw> {
     /// Some sphere is held (`Engine::hold`).
     any_held: bool,
     isa: Isa,
+    /// The species pairs' lane table when the pair loop runs on lanes (`lanes`), else None.
+    lanes: Option<&'a [LaneRow]>,
 }
 
 /// One part of the force loop: rows [rows.0, rows.1) and what it may write.
@@ -56,6 +59,13 @@ impl<L: BedLaw> Engine<L> {
         // The pair loop tests each partner once against n, and the compiler drops the other bounds tests
         // (see `run_part_body`); the list must be this bed's.
         assert_eq!(self.list.rows(), n, "the Verlet list is not built for these particles");
+        let record = self.record_dipoles;
+        // Lanes: AVX2, a law that has them, pairs they cover, and neither held spheres nor dipoles (both
+        // stay on the scalar loop).
+        #[cfg(target_arch = "x86_64")]
+        let lanes = self.isa == Isa::Avx2 && !self.any_held && !record && super::lanes::table(&self.pairs, &mut self.lane_table);
+        #[cfg(not(target_arch = "x86_64"))]
+        let lanes = false;
         let shared = Shared {
             p: &self.particles,
             list: &self.list,
@@ -66,8 +76,8 @@ impl<L: BedLaw> Engine<L> {
             dt: self.dt,
             any_held: self.any_held,
             isa: self.isa,
+            lanes: lanes.then_some(&self.lane_table[..]),
         };
-        let record = self.record_dipoles;
         // Cut the contact memory into the parts' pieces; each part's sink is its buffer (one thread: the
         // totals).
         let mut parts: Vec<Part<L::History>> = Vec::with_capacity(self.threads);
@@ -148,54 +158,128 @@ fn run_part_body<L: BedLaw>(s: &Shared<L>, part: Part<L::History>) {
     sink.clear();
     let p = s.p;
     let n = p.len();
+    let dipoles = !sink.dipole.is_empty();
+    let (first, last) = (s.list.start[rows.0] as usize, s.list.start[rows.1] as usize);
+    #[cfg(target_arch = "x86_64")]
+    if let Some(table) = s.lanes {
+        let input = super::lanes::LaneInput {
+            position: &p.position[..n],
+            velocity: &p.velocity[..n],
+            spin: &p.angular_velocity[..n],
+            radius: &p.radius[..n],
+            species: &p.species[..n],
+            species_count: s.species,
+            owner: &s.list.owner,
+            partner: &s.list.partner,
+            table,
+            dt: s.dt,
+        };
+        // SAFETY: `lanes` is Some only on an engine whose isa is AVX2, which it takes only where the CPU
+        // reports AVX2 (`Engine::set_isa`).
+        let done = unsafe { super::lanes::pairs::<L>(&input, first, last, slot0, normal, spring, radius, &mut sink) };
+        // The part's last 0-3 slots, one at a time.
+        for slot in done..last {
+            let i = s.list.owner[slot] as usize;
+            let m = slot - slot0;
+            let row = Row::of(p, s, i);
+            pair(s, &row, s.list.partner[slot] as usize, &mut normal[m], &mut spring[m], &mut radius[m], &mut sink, dipoles);
+        }
+        walls_of_part(s, walls, &mut sink, dipoles);
+        return;
+    }
+    let _ = (first, last);
+    for i in rows.0..rows.1 {
+        let row = Row::of(p, s, i);
+        let (first, last) = (s.list.start[i] as usize, s.list.start[i + 1] as usize);
+        let partners = &s.list.partner[first..last];
+        let slots = first - slot0..last - slot0;
+        let memory = normal[slots.clone()].iter_mut().zip(&mut spring[slots.clone()]).zip(&mut radius[slots]);
+        for (&j, ((history, tangential_spring), contact_radius)) in partners.iter().zip(memory) {
+            pair(s, &row, j as usize, history, tangential_spring, contact_radius, &mut sink, dipoles);
+        }
+    }
+    walls_of_part(s, walls, &mut sink, dipoles);
+}
+
+/// What a row of the list reads of its own particle, once for all its partners.
+struct Row<'a, L: BedLaw> {
+    i: usize,
+    x: Vec3,
+    v: Vec3,
+    w: Vec3,
+    r: f64,
+    held: bool,
+    table: &'a [Interaction<L>],
+}
+
+impl<'a, L: BedLaw> Row<'a, L> {
+    #[inline(always)]
+    fn of(p: &Particles, s: &Shared<'a, L>, i: usize) -> Row<'a, L> {
+        Row {
+            i,
+            x: p.position[i],
+            v: p.velocity[i],
+            w: p.angular_velocity[i],
+            r: p.radius[i],
+            held: s.any_held && p.held[i],
+            table: &s.pairs[p.species[i] as usize * s.species..][..s.species],
+        }
+    }
+}
+
+/// One pair of the list: the row's particle and partner j, with the slot's memory.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)] // the pair, its memory and the sink, inlined into the loops
+fn pair<L: BedLaw>(
+    s: &Shared<L>,
+    row: &Row<L>,
+    j: usize,
+    history: &mut L::History,
+    tangential_spring: &mut Vec3,
+    contact_radius: &mut f64,
+    sink: &mut Sink,
+    dipoles: bool,
+) {
+    let p = s.p;
+    let n = p.len();
     // Every per-particle array cut to n: after `j < n` below the compiler drops the other bounds tests of
     // the partner (one test instead of six per list entry).
     let (position, velocity, spin, radii, species) = (&p.position[..n], &p.velocity[..n], &p.angular_velocity[..n], &p.radius[..n], &p.species[..n]);
     let held = &p.held[..n];
-    let any_held = s.any_held;
-    let dipoles = !sink.dipole.is_empty();
-    for i in rows.0..rows.1 {
-        let xi = position[i];
-        let vi = velocity[i];
-        let wi = spin[i];
-        let ri = radii[i];
-        let table = &s.pairs[species[i] as usize * s.species..][..s.species];
-        let (first, last) = (s.list.start[i] as usize, s.list.start[i + 1] as usize);
-        let held_i = any_held && held[i];
-        let row = &s.list.partner[first..last];
-        let slots = first - slot0..last - slot0;
-        let memory = normal[slots.clone()].iter_mut().zip(&mut spring[slots.clone()]).zip(&mut radius[slots]);
-        for (&j, ((history, tangential_spring), contact_radius)) in row.iter().zip(memory) {
-            let j = j as usize;
-            assert!(j < n);
-            if held_i && held[j] {
-                continue; // two held spheres: neither moves, their contact and its memory stay as they are
-            }
-            let d = sub(position[j], xi);
-            let dist2 = dot(d, d);
-            let rj = radii[j];
-            let it = &table[species[j] as usize];
-            let range = ri + rj + it.reach;
-            if dist2 >= range * range && *tangential_spring == ZERO && (*history == it.initial || it.law.rests_apart(history)) {
-                // Apart, beyond any neck, and nothing to forget or nothing the law would change (a Pasha
-                // pair that touched and let go: 0.3 of 2.45 evaluated pairs per particle on the shipped
-                // quarter bed, benches/engine_counts.sh).
-                continue;
-            }
-            let dist = dist2.sqrt();
-            let n = super::super::scale(d, 1.0 / dist);
-            let alpha = ri + rj - dist;
-            let (li, lj) = (ri - 0.5 * alpha, rj - 0.5 * alpha);
-            let v = surface_velocity(vi, wi, li, velocity[j], spin[j], lj, n);
-            if let Some(c) = contact(it, alpha, n, v, history, tangential_spring, contact_radius, s.dt) {
-                // Particle j sees the contact from the other side: normal, force and tangential force
-                // negated, so the same n x F_t.
-                let turn = cross(n, c.tangential);
-                sink.add_contact(i, 1.0, n, c.force, turn, li, c.rolling_load, dipoles);
-                sink.add_contact(j, -1.0, n, c.force, turn, lj, c.rolling_load, dipoles);
-            }
-        }
+    assert!(j < n);
+    if row.held && held[j] {
+        return; // two held spheres: neither moves, their contact and its memory stay as they are
     }
+    let (i, xi, ri) = (row.i, row.x, row.r);
+    let d = sub(position[j], xi);
+    let dist2 = dot(d, d);
+    let rj = radii[j];
+    let it = &row.table[species[j] as usize];
+    let range = ri + rj + it.reach;
+    if dist2 >= range * range && *tangential_spring == ZERO && (*history == it.initial || it.law.rests_apart(history)) {
+        // Apart, beyond any neck, and nothing to forget or nothing the law would change (a Pasha
+        // pair that touched and let go: 0.3 of 2.45 evaluated pairs per particle on the shipped
+        // quarter bed, benches/engine_counts.sh).
+        return;
+    }
+    let dist = dist2.sqrt();
+    let nrm = super::super::scale(d, 1.0 / dist);
+    let alpha = ri + rj - dist;
+    let (li, lj) = (ri - 0.5 * alpha, rj - 0.5 * alpha);
+    let v = surface_velocity(row.v, row.w, li, velocity[j], spin[j], lj, nrm);
+    if let Some(c) = contact(it, alpha, nrm, v, history, tangential_spring, contact_radius, s.dt) {
+        // Particle j sees the contact from the other side: normal, force and tangential force
+        // negated, so the same n x F_t.
+        let turn = cross(nrm, c.tangential);
+        sink.add_contact(i, 1.0, nrm, c.force, turn, li, c.rolling_load, dipoles);
+        sink.add_contact(j, -1.0, nrm, c.force, turn, lj, c.rolling_load, dipoles);
+    }
+}
+
+/// The part's wall contacts.
+#[inline(always)]
+fn walls_of_part<L: BedLaw>(s: &Shared<L>, walls: Vec<WallMemory<'_, L::History>>, sink: &mut Sink, dipoles: bool) {
+    let p = s.p;
     for (w, (particles, normal, spring, radius)) in walls.into_iter().enumerate() {
         let wall = &s.walls[w];
         let table = &s.wall_pairs[w];
@@ -218,4 +302,3 @@ fn run_part_body<L: BedLaw>(s: &Shared<L>, part: Part<L::History>) {
         }
     }
 }
-

@@ -8,15 +8,18 @@
 //!   over the particles it touches, and their sum in part order, so a run is bitwise the same for a
 //!   given thread count;
 //! - `force_loop`: the force loop of one part over its pairs and wall contacts;
-//! - `isa`: the instruction set the force loop and the kick run with (AVX2 where the CPU has it).
+//! - `isa`: the instruction set the force loop and the kick run with (AVX2 where the CPU has it);
+//! - `lanes`: the pair loop on AVX2 lanes, four contacts at once, for the laws that have it.
 
 mod force_loop;
 mod isa;
+mod lanes;
 mod memory;
 mod partition;
 
 pub use memory::WallContacts;
 pub use isa::Isa;
+pub use lanes::LaneLaw;
 pub use partition::{Accum, Load};
 
 use super::interaction::{BedLaw, Interaction};
@@ -72,6 +75,9 @@ pub struct Engine<L: BedLaw> {
     any_held: bool,
     /// The instruction set of the force loop and the kick.
     isa: Isa,
+    /// The species pairs' parameters as the lane loop reads them, rebuilt by each force loop that runs on
+    /// lanes (`lanes::table`).
+    lane_table: Vec<lanes::LaneRow>,
 }
 
 impl<L: BedLaw> std::fmt::Debug for Engine<L> {
@@ -138,6 +144,7 @@ impl<L: BedLaw> Engine<L> {
             held_reference: vec![],
             any_held: false,
             isa: Isa::detect(),
+            lane_table: vec![],
         };
         e.rebuild();
         e.compute_forces();
@@ -247,7 +254,7 @@ impl<L: BedLaw> Engine<L> {
     pub fn set_totals(&mut self, force: &[Vec3], torque: &[Vec3], rolling: &[f64]) {
         assert!(force.len() == self.total.load.len() && torque.len() == force.len() && rolling.len() == force.len(), "one force, torque and rolling load per sphere");
         for (l, ((f, t), r)) in self.total.load.iter_mut().zip(force.iter().zip(torque).zip(rolling)) {
-            *l = Load { force: *f, torque: *t, rolling: *r };
+            *l = Load::new(*f, *t, *r);
         }
     }
 

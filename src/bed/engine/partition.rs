@@ -10,15 +10,31 @@ use super::Engine;
 use rayon::prelude::*;
 
 /// What the contacts of a step give one particle. One record per particle, so a contact's share is one
-/// index (and one cache line) per body, and the kick reads one record.
+/// index (and one cache line) per body, and the kick reads one record. Laid out as two rows of four f64,
+/// force and rolling load, torque and a pad, so the lane loop adds a share with two vector adds
+/// (`engine::lanes`).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
+#[repr(C, align(64))]
 pub struct Load {
     /// Force [N].
     pub force: Vec3,
-    /// Torque about the centre [N m].
-    pub torque: Vec3,
     /// Sum of mu_r |f_n| over the contacts [N]: the load of the rolling friction (004 Table 5.3).
     pub rolling: f64,
+    /// Torque about the centre [N m].
+    pub torque: Vec3,
+    /// Always 0.
+    pad: f64,
+}
+
+const _: () = assert!(
+    std::mem::offset_of!(Load, rolling) == 24 && std::mem::offset_of!(Load, torque) == 32 && std::mem::size_of::<Load>() == 64,
+    "the lane loop adds [force, rolling] at offset 0 and [torque, pad] at offset 32"
+);
+
+impl Load {
+    pub fn new(force: Vec3, torque: Vec3, rolling: f64) -> Load {
+        Load { force, rolling, torque, pad: 0.0 }
+    }
 }
 
 /// Forces accumulated by the force loop (the totals), or by one part of it (over its span of particles).

@@ -1,0 +1,47 @@
+//! The linear spring on lanes (`law::linear`, 004 Eq. 3.9): k_n alpha for alpha > 0. No history.
+
+use super::x86::{Eval4, History4, LaneLaw};
+use super::LAW_PARAMS;
+use crate::law::linear::Linear;
+use std::arch::x86_64::*;
+
+impl LaneLaw for Linear {
+    const LANES: bool = true;
+
+    fn lane_params(&self) -> Option<[f64; LAW_PARAMS]> {
+        Some([self.stiffness, 0.0, 0.0, 0.0, 0.0, 0.0])
+    }
+
+    fn load_history(_h: &[()]) -> History4 {
+        // SAFETY: `_mm256_setzero_pd` needs only AVX, which every caller (the AVX2 lane loop) has.
+        unsafe { History4 { a: _mm256_setzero_pd(), b: _mm256_setzero_pd() } }
+    }
+
+    fn store_history(_h: &mut [()], _v: &History4, _mask: i32) {}
+
+    #[inline(always)]
+    unsafe fn must_visit(_h: &History4) -> __m256d {
+        // SAFETY: the caller runs with AVX2 (the trait's contract).
+        unsafe { _mm256_setzero_pd() }
+    }
+
+    #[inline(always)]
+    unsafe fn evaluate4(p: &[__m256d; LAW_PARAMS], alpha: __m256d, h: &History4) -> Eval4 {
+        // SAFETY: the caller runs with AVX2 (the trait's contract).
+        unsafe {
+            let k = p[0];
+            // `alpha <= 0` separates; its negation (true for NaN, as the scalar `else`) touches.
+            let in_contact = _mm256_cmp_pd::<_CMP_NLE_UQ>(alpha, _mm256_setzero_pd());
+            let force = _mm256_and_pd(_mm256_mul_pd(k, alpha), in_contact);
+            Eval4 {
+                force,
+                stiffness: k,
+                in_contact,
+                history: *h,
+                yielded: _mm256_setzero_pd(),
+                sliding_normal_force: force,
+                radius: _mm256_setzero_pd(),
+            }
+        }
+    }
+}
