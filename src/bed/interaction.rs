@@ -40,8 +40,8 @@ macro_rules! bed_law {
     };
 }
 
-/// The laws without an evaluation on lanes (`engine::lanes`) take the trait's default, which keeps them
-/// on the scalar pair loop; the others implement it in `engine/lanes/`.
+/// The laws without an evaluation of their own on lanes (`engine::lanes`) take the trait's default: the
+/// law once per lane, the rest of the contact on lanes. The others implement it in `engine/lanes/`.
 macro_rules! no_lanes {
     (PashaSimplified, $ty:ty) => {};
     (Linear, $ty:ty) => {};

@@ -491,8 +491,9 @@ fn bench_cmd(a: BenchArgs) -> Result<(), String> {
     let (contacts, _) = with_engine!(&engine, e => e.contact_statistics());
     let digest = with_engine!(&engine, e => e.state_digest());
     let isa = with_engine!(&engine, e => e.isa().name());
+    let pair_loop = with_engine!(&engine, e => e.pair_loop());
     println!(
-        "model={model} particles={n} steps={steps} threads={threads} dt={:.4e} seconds={seconds:.4} particle_steps_per_s={:.4e} bytes_per_particle={:.0} kinetic_energy={ke:.3e} list_builds={builds} contacts_per_particle={:.3} isa={isa} state_digest={digest:016x}",
+        "model={model} particles={n} steps={steps} threads={threads} dt={:.4e} seconds={seconds:.4} particle_steps_per_s={:.4e} bytes_per_particle={:.0} kinetic_energy={ke:.3e} list_builds={builds} contacts_per_particle={:.3} isa={isa} pair_loop={pair_loop} state_digest={digest:016x}",
         engine.dt(),
         n as f64 * steps as f64 / seconds,
         engine.memory_bytes() as f64 / n as f64,

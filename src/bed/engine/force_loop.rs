@@ -172,6 +172,7 @@ fn run_part_body<L: BedLaw>(s: &Shared<L>, part: Part<L::History>) {
             owner: &s.list.owner,
             partner: &s.list.partner,
             table,
+            pairs: s.pairs,
             dt: s.dt,
         };
         // SAFETY: `lanes` is Some only on an engine whose isa is AVX2, which it takes only where the CPU

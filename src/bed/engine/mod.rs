@@ -160,6 +160,19 @@ impl<L: BedLaw> Engine<L> {
         self.isa
     }
 
+    /// How the force loop runs the particle pairs now: `vector` (the law on AVX2 lanes), `per_lane` (the
+    /// law once per lane, the rest on lanes) or `scalar` (`lanes`).
+    pub fn pair_loop(&self) -> &'static str {
+        #[cfg(target_arch = "x86_64")]
+        if self.isa == Isa::Avx2 && !self.any_held && lanes::table(&self.pairs, &mut Vec::new()) {
+            return match L::LANES {
+                lanes::Lanes::Vector => "vector",
+                lanes::Lanes::PerLane => "per_lane",
+            };
+        }
+        "scalar"
+    }
+
     /// Runs the hot loops with another instruction set (the same bits either way; for comparisons).
     /// Refused where this CPU lacks it.
     pub fn set_isa(&mut self, isa: Isa) -> Result<(), String> {

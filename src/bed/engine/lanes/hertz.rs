@@ -1,13 +1,13 @@
 //! Hertz's law on lanes (`law::hertz`, 004 Eq. 3.14): 4/3 E* sqrt(R*) alpha^(3/2) for alpha > 0, with its
 //! contact radius a = sqrt(R* alpha) for Mindlin's tangential stiffness. No history.
 
-use super::x86::{splat, Eval4, History4, LaneLaw};
+use super::x86::{splat, Eval4, History4, LaneLaw, Lanes};
 use super::LAW_PARAMS;
 use crate::law::hertz::Hertz;
 use std::arch::x86_64::*;
 
 impl LaneLaw for Hertz {
-    const LANES: bool = true;
+    const LANES: Lanes = Lanes::Vector;
     const MINDLIN: bool = true;
 
     fn lane_params(&self) -> Option<[f64; LAW_PARAMS]> {
@@ -49,6 +49,9 @@ impl LaneLaw for Hertz {
                 sliding_normal_force: force,
                 // Hertz::evaluate_with_radius: a = 2 E* a / (2 E*)
                 radius: _mm256_div_pd(stiffness, two_e),
+                damping_stiffness: stiffness,
+                tangential_stiffness: None,
+                attraction: _mm256_setzero_pd(),
             }
         }
     }

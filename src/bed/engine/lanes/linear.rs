@@ -1,12 +1,12 @@
 //! The linear spring on lanes (`law::linear`, 004 Eq. 3.9): k_n alpha for alpha > 0. No history.
 
-use super::x86::{Eval4, History4, LaneLaw};
+use super::x86::{Eval4, History4, LaneLaw, Lanes};
 use super::LAW_PARAMS;
 use crate::law::linear::Linear;
 use std::arch::x86_64::*;
 
 impl LaneLaw for Linear {
-    const LANES: bool = true;
+    const LANES: Lanes = Lanes::Vector;
 
     fn lane_params(&self) -> Option<[f64; LAW_PARAMS]> {
         Some([self.stiffness, 0.0, 0.0, 0.0, 0.0, 0.0])
@@ -41,6 +41,9 @@ impl LaneLaw for Linear {
                 yielded: _mm256_setzero_pd(),
                 sliding_normal_force: force,
                 radius: _mm256_setzero_pd(),
+                damping_stiffness: k,
+                tangential_stiffness: None,
+                attraction: _mm256_setzero_pd(),
             }
         }
     }

@@ -63,11 +63,27 @@ mod x86 {
         pub sliding_normal_force: __m256d,
         /// The contact radius the slot remembers (the Hertz-based laws'; 0 for the others) [m].
         pub radius: __m256d,
+        /// k_n of the viscous damping (`NormalLaw::damping_stiffness`) [N/m].
+        pub damping_stiffness: __m256d,
+        /// k_t where the law gives it (per lane), else the pair loop forms it from the table [N/m].
+        pub tangential_stiffness: Option<__m256d>,
+        /// Lanes out of contact that still carry a normal force (Tomas' attraction).
+        pub attraction: __m256d,
     }
 
-    /// A normal law the pair loop can run on lanes. The default says it cannot.
+    /// How a law runs on lanes.
+    #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+    pub enum Lanes {
+        /// Its whole evaluation on lanes (`LaneLaw::evaluate4`).
+        Vector,
+        /// The law's own scalar evaluation once per lane, the rest of the contact on lanes.
+        PerLane,
+    }
+
+    /// A normal law the pair loop can run on lanes. By default the law itself is evaluated once per lane
+    /// (`Lanes::PerLane`); a law with its evaluation on lanes says `Lanes::Vector` and gives the rest.
     pub trait LaneLaw: NormalLaw + Sized {
-        const LANES: bool = false;
+        const LANES: Lanes = Lanes::PerLane;
         /// Mindlin's tangential stiffness 8 G* a on the law's contact radius (004 Eq. 3.25), else the
         /// fixed ratio 4 G*/E* |k_n| (000 Eq. 22).
         const MINDLIN: bool = false;
@@ -107,18 +123,18 @@ mod x86 {
     /// The lane table of a bed's species pairs, or None when some pair is outside what the lanes cover.
     pub fn table<L: BedLaw>(pairs: &[Interaction<L>], out: &mut Vec<LaneRow>) -> bool {
         out.clear();
-        if !L::LANES {
-            return false;
-        }
+        let vector = L::LANES == Lanes::Vector;
         for it in pairs {
             // k_t = this factor times |k_n| (ratio) or the contact radius (Mindlin: 8 G*, as the scalar
-            // `TangentialStiffness::at` multiplies it).
+            // `TangentialStiffness::at` multiplies it); a law evaluated per lane gives k_t itself.
             let k_t_factor = match (it.tangential, L::MINDLIN) {
+                _ if !vector => 0.0,
                 (TangentialStiffness::Ratio { ratio }, false) => ratio,
                 (TangentialStiffness::Mindlin { shear_modulus, .. }, true) => 8.0 * shear_modulus,
                 _ => return false,
             };
-            let (Some(q), Some(law)) = (it.tangential_root_ratio, it.law.lane_params()) else {
+            let law = if vector { it.law.lane_params() } else { Some([0.0; LAW_PARAMS]) };
+            let (Some(q), Some(law)) = (it.tangential_root_ratio, law) else {
                 return false;
             };
             let mut row = [0.0; COMMON + LAW_PARAMS];
@@ -187,7 +203,7 @@ mod x86 {
     }
 
     /// What the lane loop reads of the engine.
-    pub struct LaneInput<'a> {
+    pub struct LaneInput<'a, L: BedLaw> {
         pub position: &'a [Vec3],
         pub velocity: &'a [Vec3],
         pub spin: &'a [Vec3],
@@ -197,7 +213,62 @@ mod x86 {
         pub owner: &'a [u32],
         pub partner: &'a [u32],
         pub table: &'a [LaneRow],
+        /// The species pairs' interactions (`Engine::pairs`), for the laws evaluated per lane.
+        pub pairs: &'a [Interaction<L>],
         pub dt: f64,
+    }
+
+    /// The law of a `Lanes::PerLane` law evaluated once per visited lane (bit k of `visit` set), as
+    /// `kernel::contact` does: its history written where it changed, and everything the rest of the
+    /// contact needs packed into lanes.
+    #[inline(always)]
+    unsafe fn per_lane<L: BedLaw>(its: [&Interaction<L>; 4], alpha: __m256d, history: &mut [L::History], guess: &[f64], visit: i32) -> Eval4 {
+        unsafe {
+            let yes = f64::from_bits(u64::MAX);
+            let mut a = [0.0f64; 4];
+            _mm256_storeu_pd(a.as_mut_ptr(), alpha);
+            let mut v = [[0.0f64; 4]; 9];
+            for k in 0..4 {
+                if visit & (1 << k) == 0 {
+                    continue;
+                }
+                let (it, h) = (its[k], &mut history[k]);
+                let (ev, k_damp, radius) = it.law.evaluate_near(a[k], h, guess[k]);
+                if ev.history != *h {
+                    *h = ev.history;
+                }
+                v[6][k] = radius.unwrap_or(0.0);
+                if !ev.branch.in_contact() {
+                    if ev.force != 0.0 {
+                        v[8][k] = yes;
+                        v[0][k] = ev.force;
+                    }
+                    continue;
+                }
+                let sliding = it.law.sliding_normal_force(ev.force, a[k], &ev.history);
+                v[0][k] = ev.force;
+                v[1][k] = ev.stiffness;
+                v[2][k] = yes;
+                v[3][k] = if it.law.has_yielded(&ev.history) { yes } else { 0.0 };
+                v[4][k] = sliding;
+                v[5][k] = k_damp;
+                v[7][k] = it.tangential.at(a[k], ev.stiffness, sliding, radius);
+            }
+            let lane = |q: usize| _mm256_loadu_pd(v[q].as_ptr());
+            let zero = _mm256_setzero_pd();
+            Eval4 {
+                force: lane(0),
+                stiffness: lane(1),
+                in_contact: lane(2),
+                history: History4 { a: zero, b: zero },
+                yielded: lane(3),
+                sliding_normal_force: lane(4),
+                damping_stiffness: lane(5),
+                radius: lane(6),
+                tangential_stiffness: Some(lane(7)),
+                attraction: lane(8),
+            }
+        }
     }
 
     /// Slots [first, first + 4 blocks) of a part, four at a time; returns the first slot not done (the
@@ -209,7 +280,7 @@ mod x86 {
     #[target_feature(enable = "avx2")]
     #[allow(clippy::too_many_arguments)] // one call per part: its slots, its memory and its sink
     pub unsafe fn pairs<L: BedLaw>(
-        e: &LaneInput,
+        e: &LaneInput<L>,
         first: usize,
         last: usize,
         slot0: usize,
@@ -252,7 +323,24 @@ mod x86 {
                     _mm256_set_pd(mem[3].y, mem[2].y, mem[1].y, mem[0].y),
                     _mm256_set_pd(mem[3].z, mem[2].z, mem[1].z, mem[0].z),
                 ];
-                let h = L::load_history(&normal[m..m + 4]);
+                let vector = L::LANES == Lanes::Vector;
+                let interactions = || -> [&Interaction<L>; 4] { std::array::from_fn(|k| &e.pairs[pair[k]]) };
+                let (h, must_visit) = if vector {
+                    let h = L::load_history(&normal[m..m + 4]);
+                    (h, L::must_visit(&h))
+                } else {
+                    let its = interactions();
+                    let yes = f64::from_bits(u64::MAX);
+                    let must: [f64; 4] = std::array::from_fn(|k| {
+                        let h = &normal[m + k];
+                        if *h == its[k].initial || its[k].law.rests_apart(h) {
+                            0.0
+                        } else {
+                            yes
+                        }
+                    });
+                    (History4 { a: zero, b: zero }, _mm256_loadu_pd(must.as_ptr()))
+                };
                 // The scalar loop skips a pair that is apart (dist2 >= range^2), has no spring and whose
                 // history allows it; the lanes visit the rest.
                 let within = _mm256_cmp_pd::<_CMP_NGE_UQ>(dist2, _mm256_mul_pd(range, range));
@@ -260,7 +348,7 @@ mod x86 {
                     _mm256_or_pd(_mm256_cmp_pd::<_CMP_NEQ_UQ>(s0[0], zero), _mm256_cmp_pd::<_CMP_NEQ_UQ>(s0[1], zero)),
                     _mm256_cmp_pd::<_CMP_NEQ_UQ>(s0[2], zero),
                 );
-                let visit = _mm256_or_pd(_mm256_or_pd(within, has_spring), L::must_visit(&h));
+                let visit = _mm256_or_pd(_mm256_or_pd(within, has_spring), must_visit);
                 let visit_bits = _mm256_movemask_pd(visit);
                 if visit_bits == 0 {
                     slot += 4;
@@ -284,13 +372,18 @@ mod x86 {
                     _mm256_add_pd(_mm256_sub_pd(vi[2], vj[2]), _mm256_sub_pd(_mm256_mul_pd(w[0], nrm[1]), _mm256_mul_pd(w[1], nrm[0]))),
                 ];
                 // The law (kernel::contact from here on).
-                let law_params: [__m256d; LAW_PARAMS] = std::array::from_fn(|q| param(COMMON + q));
-                let ev = L::evaluate4(&law_params, alpha, &h);
-                L::store_history(&mut normal[m..m + 4], &ev.history, visit_bits);
+                let ev = if vector {
+                    let law_params: [__m256d; LAW_PARAMS] = std::array::from_fn(|q| param(COMMON + q));
+                    let ev = L::evaluate4(&law_params, alpha, &h);
+                    L::store_history(&mut normal[m..m + 4], &ev.history, visit_bits);
+                    ev
+                } else {
+                    per_lane(interactions(), alpha, &mut normal[m..m + 4], &radius_memory[m..m + 4], visit_bits)
+                };
                 let touch = _mm256_and_pd(visit, ev.in_contact);
                 let approach = dot3(v, nrm);
                 let abs_k = _mm256_andnot_pd(neg_zero, ev.stiffness);
-                let root_k = _mm256_sqrt_pd(abs_k);
+                let root_k = _mm256_sqrt_pd(_mm256_andnot_pd(neg_zero, ev.damping_stiffness));
                 let damping = select(ev.yielded, param(2), param(1));
                 let f_n = _mm256_add_pd(ev.force, _mm256_mul_pd(_mm256_mul_pd(damping, root_k), approach));
                 let minus_f_n = _mm256_xor_pd(f_n, neg_zero);
@@ -312,7 +405,10 @@ mod x86 {
                     s_t = std::array::from_fn(|c| select(turned, _mm256_mul_pd(s_t[c], factor), s_t[c]));
                 }
                 // TangentialSpring::step with k_t (000 Eq. 22, or Mindlin's 004 Eq. 3.25) and the limit mu max(N, 0).
-                let k_t = _mm256_mul_pd(param(3), if L::MINDLIN { ev.radius } else { abs_k });
+                let k_t = match ev.tangential_stiffness {
+                    Some(k_t) => k_t,
+                    None => _mm256_mul_pd(param(3), if L::MINDLIN { ev.radius } else { abs_k }),
+                };
                 let mu = param(5);
                 let mut f_s: [__m256d; 3] = std::array::from_fn(|c| _mm256_sub_pd(s_t[c], _mm256_mul_pd(_mm256_mul_pd(v_t[c], dt), k_t)));
                 let limit = _mm256_mul_pd(mu, _mm256_max_pd(ev.sliding_normal_force, zero));
@@ -326,9 +422,9 @@ mod x86 {
                 let root_kt = _mm256_mul_pd(param(4), root_k);
                 let c_t = _mm256_mul_pd(param(1), root_kt);
                 let tangential: [__m256d; 3] = std::array::from_fn(|c| select(sliding, f_s[c], _mm256_sub_pd(f_s[c], _mm256_mul_pd(v_t[c], c_t))));
-                // No friction: no tangential force, and the spring as it was.
+                // No friction: no tangential force, and the spring as it was. None out of contact either.
                 let rubs = _mm256_cmp_pd::<_CMP_GT_OQ>(mu, zero);
-                let tangential: [__m256d; 3] = std::array::from_fn(|c| _mm256_and_pd(tangential[c], rubs));
+                let tangential: [__m256d; 3] = std::array::from_fn(|c| _mm256_and_pd(tangential[c], _mm256_and_pd(rubs, touch)));
                 // The memory: a visited lane in contact keeps the new spring (where it rubs), one out of
                 // contact forgets it; a lane not visited keeps its own.
                 let new_s: [__m256d; 3] = std::array::from_fn(|c| select(visit, _mm256_and_pd(select(rubs, f_s[c], s0[c]), ev.in_contact), s0[c]));
@@ -345,14 +441,20 @@ mod x86 {
                 }
                 // Each contact's share of its two bodies; lanes not touching add +0.0, which changes no sum (a
                 // sum that starts at +0.0 is never -0.0).
-                let force: [__m256d; 3] =
-                    std::array::from_fn(|c| _mm256_and_pd(_mm256_add_pd(_mm256_mul_pd(nrm[c], minus_f_n), tangential[c]), touch));
+                // A lane out of contact that attracts (Tomas) gives the normal force alone, and no rolling load.
+                let attracts = _mm256_and_pd(visit, ev.attraction);
+                let minus_f = _mm256_xor_pd(ev.force, neg_zero);
+                let acts = _mm256_or_pd(touch, attracts);
+                let force: [__m256d; 3] = std::array::from_fn(|c| {
+                    let f = select(attracts, _mm256_mul_pd(nrm[c], minus_f), _mm256_add_pd(_mm256_mul_pd(nrm[c], minus_f_n), tangential[c]));
+                    _mm256_and_pd(f, acts)
+                });
                 let turn = [
                     _mm256_sub_pd(_mm256_mul_pd(nrm[1], tangential[2]), _mm256_mul_pd(nrm[2], tangential[1])),
                     _mm256_sub_pd(_mm256_mul_pd(nrm[2], tangential[0]), _mm256_mul_pd(nrm[0], tangential[2])),
                     _mm256_sub_pd(_mm256_mul_pd(nrm[0], tangential[1]), _mm256_mul_pd(nrm[1], tangential[0])),
                 ];
-                let (li, lj) = (_mm256_and_pd(li, touch), _mm256_and_pd(lj, touch));
+                let (li, lj) = (_mm256_and_pd(li, acts), _mm256_and_pd(lj, acts));
                 let rolling = _mm256_and_pd(_mm256_mul_pd(param(6), _mm256_andnot_pd(neg_zero, ev.force)), touch);
                 let share = transpose(force[0], force[1], force[2], rolling);
                 let torque_i = transpose(_mm256_mul_pd(turn[0], li), _mm256_mul_pd(turn[1], li), _mm256_mul_pd(turn[2], li), zero);

@@ -2,14 +2,14 @@
 //! 4.1.4-4.1.5): every branch computed, the first that holds selected, in the scalar law's order and with
 //! its operations. Lanes: `a` established (a mask), `b` alpha_max. Constant k_e only.
 
-use super::x86::{select, splat, Eval4, History4, LaneLaw};
+use super::x86::{select, splat, Eval4, History4, LaneLaw, Lanes};
 use super::LAW_PARAMS;
 use crate::law::pasha::{PashaHistory, PashaStiffnessLaw};
 use crate::law::pasha_simplified::PashaSimplified;
 use std::arch::x86_64::*;
 
 impl LaneLaw for PashaSimplified {
-    const LANES: bool = true;
+    const LANES: Lanes = Lanes::Vector;
 
     fn lane_params(&self) -> Option<[f64; LAW_PARAMS]> {
         (self.stiffness.law == PashaStiffnessLaw::Constant).then_some([self.stiffness.k_e, self.k_p, self.k_cp, self.f_0p, self.f_ce, self.alpha_0])
@@ -86,6 +86,9 @@ impl LaneLaw for PashaSimplified {
                 // 004 Eq. 4.28: F_n + k_cp alpha + f_0p - f_ce
                 sliding_normal_force: _mm256_sub_pd(_mm256_add_pd(_mm256_add_pd(force, _mm256_mul_pd(k_cp, alpha)), f_0p), f_ce),
                 radius: zero,
+                damping_stiffness: stiffness,
+                tangential_stiffness: None,
+                attraction: _mm256_setzero_pd(),
             }
         }
     }
