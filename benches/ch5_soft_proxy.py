@@ -79,7 +79,7 @@ def main():
     by, seed_kpa = {}, {}
     for r in rows:
         by.setdefault(r["candidate"], []).append(r["plateau_Pa"])
-        die45 = r["candidate"].partition("_")[0]
+        die45 = r["candidate"].removeprefix("fric_").partition("_")[0]  # fric_d45h20: the d45h20 bed with EDEM's limit
         seed_kpa[r["candidate"]] = SEED_KPA_45[die45] if die45 in SEED_KPA_45 else SEED_KPA[r["indenter_mm"]]
     base = by.get("base")
     base_mean = statistics.mean(base) if base else float("nan")

@@ -32,8 +32,9 @@
 #            the Hertz part 4 E* a^3/(3 R*), at least 4 f_c, against F_n + 2 f_c of 004 Eq. 3.49), only
 #            for the test, on the default beds 1-4 as they were prepared
 #   fric     the same limit from the fill on: beds prepared with it, fill seeds 1-4
+#   fric_d45h13, fric_d45h20  the 45 mm die's 13 and 20 mm beds prepared with that limit (fill seeds 1-4)
 # The other rows' scenes name the interface energy and the walls' contact for the indenter explicitly,
-# so they mean the same whatever the bed scene's defaults. Every row but `fric` names 004 Eq. 3.49's
+# so they mean the same whatever the bed scene's defaults. Every row but the `fric` ones names 004 Eq. 3.49's
 # friction limit (`pull_off`), the bed scene's default when they ran; the default is EDEM's since.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -46,16 +47,20 @@ D=0.013 # indenter diameter [m]; every test goes to h/r 0.5
 scene() { # name gamma seed; gamma "default": the bed scene's own interface energy and indenter;
     # "whole": the same on the whole die (scenes/bed_004_indentation.json, 16000 spheres); "d45_13",
     # "d45_20", "d45_30", "d45_50": a quarter of the 45 mm die's 13-50 mm beds (scenes/bed_004_ch5_45mm_*.json)
-    case "$2" in default | fric | whole | d45_13 | d45_20 | d45_30 | d45_50)
+    # "fric", "fric_d45_13", "fric_d45_20": the quarter and those beds with EDEM's friction limit from the fill on
+    case "$2" in default | fric | fric_d45_13 | fric_d45_20 | whole | d45_13 | d45_20 | d45_30 | d45_50)
         local count=4000 sector='"die_sector": 0.25,' of=bed_004_indentation_quarter.json die='' law=', "jkr_friction_limit": "pull_off"'
-        case "$2" in
-            fric) law=', "jkr_friction_limit": "repulsive"' of="bed_004_indentation_quarter.json with EDEM's friction limit" ;;
+        local kind=$2
+        case "$kind" in fric*) law=', "jkr_friction_limit": "repulsive"'; kind=${kind#fric_} ;; esac
+        case "$kind" in
+            fric) of="bed_004_indentation_quarter.json with EDEM's friction limit" ;;
             whole) count=16000 sector='' of=bed_004_indentation.json ;;
             d45_13) count=5325 of="bed_004_ch5_45mm_13mm.json, a quarter" die='"die_diameter": 0.045,' ;;
             d45_20) count=8200 of="bed_004_ch5_45mm_20mm.json, a quarter" die='"die_diameter": 0.045,' ;;
             d45_30) count=11750 of="bed_004_ch5_45mm_30mm.json, a quarter" die='"die_diameter": 0.045,' ;;
             d45_50) count=19575 of="bed_004_ch5_45mm_50mm.json, a quarter" die='"die_diameter": 0.045, "die_height": 0.1,' ;;
         esac
+        [ "$2" = "fric_$kind" ] && of="$of, with EDEM's friction limit"
         cat >"$OUT/$1.json" <<JSON
 {
   "comment": "Soft proxy of scenes/$of (E = 55 MPa) with the bed scene's defaults, fill seed $3",
@@ -157,4 +162,13 @@ done
 for s in 1 2 3 4; do
     bed "fric_s$s" fric "$s"
     run "fric_s$s" "fric_s$s"
+done
+# The 45 mm die's 13 and 20 mm beds with EDEM's limit from the fill on: does the seed's drop with bed height
+# (about 8 kPa on the 13 mm bed, 6 kPa on the 20 mm one, 004 Fig. 5.12) follow the limit? Four fill seeds:
+# the first two 20 mm beds differed by 1.6 times.
+for s in 1 2 3 4; do
+    bed "fric_d45_13_s$s" fric_d45_13 "$s"
+    bed "fric_d45_20_s$s" fric_d45_20 "$s"
+    run "fric_d45h13_s$s" "fric_d45_13_s$s"
+    run "fric_d45h20_s$s" "fric_d45_20_s$s"
 done

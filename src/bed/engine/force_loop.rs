@@ -2,7 +2,9 @@
 //! wall contacts, one `kernel::contact` per pair, accumulating into its `Sink`. The pair loop's vector
 //! arithmetic is hand-written (`dot`, `sub`, `scale`), as in the kernel, for speed (measured in
 //! `bed/mod.rs`), and so is the accumulation (`Sink::add_contact`), which adds the partner's share with
-//! the signs the other side of the contact gives.
+//! the signs the other side of the contact gives. With AVX2 the particle pairs run four at a time on
+//! lanes (`lanes`; 1.4-1.8 times the scalar loop for the laws evaluated on lanes, docs/benchmarks.md),
+//! their last 0-3 slots and the wall contacts one at a time here.
 
 use super::super::interaction::{BedLaw, Interaction};
 use super::super::kernel::{contact, surface_velocity};
