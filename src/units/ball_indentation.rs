@@ -45,7 +45,7 @@ pub const QUARTER_REPLICAS: [(&str, &str, &str); 2] = [
 ];
 
 /// The default speed [m/s]: gamma* = (v/H)(d/g)^(1/2) = 0.02 on the shipped bed (`004` Eq. 7.1; H =
-/// 18.0 mm, d = 1.0 mm), run on its quarter (`fidelity = quarter`): the test in 103-156 s on two cores.
+/// 18.0 mm, d = 1.0 mm), run on its quarter (`fidelity = quarter`): the test in 76-99 s on two cores (AVX2).
 /// Chosen from the measured curve in docs/indentation.md: the whole bed fits in 2 minutes only from
 /// gamma* = 0.08 on, which reads the plateau about 22 % below the seed's gamma* = 0.01. Ten runs of the
 /// default read 18 % below the whole beds at the seed's speed (6874 against 8408 Pa), with a standard
@@ -142,7 +142,7 @@ variable_table! {
     indenter_motion: Variable::parameter("indenter_motion", Value::String("prescribed".into()), "", "prescribed (load at indentation_speed to max_penetration, unload at the same speed until the indenter leaves the bed) or input (follow indenter_displacement and indenter_velocity)"),
     indenter_diameter: Variable::parameter("indenter_diameter", Value::Real(0.016), "m", "d, diameter of the spherical indenter, narrower than the die (default 16 mm, 16 mean diameters of the shipped bed: 004 Ch. 5's smallest reliable size)")
         .with_range(Some(0.0), None),
-    indentation_speed: Variable::parameter("indentation_speed", Value::Real(DEFAULT_SPEED), "m/s", "speed of the prescribed loading and unloading (default gamma* = 0.02 on the shipped bed's quarter, 103-156 s on two cores; over ten runs it reads the plateau hardness 18 % below the whole beds at the seed's speed gamma* = 0.01, 0.01786 m/s, with 8 % from run to run: docs/indentation.md)")
+    indentation_speed: Variable::parameter("indentation_speed", Value::Real(DEFAULT_SPEED), "m/s", "speed of the prescribed loading and unloading (default gamma* = 0.02 on the shipped bed's quarter, 76-99 s on two cores with AVX2; over ten runs it reads the plateau hardness 18 % below the whole beds at the seed's speed gamma* = 0.01, 0.01786 m/s, with 8 % from run to run: docs/indentation.md)")
         .with_range(Some(0.0), None),
     max_penetration: Variable::parameter("max_penetration", Value::Real(0.0016), "m", "depth at which the prescribed indenter turns (default h/r = 0.2)")
         .with_range(Some(0.0), None),
