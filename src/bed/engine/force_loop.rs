@@ -62,10 +62,9 @@ impl<L: BedLaw> Engine<L> {
         // (see `run_part_body`); the list must be this bed's.
         assert_eq!(self.list.rows(), n, "the Verlet list is not built for these particles");
         let record = self.record_dipoles;
-        // Lanes: AVX2, a law that has them, pairs they cover, and neither held spheres nor dipoles (both
-        // stay on the scalar loop).
+        // Lanes where allowed and the pairs' laws fit them (`lanes::table`).
         #[cfg(target_arch = "x86_64")]
-        let lanes = self.isa == Isa::Avx2 && !self.any_held && !record && super::lanes::table(&self.pairs, &mut self.lane_table);
+        let lanes = self.lanes_allowed() && super::lanes::table(&self.pairs, &mut self.lane_table);
         #[cfg(not(target_arch = "x86_64"))]
         let lanes = false;
         let shared = Shared {

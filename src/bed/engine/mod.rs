@@ -164,13 +164,19 @@ impl<L: BedLaw> Engine<L> {
     /// law once per lane, the rest on lanes) or `scalar` (`lanes`).
     pub fn pair_loop(&self) -> &'static str {
         #[cfg(target_arch = "x86_64")]
-        if self.isa == Isa::Avx2 && !self.any_held && lanes::table(&self.pairs, &mut Vec::new()) {
+        if self.lanes_allowed() && lanes::table(&self.pairs, &mut Vec::new()) {
             return match L::LANES {
                 lanes::Lanes::Vector => "vector",
                 lanes::Lanes::PerLane => "per_lane",
             };
         }
         "scalar"
+    }
+
+    /// Whether this force loop may run the pairs on lanes, the law and its pairs aside: AVX2, and neither
+    /// held spheres nor the dipole pass (both stay on the scalar loop).
+    pub(super) fn lanes_allowed(&self) -> bool {
+        self.isa == Isa::Avx2 && !self.any_held && !self.record_dipoles
     }
 
     /// Runs the hot loops with another instruction set (the same bits either way; for comparisons).

@@ -14,19 +14,6 @@ impl LaneLaw for Hertz {
         Some([self.radius, self.youngs_modulus, 0.0, 0.0, 0.0, 0.0])
     }
 
-    fn load_history(_h: &[()]) -> History4 {
-        // SAFETY: `_mm256_setzero_pd` needs only AVX, which every caller (the AVX2 lane loop) has.
-        unsafe { History4 { a: _mm256_setzero_pd(), b: _mm256_setzero_pd() } }
-    }
-
-    fn store_history(_h: &mut [()], _v: &History4, _mask: i32) {}
-
-    #[inline(always)]
-    unsafe fn must_visit(_h: &History4) -> __m256d {
-        // SAFETY: the caller runs with AVX2 (the trait's contract).
-        unsafe { _mm256_setzero_pd() }
-    }
-
     #[inline(always)]
     unsafe fn evaluate4(p: &[__m256d; LAW_PARAMS], alpha: __m256d, h: &History4) -> Eval4 {
         // SAFETY: the caller runs with AVX2 (the trait's contract).

@@ -94,23 +94,28 @@ mod x86 {
             None
         }
 
+        // The three history functions below default to a law without history (`()`: nothing to load or
+        // store, never a reason to visit a pair at rest apart), as the linear spring and Hertz are; a
+        // `Lanes::Vector` law with a history overrides all three. `Lanes::PerLane` laws never call them.
+
         /// The histories of four consecutive slots.
         fn load_history(_h: &[Self::History]) -> History4 {
-            unreachable!("no lanes for this law")
+            // SAFETY: `_mm256_setzero_pd` needs only AVX, which every caller (the AVX2 lane loop) has.
+            unsafe { History4 { a: _mm256_setzero_pd(), b: _mm256_setzero_pd() } }
         }
 
         /// Writes the lanes whose bit `mask` sets (bit k: slot k) back to four consecutive slots.
-        fn store_history(_h: &mut [Self::History], _v: &History4, _mask: i32) {
-            unreachable!("no lanes for this law")
-        }
+        fn store_history(_h: &mut [Self::History], _v: &History4, _mask: i32) {}
 
         /// Lanes whose history forbids skipping the pair while it is beyond reach with no spring: neither
         /// the initial history nor one the law `rests_apart` with.
         ///
         /// # Safety
         /// AVX2 must be available.
+        #[inline(always)]
         unsafe fn must_visit(_h: &History4) -> __m256d {
-            unreachable!("no lanes for this law")
+            // SAFETY: the caller runs with AVX2 (the trait's contract).
+            unsafe { _mm256_setzero_pd() }
         }
 
         /// # Safety
