@@ -46,6 +46,8 @@ macro_rules! no_lanes {
     (PashaSimplified, $ty:ty) => {};
     (Linear, $ty:ty) => {};
     (Hertz, $ty:ty) => {};
+    (Jkr, $ty:ty) => {};
+    (JkrModified, $ty:ty) => {};
     ($variant:ident, $ty:ty) => {
         #[cfg(target_arch = "x86_64")]
         impl LaneLaw for $ty {}

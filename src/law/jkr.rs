@@ -45,11 +45,11 @@ pub struct JkrCurve {
     pub youngs_modulus: f64,
     pub surface_energy: f64,
     /// b = sqrt(2 pi Gamma / E*) in alpha = a^2/R - b sqrt(a).
-    b: f64,
+    pub(crate) b: f64,
     /// sqrt(a) at detachment (d alpha/ d a = 0): (b R / 4)^(1/3).
-    w_detach: f64,
+    pub(crate) w_detach: f64,
     /// Detachment overlap, pull-off radius and overlap: fixed per curve, kept.
-    alpha_detach: f64,
+    pub(crate) alpha_detach: f64,
     a_pull_off: f64,
     alpha_pull_off: f64,
 }

@@ -11,11 +11,11 @@ impl LaneLaw for Hertz {
     const MINDLIN: bool = true;
 
     fn lane_params(&self) -> Option<[f64; LAW_PARAMS]> {
-        Some([self.radius, self.youngs_modulus, 0.0, 0.0, 0.0, 0.0])
+        Some([self.radius, self.youngs_modulus, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0])
     }
 
     #[inline(always)]
-    unsafe fn evaluate4(p: &[__m256d; LAW_PARAMS], alpha: __m256d, h: &History4) -> Eval4 {
+    unsafe fn evaluate4(p: &[__m256d; LAW_PARAMS], alpha: __m256d, h: &History4, _laws: [&Self; 4], _guess: __m256d) -> Eval4 {
         // SAFETY: the caller runs with AVX2 (the trait's contract).
         unsafe {
             let (radius, youngs) = (p[0], p[1]);

@@ -9,13 +9,15 @@
 //! cannot overlap with the next contact's (docs/benchmarks.md, issue 30). On lanes four chains run in one.
 //!
 //! A law joins by implementing `LaneLaw` (its evaluation on lanes: `lanes/pasha_simplified.rs`,
-//! `lanes/linear.rs`, `lanes/hertz.rs`). The other laws, a bed whose pairs the lanes do not cover (a
-//! tangential model other than the law's own, a load-dependent Pasha stiffness, no fixed ratio of the
-//! tangential to the normal damping stiffness), and a force loop with held spheres or recorded dipoles
-//! stay on the scalar loop.
+//! `lanes/linear.rs`, `lanes/hertz.rs`, `lanes/jkr.rs` for the full and the modified JKR laws). The other
+//! laws, a bed whose pairs the lanes do not cover (a tangential model other than the law's own, a
+//! load-dependent Pasha stiffness, no fixed ratio of the tangential to the normal damping stiffness), and
+//! a force loop with held spheres or recorded dipoles stay on the scalar loop.
 
 #[cfg(target_arch = "x86_64")]
 mod hertz;
+#[cfg(target_arch = "x86_64")]
+mod jkr;
 #[cfg(target_arch = "x86_64")]
 mod linear;
 #[cfg(target_arch = "x86_64")]
@@ -26,7 +28,7 @@ pub use x86::*;
 
 /// Parameters of one species pair as the lanes read them: `COMMON` of the contact, then the law's own.
 pub const COMMON: usize = 7;
-pub const LAW_PARAMS: usize = 6;
+pub const LAW_PARAMS: usize = 8;
 pub type LaneRow = [f64; COMMON + LAW_PARAMS];
 
 #[cfg(not(target_arch = "x86_64"))]
@@ -118,9 +120,12 @@ mod x86 {
             unsafe { _mm256_setzero_pd() }
         }
 
+        /// The law on four lanes: `p` its `lane_params`, `laws` the four pairs' laws (for what is left to the
+        /// scalar law, such as a closed form without a guess), `guess` the slots' remembered contact radii.
+        ///
         /// # Safety
         /// AVX2 must be available.
-        unsafe fn evaluate4(_p: &[__m256d; LAW_PARAMS], _alpha: __m256d, _h: &History4) -> Eval4 {
+        unsafe fn evaluate4(_p: &[__m256d; LAW_PARAMS], _alpha: __m256d, _h: &History4, _laws: [&Self; 4], _guess: __m256d) -> Eval4 {
             unreachable!("no lanes for this law")
         }
     }
@@ -379,7 +384,9 @@ mod x86 {
                 // The law (kernel::contact from here on).
                 let ev = if vector {
                     let law_params: [__m256d; LAW_PARAMS] = std::array::from_fn(|q| param(COMMON + q));
-                    let ev = L::evaluate4(&law_params, alpha, &h);
+                    let laws: [&L; 4] = std::array::from_fn(|k| &e.pairs[pair[k]].law);
+                    let guess = _mm256_loadu_pd(radius_memory[m..m + 4].as_ptr());
+                    let ev = L::evaluate4(&law_params, alpha, &h, laws, guess);
                     L::store_history(&mut normal[m..m + 4], &ev.history, visit_bits);
                     ev
                 } else {

@@ -12,7 +12,7 @@ impl LaneLaw for PashaSimplified {
     const LANES: Lanes = Lanes::Vector;
 
     fn lane_params(&self) -> Option<[f64; LAW_PARAMS]> {
-        (self.stiffness.law == PashaStiffnessLaw::Constant).then_some([self.stiffness.k_e, self.k_p, self.k_cp, self.f_0p, self.f_ce, self.alpha_0])
+        (self.stiffness.law == PashaStiffnessLaw::Constant).then_some([self.stiffness.k_e, self.k_p, self.k_cp, self.f_0p, self.f_ce, self.alpha_0, 0.0, 0.0])
     }
 
     fn load_history(h: &[PashaHistory]) -> History4 {
@@ -48,10 +48,10 @@ impl LaneLaw for PashaSimplified {
     }
 
     #[inline(always)]
-    unsafe fn evaluate4(p: &[__m256d; LAW_PARAMS], alpha: __m256d, h: &History4) -> Eval4 {
+    unsafe fn evaluate4(p: &[__m256d; LAW_PARAMS], alpha: __m256d, h: &History4, _laws: [&Self; 4], _guess: __m256d) -> Eval4 {
         // SAFETY: the caller runs with AVX2 (the trait's contract).
         unsafe {
-            let [k_e, k_p, k_cp, f_0p, f_ce, alpha_0] = *p;
+            let [k_e, k_p, k_cp, f_0p, f_ce, alpha_0, _, _] = *p;
             let (established, alpha_max) = (h.a, h.b);
             let zero = _mm256_setzero_pd();
             let two = splat(2.0);
