@@ -202,7 +202,7 @@ impl<L: BedLaw> Interaction<L> {
                 continue;
             }
             let load = self.law.sliding_normal_force(ev.force, alpha, &h);
-            let q = self.tangential.at(alpha, ev.stiffness, load, a) / k_damp.abs();
+            let q = self.tangential.at(alpha, ev.stiffness, load, self.law.mindlin_radius(alpha, &h, a)) / k_damp.abs();
             match ratio {
                 None => ratio = Some(q),
                 Some(r) if ((q - r) / r).abs() <= 1e-12 => {}

@@ -82,7 +82,7 @@ pub fn contact<L: BedLaw>(
             }
         }
         let normal_load = law.sliding_normal_force(ev.force, alpha, &ev.history);
-        let k_t = it.tangential.at(alpha, ev.stiffness, normal_load, radius);
+        let k_t = it.tangential.at(alpha, ev.stiffness, normal_load, law.mindlin_radius(alpha, &ev.history, radius));
         let mut ts = TangentialSpring { force: s_t };
         let (f_s, sliding) = ts.step(scale(v_t, dt), k_t, it.friction, normal_load);
         *spring = f_s;

@@ -27,10 +27,22 @@ crate::choice_enum! {
     }
 }
 
+crate::choice_enum! {
+    /// The radius r of a modified JKR contact's damping stiffness 2 E* r and Mindlin's 8 G* r.
+    pub enum JkrStiffnessRadius {
+        /// The JKR contact radius a (the `jkr` law's).
+        Contact = "contact",
+        /// Hertz's sqrt(R* alpha) at the same overlap (EDEM's JKR cohesion, whose manual computes the
+        /// tangential spring and both dissipations as its Hertz-Mindlin model does).
+        Hertz = "hertz",
+    }
+}
+
 crate::scene_options! {
     /// The modified JKR law's own scene keys.
     pub struct JkrModifiedOptions {
         jkr_friction_limit: choice(JkrFrictionLimit::PullOff), "-", Range::Names, "the normal force of a jkr_modified contact's Coulomb limit mu N: pull_off, N = F_n + 2 f_c (004 Eq. 3.49), or repulsive, N = 4 E* a^3/(3 R*), the Hertz part of the JKR force (EDEM's JKR cohesion, with which 004 ran Ch. 5)";
+        jkr_stiffness_radius: choice(JkrStiffnessRadius::Contact), "-", Range::Names, "the radius r of a jkr_modified contact's damping stiffness 2 E* r and Mindlin's tangential stiffness 8 G* r: contact, the JKR contact radius a, or hertz, sqrt(R* alpha), Hertz-Mindlin's at the same overlap (EDEM's JKR cohesion; with EDEM's damping also set damping_factor_elastic = (5/6)^(1/2) = 0.9129). hertz runs the scalar pair loop";
     }
 }
 
@@ -38,6 +50,7 @@ crate::scene_options! {
 pub struct JkrModified {
     pub curve: JkrCurve,
     pub friction_limit: JkrFrictionLimit,
+    pub stiffness_radius: JkrStiffnessRadius,
 }
 
 impl JkrModified {
@@ -46,7 +59,16 @@ impl JkrModified {
     }
 
     pub fn with_friction_limit(radius: f64, youngs_modulus: f64, surface_energy: f64, friction_limit: JkrFrictionLimit) -> JkrModified {
-        JkrModified { curve: JkrCurve::new(radius, youngs_modulus, surface_energy), friction_limit }
+        JkrModified { curve: JkrCurve::new(radius, youngs_modulus, surface_energy), friction_limit, stiffness_radius: JkrStiffnessRadius::Contact }
+    }
+
+    /// The damping stiffness 2 E* r at contact radius `a`, with r as `stiffness_radius` says.
+    #[inline(always)]
+    fn damping_at(&self, alpha: f64, a: f64) -> f64 {
+        2.0 * self.curve.youngs_modulus * match self.stiffness_radius {
+            JkrStiffnessRadius::Contact => a,
+            JkrStiffnessRadius::Hertz => (self.curve.radius * alpha).sqrt(),
+        }
     }
 }
 
@@ -104,10 +126,20 @@ impl NormalLaw for JkrModified {
         (alpha > 0.0).then(|| self.curve.contact_radius(alpha))
     }
 
-    /// 2 E* a: the Hertz stiffness at the JKR contact radius (the JKR slope is infinite at detachment).
+    /// 2 E* a: the Hertz stiffness at the JKR contact radius (the JKR slope is infinite at detachment);
+    /// 2 E* sqrt(R* alpha) with `jkr_stiffness_radius = hertz`.
     #[inline]
     fn damping_stiffness(&self, alpha: f64, h: &(), _branch_stiffness: f64) -> f64 {
-        2.0 * self.curve.youngs_modulus * self.contact_radius(alpha, h).unwrap_or(0.0)
+        self.contact_radius(alpha, h).map_or(0.0, |a| self.damping_at(alpha, a))
+    }
+
+    /// The contact radius a, or Hertz's sqrt(R* alpha) with `jkr_stiffness_radius = hertz`.
+    #[inline(always)]
+    fn mindlin_radius(&self, alpha: f64, _h: &(), contact_radius: Option<f64>) -> Option<f64> {
+        match self.stiffness_radius {
+            JkrStiffnessRadius::Contact => contact_radius,
+            JkrStiffnessRadius::Hertz => contact_radius.map(|_| (self.curve.radius * alpha).sqrt()),
+        }
     }
 
     /// One contact-radius solve for force, stiffness, damping and Mindlin.
@@ -117,7 +149,7 @@ impl NormalLaw for JkrModified {
             return (Evaluation::separated(0.0, ()), 0.0, None);
         }
         let a = self.curve.contact_radius(alpha);
-        (self.elastic_at(a), 2.0 * self.curve.youngs_modulus * a, Some(a))
+        (self.elastic_at(a), self.damping_at(alpha, a), Some(a))
     }
 
     #[inline]
@@ -126,7 +158,7 @@ impl NormalLaw for JkrModified {
             return (Evaluation::separated(0.0, ()), 0.0, None);
         }
         let a = self.curve.contact_radius_from(alpha, guess);
-        (self.elastic_at(a), 2.0 * self.curve.youngs_modulus * a, Some(a))
+        (self.elastic_at(a), self.damping_at(alpha, a), Some(a))
     }
 }
 
@@ -134,7 +166,9 @@ impl LawInfo for JkrModified {
     const TANGENTIAL: TangentialModel = TangentialModel::Mindlin;
     type Options = JkrModifiedOptions;
     fn from_pair(eff: &Effective, options: &LawOptions) -> Result<JkrModified, ParamError> {
-        Ok(JkrModified::with_friction_limit(eff.radius, eff.youngs_modulus, eff.surface_energy, options.jkr_modified.jkr_friction_limit))
+        let mut law = JkrModified::with_friction_limit(eff.radius, eff.youngs_modulus, eff.surface_energy, options.jkr_modified.jkr_friction_limit);
+        law.stiffness_radius = options.jkr_modified.jkr_stiffness_radius;
+        Ok(law)
     }
 }
 
@@ -170,6 +204,33 @@ mod tests {
     }
 
     #[test]
+    fn the_hertz_stiffness_radius_is_sqrt_r_alpha_for_damping_and_mindlin_and_the_force_is_unchanged() {
+        let contact = law(JkrFrictionLimit::Repulsive);
+        let mut hertz = contact.clone();
+        hertz.stiffness_radius = JkrStiffnessRadius::Hertz;
+        let (e_star, r) = (contact.curve.youngs_modulus, contact.curve.radius);
+        for alpha in [1e-10, 1e-8, 1e-6] {
+            let (ev_c, k_c, a_c) = contact.evaluate_with_radius(alpha, &());
+            let (ev_h, k_h, a_h) = hertz.evaluate_near(alpha, &(), a_c.unwrap());
+            let a = a_c.unwrap();
+            // The force, its stiffness and the remembered contact radius (the next step's guess) stay JKR's.
+            assert_eq!((ev_h.force, ev_h.stiffness), (ev_c.force, ev_c.stiffness));
+            assert!((a_h.unwrap() / a - 1.0).abs() < 1e-12);
+            assert_eq!(k_c, 2.0 * e_star * a);
+            assert_eq!(contact.mindlin_radius(alpha, &(), a_c), a_c);
+            let hertz_radius = (r * alpha).sqrt();
+            assert!((k_h / (2.0 * e_star * hertz_radius) - 1.0).abs() < 1e-15, "alpha {alpha:e}");
+            assert_eq!(hertz.damping_stiffness(alpha, &(), ev_h.stiffness), k_h);
+            assert_eq!(hertz.mindlin_radius(alpha, &(), a_h), Some(hertz_radius));
+            // Adhesion makes the JKR contact wider than Hertz's at the same overlap.
+            assert!(a > hertz_radius, "alpha {alpha:e}: a {a:e} vs {hertz_radius:e}");
+        }
+        // Apart: no radius, no damping.
+        assert_eq!(hertz.mindlin_radius(-1e-9, &(), hertz.contact_radius(-1e-9, &())), None);
+        assert_eq!(hertz.damping_stiffness(-1e-9, &(), 0.0), 0.0);
+    }
+
+    #[test]
     fn the_scene_key_chooses_the_limit() {
         let scene = crate::scene::Scene::from_json(
             r#"{"contact_model": "jkr_modified", "particle_radius": 5e-4, "particle_density": 2500,
@@ -178,6 +239,20 @@ mod tests {
         )
         .unwrap();
         assert_eq!(scene.laws.jkr_modified.jkr_friction_limit, JkrFrictionLimit::Repulsive);
+        assert_eq!(scene.laws.jkr_modified.jkr_stiffness_radius, JkrStiffnessRadius::Contact);
+        let scene = crate::scene::Scene::from_json(
+            r#"{"contact_model": "jkr_modified", "particle_radius": 5e-4, "particle_density": 2500,
+                "particle_youngs_modulus": 55e9, "particle_poisson_ratio": 0.25, "jkr_stiffness_radius": "hertz"}"#,
+        )
+        .unwrap();
+        assert_eq!(scene.laws.jkr_modified.jkr_stiffness_radius, JkrStiffnessRadius::Hertz);
+        let err = crate::scene::Scene::from_json(
+            r#"{"particle_radius": 5e-4, "particle_density": 2500, "particle_youngs_modulus": 55e9,
+                "particle_poisson_ratio": 0.25, "jkr_stiffness_radius": "edem"}"#,
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(err.contains("jkr_stiffness_radius") && err.contains("hertz"), "{err}");
         let err = crate::scene::Scene::from_json(
             r#"{"particle_radius": 5e-4, "particle_density": 2500, "particle_youngs_modulus": 55e9,
                 "particle_poisson_ratio": 0.25, "jkr_friction_limit": "edem"}"#,

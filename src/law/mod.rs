@@ -135,6 +135,14 @@ pub trait NormalLaw {
         self.evaluate_with_radius(alpha, history)
     }
 
+    /// The radius Mindlin's tangential stiffness 8 G* r is taken at, given the contact radius the law
+    /// returned with its evaluation (`evaluate_near`): by default that radius. The modified JKR law with
+    /// `jkr_stiffness_radius = hertz` takes Hertz's sqrt(R* alpha) instead (EDEM's JKR cohesion).
+    #[inline(always)]
+    fn mindlin_radius(&self, _alpha: f64, _history: &Self::History, contact_radius: Option<f64>) -> Option<f64> {
+        contact_radius
+    }
+
     /// The stiffness k_n of the viscous damping 2 gamma sqrt(m* k_n) (000 Eqs. 24-25) [N/m]: by default the
     /// magnitude of the branch stiffness. The JKR curves use 2 E* a, because their branch stiffness is
     /// infinite at detachment.
@@ -338,6 +346,10 @@ impl NormalLaw for AnyLaw {
 
     fn damping_stiffness(&self, alpha: f64, history: &AnyHistory, branch_stiffness: f64) -> f64 {
         dispatch!(self, history, l, h => l.damping_stiffness(alpha, h, branch_stiffness), plain, branch_stiffness.abs())
+    }
+
+    fn mindlin_radius(&self, alpha: f64, history: &AnyHistory, contact_radius: Option<f64>) -> Option<f64> {
+        dispatch!(self, history, l, h => l.mindlin_radius(alpha, h, contact_radius), plain, contact_radius)
     }
 
     fn vertical_end(&self, branch: Branch, history: &AnyHistory) -> Option<f64> {

@@ -10,7 +10,7 @@
 use super::x86::{select, splat, Eval4, History4, LaneLaw, Lanes};
 use super::LAW_PARAMS;
 use crate::law::jkr::{Jkr, JkrCurve, JkrHistory};
-use crate::law::jkr_modified::{JkrFrictionLimit, JkrModified};
+use crate::law::jkr_modified::{JkrFrictionLimit, JkrModified, JkrStiffnessRadius};
 use std::arch::x86_64::*;
 use std::f64::consts::PI;
 
@@ -141,7 +141,8 @@ impl LaneLaw for JkrModified {
     const MINDLIN: bool = true;
 
     fn lane_params(&self) -> Option<[f64; LAW_PARAMS]> {
-        Some(params(&self.curve, 0.0, self.friction_limit == JkrFrictionLimit::Repulsive))
+        // Hertz's stiffness radius is not on the lanes: the pair loop is then the scalar one.
+        (self.stiffness_radius == JkrStiffnessRadius::Contact).then(|| params(&self.curve, 0.0, self.friction_limit == JkrFrictionLimit::Repulsive))
     }
 
     #[inline(always)]
@@ -199,6 +200,33 @@ impl LaneLaw for Jkr {
             let in_contact = _mm256_xor_pd(separated, _mm256_cmp_pd::<_CMP_EQ_UQ>(zero, zero));
             let a = contact_radius4(p, alpha, guess, in_contact, laws.map(|l| &l.curve));
             evaluation(p, in_contact, a, History4 { a: in_contact, b: zero })
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::bed::interaction::{ContactTemplate, Interaction};
+    use crate::law::jkr_modified::JkrModified;
+    use serde_json::{json, Value};
+
+    #[test]
+    fn hertz_stiffness_radius_leaves_the_lanes_and_keeps_the_tangential_ratio_4_g_over_e() {
+        // 004 Tables 5.1-5.3's glass beads.
+        let Value::Object(mut map) = json!({"contact_model": "jkr_modified", "particle_youngs_modulus": 55e9,
+            "particle_poisson_ratio": 0.25, "surface_energy": 0.5, "friction_coefficient": 0.15}) else { unreachable!() };
+        let (r, rho) = (5e-4, 2500.0);
+        let m = rho * 4.0 / 3.0 * std::f64::consts::PI * r * r * r;
+        for (name, on_lanes) in [("contact", true), ("hertz", false)] {
+            map.insert("jkr_stiffness_radius".into(), name.into());
+            let base = ContactTemplate::particle(&map, r, rho).unwrap();
+            let it = Interaction::<JkrModified>::particle_pair(&base, r, m, r, m, 0.1).unwrap();
+            let mut rows = Vec::new();
+            assert_eq!(super::super::table(std::slice::from_ref(&it), &mut rows), on_lanes, "{name}");
+            // k_t / k_n = 8 G* r / (2 E* r) whichever radius r is: the tangential damping's ratio stays.
+            let (g, e) = (base.effective.shear_modulus, base.effective.youngs_modulus);
+            let q = it.tangential_root_ratio.expect("a constant ratio");
+            assert!((q * q / (4.0 * g / e) - 1.0).abs() < 1e-12, "{name}: {q}");
         }
     }
 }

@@ -262,7 +262,7 @@ mod x86 {
                 v[3][k] = if it.law.has_yielded(&ev.history) { yes } else { 0.0 };
                 v[4][k] = sliding;
                 v[5][k] = k_damp;
-                v[7][k] = it.tangential.at(a[k], ev.stiffness, sliding, radius);
+                v[7][k] = it.tangential.at(a[k], ev.stiffness, sliding, it.law.mindlin_radius(a[k], &ev.history, radius));
             }
             let lane = |q: usize| _mm256_loadu_pd(v[q].as_ptr());
             let zero = _mm256_setzero_pd();
