@@ -25,7 +25,8 @@ def read(path):
         return None  # the driver's own log
     head = dict(kv.split("=", 1) for kv in text.splitlines()[0].split(" ", 2))
     m = re.search(r"plateau hardness " + NUMBER + r" \+- " + NUMBER + r" Pa", text)
-    h = re.search(r"hardness " + NUMBER + r" Pa, plateau", text)
+    # "hardness H Pa, plateau" (logs before the hardness had an error) or "hardness H +- E Pa (...), plateau".
+    h = re.search(r"hardness " + NUMBER + r"(?: Pa| \+- " + NUMBER + r" Pa \(standard error of the force at the turn\)), plateau", text)
     n = re.search(r"h/r [0-9.-]+, (\d+) samples, correlation time " + NUMBER, text)
     wall = re.search(r"([0-9.]+) s wall time", text)
     if not m:

@@ -13,6 +13,6 @@ for bed in $BEDS; do
     for bin in "$@"; do
         printf '%s, %s: ' "$(basename "$bed")" "$bin"
         "$bin" bed indent "$bed" --speed 0.0179 --time-step 2.5e-7 --fidelity full --threads 2 --every 1e-4 --out /dev/null 2>&1 \
-            | grep -o 'hardness [0-9.e]* Pa, plateau hardness .*particle-steps/s'
+            | grep -o 'hardness [0-9.e]* \(+- [0-9.e]* Pa (standard error of the force at the turn)\|Pa\), plateau hardness .*particle-steps/s'
     done
 done

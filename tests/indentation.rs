@@ -85,6 +85,12 @@ fn a_prescribed_test_loads_unloads_and_gives_the_hardness_at_the_turn() {
     assert!(last.turn_force <= rec.f_max && last.turn_force > 0.8 * rec.f_max, "F at the turn {} N, largest sample {} N", last.turn_force, rec.f_max);
     assert_eq!(last.hardness, last.turn_force / projected_area(s.indenter_diameter, rec.h_max));
     assert_eq!(last.unconfined_yield_strength, last.hardness / 3.0);
+    // Its standard error is the force at the turn's (here h_c = h_max): 0 where the last tenth of the
+    // loading holds fewer than 8 samples, as on this short test.
+    assert_eq!(last.hardness_standard_error, rec.hardness_after_turn_error(s.indenter_diameter));
+    let turn_samples = rec.loading.iter().filter(|p| p.0 >= rec.h_max * (1.0 - powderfmu::bed::indentation::TURN_FIT)).count();
+    assert_eq!(last.hardness_standard_error == 0.0, turn_samples < 8, "{turn_samples} samples: {} +- {} Pa", last.hardness, last.hardness_standard_error);
+    assert_eq!(last.unconfined_yield_strength_standard_error, last.hardness_standard_error / 3.0);
     assert_eq!(last.contacts, 0, "done means the indenter has left the bed");
     // Once done, the prescribed test no longer steps the bed: a host's later steps change nothing.
     let (steps, done) = (test.record.steps, test.reading());
@@ -94,6 +100,7 @@ fn a_prescribed_test_loads_unloads_and_gives_the_hardness_at_the_turn() {
     // During loading hardness is F / A(h) and the bin under the indenter is in compression.
     let mid = &readings[first_unloading / 2];
     assert!((mid.hardness - mid.force / mid.projected_area).abs() <= 1e-12 * mid.hardness.abs());
+    assert_eq!(mid.hardness_standard_error, 0.0, "one sample while loading");
     let loaded: Vec<_> = readings[first_unloading / 2..first_unloading].iter().collect();
     let mean_hyd = loaded.iter().map(|r| r.hydrostatic_stress).sum::<f64>() / loaded.len() as f64;
     assert!(mean_hyd > 0.0, "compression under the indenter: {mean_hyd} Pa");

@@ -191,13 +191,30 @@ impl Record {
     /// (-23 to +14 %), and the least-squares line over the same samples taken at h_max 12 % below
     /// (`benches/indentation_outputs.py`).
     pub fn turn_force(&self, d: f64) -> f64 {
-        let from = self.h_max * (1.0 - TURN_FIT);
-        let hardness: Vec<f64> =
-            self.loading.iter().filter(|&&(h, _)| h >= from && projected_area(d, h) > 0.0).map(|&(h, f)| f / projected_area(d, h)).collect();
+        let hardness = self.turn_samples(d);
         if hardness.is_empty() {
             return self.f_max;
         }
         projected_area(d, self.h_max) * hardness.iter().sum::<f64>() / hardness.len() as f64
+    }
+
+    /// F/A(h) of the loading samples within the last `TURN_FIT` of h_max, in the order taken [Pa].
+    fn turn_samples(&self, d: f64) -> Vec<f64> {
+        let from = self.h_max * (1.0 - TURN_FIT);
+        self.loading.iter().filter(|&&(h, _)| h >= from && projected_area(d, h) > 0.0).map(|&(h, f)| f / projected_area(d, h)).collect()
+    }
+
+    /// The standard error of `hardness_after_turn` from the fluctuations of the force it reads: A(h_max) /
+    /// A(h_c) times the standard error of the mean F/A(h) behind `turn_force` (`series::mean_with_error`,
+    /// the plateau's estimator: their autocorrelation counted). 0 below `series::MIN_SAMPLES` samples
+    /// (and so where F_max falls back to the largest sample). h_c's own uncertainty is not in it [Pa].
+    pub fn hardness_after_turn_error(&self, d: f64) -> f64 {
+        let a = projected_area(d, self.contact_depth_or_max());
+        if a > 0.0 {
+            projected_area(d, self.h_max) / a * series::mean_with_error(&self.turn_samples(d)).standard_error
+        } else {
+            0.0
+        }
     }
 
     /// h_c from the tangent, or h_max where there is none (yet) [m].
@@ -229,7 +246,12 @@ pub struct Reading {
     pub projected_area: f64,
     /// [Pa].
     pub hardness: f64,
+    /// After the turn, the standard error of `hardness` from the fluctuations of the force at the turn
+    /// (`Record::hardness_after_turn_error`); 0 while loading (the hardness is then one sample) [Pa].
+    pub hardness_standard_error: f64,
     pub unconfined_yield_strength: f64,
+    /// `hardness_standard_error` / C [Pa].
+    pub unconfined_yield_strength_standard_error: f64,
     pub hydrostatic_stress: f64,
     pub deviatoric_stress: f64,
     pub contacts: usize,
@@ -619,10 +641,10 @@ impl Indentation {
     pub fn reading(&mut self) -> Reading {
         let (d, f, h) = (self.setup.indenter_diameter, self.force(), self.depth());
         let area = projected_area(d, h);
-        let hardness = match self.record.state {
-            TestState::Loading if area > 0.0 => f / area,
-            TestState::Loading => 0.0,
-            _ => self.record.hardness_after_turn(d),
+        let (hardness, hardness_standard_error) = match self.record.state {
+            TestState::Loading if area > 0.0 => (f / area, 0.0),
+            TestState::Loading => (0.0, 0.0),
+            _ => (self.record.hardness_after_turn(d), self.record.hardness_after_turn_error(d)),
         };
         let mean = self.scene.size_distribution.mean_diameter();
         let bottom = self.indenter().position[2] - 0.5 * d;
@@ -635,7 +657,9 @@ impl Indentation {
             dimensionless_depth: h / (0.5 * d),
             projected_area: area,
             hardness,
+            hardness_standard_error,
             unconfined_yield_strength: hardness / self.setup.constraint_factor,
+            unconfined_yield_strength_standard_error: hardness_standard_error / self.setup.constraint_factor,
             hydrostatic_stress: stress.hydrostatic(),
             deviatoric_stress: stress.deviatoric(),
             contacts: self.contacts(),
@@ -773,6 +797,38 @@ pub fn tangent_depth(points: &[(f64, f64)]) -> Option<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A finished record whose loading samples read F/A(h) = `hardness(k)` at sample k, h from 0 to h_max.
+    fn record(d: f64, h_max: f64, contact_depth: f64, n: usize, mut hardness: impl FnMut(usize) -> f64) -> Record {
+        let loading: Vec<(f64, f64)> = (1..=n).map(|k| {
+            let h = h_max * k as f64 / n as f64;
+            (h, hardness(k) * projected_area(d, h))
+        }).collect();
+        let f_max = loading.iter().map(|p| p.1).fold(0.0, f64::max);
+        Record { state: TestState::Done, f_max, h_max, unloading: vec![], contact_depth: Some(contact_depth), tangent_done: true, touch: 0.0, origin: 0.0, time_debt: 0.0, steps: 0, loading }
+    }
+
+    #[test]
+    fn the_hardness_error_is_the_turn_force_s_scaled_to_the_contact_depth() {
+        let (d, h_max, h_c) = (0.016, 1.6e-3, 1.4e-3);
+        // White noise of known variance: uniform on [-u, u], sigma = u / sqrt(3), around 8 kPa.
+        let (u, n) = (800.0, 4000);
+        let mut state = 12345u64;
+        let rec = record(d, h_max, h_c, n, |_| {
+            state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            8000.0 + u * (2.0 * (state >> 11) as f64 / (1u64 << 53) as f64 - 1.0)
+        });
+        // The last tenth of h_max holds 401 samples (k = 3600..=4000).
+        let m = (n / 10 + 1) as f64;
+        let expected = projected_area(d, h_max) / projected_area(d, h_c) * u / 3f64.sqrt() / m.sqrt();
+        let got = rec.hardness_after_turn_error(d);
+        // The estimator's own scatter on 401 white samples is about 4 %.
+        assert!((got / expected - 1.0).abs() < 0.15, "{got} vs {expected} Pa");
+        // A smooth curve has no fluctuation to read (F/A(h) of F = 8000 A(h) is 8000 to rounding); fewer
+        // than 8 samples give no error.
+        assert!(record(d, h_max, h_c, n, |_| 8000.0).hardness_after_turn_error(d) < 1e-12 * 8000.0);
+        assert_eq!(record(d, h_max, h_c, 40, |k| 8000.0 + 100.0 * (k % 2) as f64).hardness_after_turn_error(d), 0.0);
+    }
 
     #[test]
     fn projected_area_is_the_cap_base() {

@@ -50,7 +50,9 @@ pub fn mean_reading(readings: &[Reading]) -> Reading {
         dimensionless_depth: mean(|r| r.dimensionless_depth),
         projected_area: mean(|r| r.projected_area),
         hardness: mean(|r| r.hardness),
+        hardness_standard_error: independent(readings.iter().map(|r| r.hardness_standard_error)),
         unconfined_yield_strength: mean(|r| r.unconfined_yield_strength),
+        unconfined_yield_strength_standard_error: independent(readings.iter().map(|r| r.unconfined_yield_strength_standard_error)),
         hydrostatic_stress: mean(|r| r.hydrostatic_stress),
         deviatoric_stress: mean(|r| r.deviatoric_stress),
         contacts: (readings.iter().map(|r| r.contacts).sum::<usize>() as f64 / n).round() as usize,
@@ -64,13 +66,19 @@ pub fn mean_reading(readings: &[Reading]) -> Reading {
     }
 }
 
+/// The standard error of the mean of n independent readings from their own: sqrt(sum se^2) / n.
+fn independent(errors: impl ExactSizeIterator<Item = f64>) -> f64 {
+    let n = errors.len() as f64;
+    errors.map(|e| e * e).sum::<f64>().sqrt() / n
+}
+
 /// The beds' plateaus as one estimate: the mean of their means, their own standard errors combined as
-/// independent (sqrt(sum se^2) / n), all their samples, their mean correlation time.
+/// independent (`independent`), all their samples, their mean correlation time.
 pub fn combined_plateau(plateaus: &[MeanEstimate]) -> MeanEstimate {
     let n = plateaus.len() as f64;
     MeanEstimate {
         mean: plateaus.iter().map(|p| p.mean).sum::<f64>() / n,
-        standard_error: plateaus.iter().map(|p| p.standard_error.powi(2)).sum::<f64>().sqrt() / n,
+        standard_error: independent(plateaus.iter().map(|p| p.standard_error)),
         samples: plateaus.iter().map(|p| p.samples).sum(),
         correlation_time: plateaus.iter().map(|p| p.correlation_time).sum::<f64>() / n,
     }
@@ -200,7 +208,9 @@ mod tests {
             dimensionless_depth: 0.125,
             projected_area: 4e-5,
             hardness: force / 4e-5,
+            hardness_standard_error: force / 4e-6,
             unconfined_yield_strength: force / 4e-5 / 3.0,
+            unconfined_yield_strength_standard_error: force / 4e-6 / 3.0,
             hydrostatic_stress: 2.0 * force,
             deviatoric_stress: force,
             contacts: 3,
@@ -225,6 +235,10 @@ mod tests {
         assert!(!m.contact_depth_from_tangent, "from a tangent only where every bed gave one");
         assert_eq!(m.plateau.mean, 8000.0);
         assert!((m.plateau.standard_error - 250.0).abs() < 1e-9, "sqrt(300^2 + 400^2) / 2");
+        // Each bed's hardness error 0.2 / 4e-6 = 5e4 and 1e5 Pa: sqrt(5e4^2 + 1e5^2) / 2.
+        let both = (5e4f64.powi(2) + 1e5f64.powi(2)).sqrt() / 2.0;
+        assert!((m.hardness_standard_error / both - 1.0).abs() < 1e-12, "{}", m.hardness_standard_error);
+        assert!((m.unconfined_yield_strength_standard_error / (both / 3.0) - 1.0).abs() < 1e-12);
         assert_eq!(m.plateau.samples, 220);
         assert_eq!(m.contacts, 3);
         let alone = mean_reading(&[a]);

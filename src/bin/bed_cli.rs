@@ -628,7 +628,7 @@ fn indent_cmd(a: IndentArgs) -> Result<(), String> {
             let moving = test.engine.particles().held.iter().filter(|&&h| !h).count();
             let p = r.plateau;
             eprintln!(
-                "indentation: h_max {:.4e} m (h/r {:.3}; depth from the {}, {:.4e} m below the first touch), F_max {:.4e} N (read over the last tenth of the loading; largest sample {:.4e} N), h_c {:.4e} m ({}), hardness {:.4e} Pa, plateau hardness {:.4e} +- {:.2e} Pa (standard error; h/r {}-{}, {} samples, correlation time {:.1} samples{}), {:.1} s wall time, {} steps, {:.3e} particle-steps/s, {moving} spheres moving",
+                "indentation: h_max {:.4e} m (h/r {:.3}; depth from the {}, {:.4e} m below the first touch), F_max {:.4e} N (read over the last tenth of the loading; largest sample {:.4e} N), h_c {:.4e} m ({}), hardness {:.4e} +- {:.2e} Pa (standard error of the force at the turn), plateau hardness {:.4e} +- {:.2e} Pa (standard error; h/r {}-{}, {} samples, correlation time {:.1} samples{}), {:.1} s wall time, {} steps, {:.3e} particle-steps/s, {moving} spheres moving",
                 test.record.h_max,
                 test.record.h_max / (0.5 * d),
                 setup.depth_origin.name().replace('_', " "),
@@ -638,6 +638,7 @@ fn indent_cmd(a: IndentArgs) -> Result<(), String> {
                 r.contact_depth,
                 if r.contact_depth_from_tangent { "tangent" } else { "no tangent: h_max" },
                 r.hardness,
+                r.hardness_standard_error,
                 p.mean,
                 p.standard_error,
                 setup.plateau.0,

@@ -294,6 +294,7 @@ mod tests {
                 "pasha_stiffness_law" => r#""load_dependent""#.into(),
                 "jkr_detachment" => r#""force""#.into(),
                 "jkr_friction_limit" => r#""repulsive""#.into(),
+                "jkr_stiffness_radius" => r#""hertz""#.into(),
                 "luding_variant" => r#""mercurydpm""#.into(),
                 "particle_poisson_ratio" | "wall_poisson_ratio" => "0.25".into(),
                 "restitution_coefficient" | "tomas_area_coefficient" => "0.9".into(),

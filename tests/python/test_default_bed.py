@@ -38,7 +38,7 @@ def default_run(shipped_indentation):
     r = simulate_fmu(str(shipped_indentation.path))
     print(
         f"\ndefault test: plateau hardness {r[-1]['plateau_hardness']:.0f} +- {r[-1]['plateau_hardness_standard_error']:.0f} Pa "
-        f"({r[-1]['plateau_samples']} samples), F_max/A(h_c) {r[-1]['hardness']:.0f} Pa (h_c = {r[-1]['contact_depth']:.4e} m, "
+        f"({r[-1]['plateau_samples']} samples), F_max/A(h_c) {r[-1]['hardness']:.0f} +- {r[-1]['hardness_standard_error']:.0f} Pa (h_c = {r[-1]['contact_depth']:.4e} m, "
         f"from the tangent: {bool(r[-1]['contact_depth_from_tangent'])}); gamma* = 0.01 full fidelity: plateau {plateau_of(REFERENCE):.0f} Pa"
     )
     return r
@@ -76,6 +76,12 @@ def test_the_default_outputs_are_a_measurement(default_run):
     d = 0.016
     assert last["hardness"] == pytest.approx(last["force_at_turn"] / (math.pi * (d * hc - hc * hc)), rel=1e-12)
     assert abs(last["hardness"] - p) < 3 * math.hypot(se, 0.082 * p), (last["hardness"], p, se)
+    # The hardness comes with its own standard error, from the fluctuations of the samples behind F_max
+    # (the last tenth of the loading depth, about 90 samples), scaled to h_c; the yield strength's is C
+    # times smaller.
+    hse = last["hardness_standard_error"]
+    assert 0.005 * last["hardness"] < hse < 0.5 * last["hardness"], (last["hardness"], hse)
+    assert last["unconfined_yield_strength_standard_error"] == pytest.approx(hse / 3.0, rel=1e-12)
 
 
 def test_the_default_test_is_the_command_line_run_of_the_same_settings(default_run):
