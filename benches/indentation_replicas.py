@@ -2,7 +2,8 @@
 parts in 10^4 (2.5e-7 s x (1 - k 1e-4)): each run steps the same bed and the same indenter, and the bed's
 dynamics, chaotic, turn the small change into an independent path. The spread of the plateau hardness
 over the runs is the run-to-run scatter of one bed; the unit's plateau_hardness_standard_error, from one
-run's own fluctuations, should be of the same size. (Bed-to-bed scatter, a different bed each, is larger:
+run's own fluctuations, should be of the same size, and so should hardness_standard_error against the
+spread of the hardness after unloading. (Bed-to-bed scatter, a different bed each, is larger:
 docs/indentation.md.)
 
     .venv/bin/python benches/indentation_replicas.py [--runs 5] [--fmu target/fmu/BallIndentation.fmu]
@@ -19,7 +20,7 @@ import numpy as np
 from fmpy import simulate_fmu
 
 REPO = Path(__file__).resolve().parents[1]
-OUTPUTS = ["hardness", "plateau_hardness", "plateau_hardness_standard_error", "plateau_samples", "contact_depth", "contact_depth_from_tangent", "force_at_turn"]
+OUTPUTS = ["hardness", "hardness_standard_error", "plateau_hardness", "plateau_hardness_standard_error", "plateau_samples", "contact_depth", "contact_depth_from_tangent", "force_at_turn"]
 
 
 def main():
@@ -39,20 +40,22 @@ def main():
         rows.append(row)
         print(
             f"run {k + 1}/{args.runs}: time step {dt:.6e} s, {wall:.0f} s wall: plateau {row['plateau_hardness']:.0f} +- "
-            f"{row['plateau_hardness_standard_error']:.0f} Pa ({row['plateau_samples']:.0f} samples), hardness {row['hardness']:.0f} Pa, "
+            f"{row['plateau_hardness_standard_error']:.0f} Pa ({row['plateau_samples']:.0f} samples), hardness {row['hardness']:.0f} +- {row['hardness_standard_error']:.0f} Pa, "
             f"h_c {row['contact_depth']:.4e} m (tangent: {bool(row['contact_depth_from_tangent'])})",
             flush=True,
         )
     plateau = np.array([r["plateau_hardness"] for r in rows])
     se = np.array([r["plateau_hardness_standard_error"] for r in rows])
     hardness = np.array([r["hardness"] for r in rows])
+    hse = np.array([r["hardness_standard_error"] for r in rows])
     sd = plateau.std(ddof=1)
     # The spread's own relative error with n runs: about 1 / sqrt(2 (n - 1)).
     print(
         f"\n{len(rows)} runs: plateau mean {plateau.mean():.0f} Pa, standard deviation over runs {sd:.0f} Pa "
         f"(+-{100 / math.sqrt(2 * (len(rows) - 1)):.0f} %), root mean square of the runs' own standard errors {math.sqrt(np.mean(se**2)):.0f} Pa: "
         f"ratio {sd / math.sqrt(np.mean(se**2)):.2f}; hardness after unloading mean {hardness.mean():.0f} Pa, "
-        f"{100 * (hardness.mean() / plateau.mean() - 1):+.1f} % from the plateau, standard deviation {hardness.std(ddof=1):.0f} Pa"
+        f"{100 * (hardness.mean() / plateau.mean() - 1):+.1f} % from the plateau, standard deviation {hardness.std(ddof=1):.0f} Pa "
+        f"against the root mean square of its own standard errors {math.sqrt(np.mean(hse**2)):.0f} Pa: ratio {hardness.std(ddof=1) / math.sqrt(np.mean(hse**2)):.2f}"
     )
     if args.csv:
         with open(args.csv, "w", newline="") as fh:
