@@ -76,9 +76,10 @@ def test_the_default_outputs_are_a_measurement(default_run):
     d = 0.016
     assert last["hardness"] == pytest.approx(last["force_at_turn"] / (math.pi * (d * hc - hc * hc)), rel=1e-12)
     assert abs(last["hardness"] - p) < 3 * math.hypot(se, 0.082 * p), (last["hardness"], p, se)
-    # The hardness comes with its own standard error, from the fluctuations of the samples behind F_max
-    # (the last tenth of the loading depth, about 90 samples), scaled to h_c; the yield strength's is C
-    # times smaller.
+    # The hardness comes with its own standard error, from the fluctuations of the force behind F_max
+    # (the last tenth of the loading depth, about 90 samples, less than one correlation time, so with
+    # the variance and correlation time of the loading's deeper half), scaled to h_c; the yield
+    # strength's is C times smaller.
     hse = last["hardness_standard_error"]
     assert 0.005 * last["hardness"] < hse < 0.5 * last["hardness"], (last["hardness"], hse)
     assert last["unconfined_yield_strength_standard_error"] == pytest.approx(hse / 3.0, rel=1e-12)
