@@ -8,7 +8,8 @@
 //!   `units` (the FMUs: variable tables and models) -> `fmi2` (the C ABI);
 //! - `law` -> `bed` (the DEM bed engine and bed preparation).
 //!
-//! `numeric` (root finding, quadrature), `codec` (the byte format of saved data) and `error` serve all of them.
+//! `numeric` (root finding, quadrature), `codec` (the byte format of saved data), `envelope` (the
+//! versioned, checksummed wrapper of bed files and FMU states) and `error` serve all of them.
 
 // `!(x > y)` is how this crate refuses NaN together with out-of-range values; clippy's suggestion
 // (`partial_cmp`) would read worse and lose that on purpose.
@@ -21,6 +22,7 @@ pub mod analysis;
 pub mod bed;
 pub mod codec;
 pub mod curves;
+pub mod envelope;
 pub mod error;
 pub mod fmi;
 pub mod fmi2;

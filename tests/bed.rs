@@ -392,7 +392,7 @@ fn a_bed_in_motion_saved_at_any_step_continues_bit_for_bit() {
     let (mut e, _) = prepare::prepare_until(&scene, "fill", &mut |_| {}).unwrap();
     for moment in 0..40 {
         e.run(500);
-        let (mut back, _) = AnyEngine::from_file(&file::decode(&file::encode(&e.to_file(&scene))).unwrap(), None).unwrap();
+        let (mut back, _) = AnyEngine::from_file(&file::decode(&file::encode(&e.to_file(&scene).unwrap()).unwrap()).unwrap(), None).unwrap();
         e.run(150);
         back.run(150);
         assert_eq!(e.particles().position, back.particles().position, "saved at moment {moment}");
@@ -405,7 +405,7 @@ fn a_saved_contact_beyond_the_list_range_is_kept_on_loading() {
     // parted since the saving engine's last list build. Loading keeps it in the list with its memory.
     let scene = soft(json!({"particle_count": 150, "die_diameter": 0.008}));
     let (e, _) = prepared(&scene);
-    let mut f = e.to_file(&scene);
+    let mut f = e.to_file(&scene).unwrap();
     let p = e.particles();
     let gap = |i: usize, j: usize| -> [f64; 3] { [0, 1, 2].map(|c| p.position[j][c] - p.position[i][c]) };
     let length = |d: [f64; 3]| (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
@@ -418,7 +418,7 @@ fn a_saved_contact_beyond_the_list_range_is_kept_on_loading() {
     for c in 0..3 {
         f.position[j][c] += 3.0 * skin * d[c] / length(d);
     }
-    let (back, _) = AnyEngine::from_file(&file::decode(&file::encode(&f)).unwrap(), None).unwrap();
+    let (back, _) = AnyEngine::from_file(&file::decode(&file::encode(&f).unwrap()).unwrap(), None).unwrap();
     assert!(with_engine!(&back, x => x.list.row(i).contains(&(j as u32))), "the pair ({i}, {j}) is in the list");
 }
 
@@ -428,7 +428,7 @@ fn a_preparation_resumed_from_a_bed_file_after_any_phase_ends_bit_for_bit_where_
     let (whole, _) = prepared(&scene);
     for phase in ["fill", "settle", "consolidate", "unload"] {
         let (part, _) = prepare::prepare_until(&scene, phase, &mut |_| {}).unwrap();
-        let (saved, _) = AnyEngine::from_file(&file::decode(&file::encode(&part.to_file(&scene))).unwrap(), None).unwrap();
+        let (saved, _) = AnyEngine::from_file(&file::decode(&file::encode(&part.to_file(&scene).unwrap()).unwrap()).unwrap(), None).unwrap();
         assert_eq!(prepare::phase_done(&saved, &scene), phase, "the phase a bed went through is read from its piston");
         let (rest, report) = prepare::resume(saved, &scene, "relax", &mut |_| {}).unwrap();
         let after: Vec<&str> = report.phases.iter().map(|p| p.0).collect();
@@ -443,7 +443,7 @@ fn a_preparation_resumed_from_a_bed_file_after_any_phase_ends_bit_for_bit_where_
         let mut checkpoint = None;
         prepare::prepare_until(&scene, within, &mut |p| {
             if p.phase == within && p.fraction < 0.99 && checkpoint.is_none() && p.time > 0.0 {
-                checkpoint = Some(file::encode(&p.bed.to_file(&scene)));
+                checkpoint = Some(file::encode(&p.bed.to_file(&scene).unwrap()).unwrap());
             }
         })
         .unwrap();
@@ -507,7 +507,7 @@ fn an_indenter_added_to_a_prepared_bed_keeps_every_contact_and_feels_the_bed() {
 fn bad_bed_files_are_refused_by_what_is_wrong() {
     let scene = soft(json!({"particle_count": 20, "die_diameter": 0.008}));
     let e = AnyEngine::build(&scene, prepare::fill(&scene).unwrap(), prepare::die(&scene)).unwrap();
-    let bytes = file::encode(&e.to_file(&scene));
+    let bytes = file::encode(&e.to_file(&scene).unwrap()).unwrap();
     let err = |b: &[u8]| file::decode(b).unwrap_err().to_string();
     assert!(err(&bytes[..bytes.len() - 10]).contains("truncated"));
     let mut other = bytes.clone();

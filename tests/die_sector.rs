@@ -121,7 +121,7 @@ fn a_quarter_bed_prepares_to_the_target_inside_its_planes_and_keeps_them_in_its_
     let p = engine.particles();
     let r_min = p.radius.iter().cloned().fold(f64::INFINITY, f64::min);
     assert!(p.position.iter().all(|x| x[0] > 0.5 * r_min && x[1] > 0.5 * r_min), "a sphere crossed a mirror plane");
-    let (back, back_scene) = AnyEngine::from_file(&file::decode(&file::encode(&engine.to_file(&scene))).unwrap(), None).unwrap();
+    let (back, back_scene) = AnyEngine::from_file(&file::decode(&file::encode(&engine.to_file(&scene).unwrap()).unwrap()).unwrap(), None).unwrap();
     assert_eq!(back_scene.die_sector, 0.25);
     assert!(back.walls()[3].is_mirror() && back.walls()[4].is_mirror());
 }

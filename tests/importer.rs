@@ -246,11 +246,22 @@ fn saved_state_restores_and_repeats_the_step_bit_for_bit() {
     // A state of the bincode era (format version 2), checksum intact: refused by name.
     let mut old: Vec<u8> = bytes.iter().map(|&b| b as u8).collect();
     old[8..12].copy_from_slice(&2u32.to_le_bytes());
-    let sum = units::fnv1a64(&old[..n - 8], 0xcbf2_9ce4_8422_2325);
+    let sum = powderfmu::envelope::fnv1a64(&old[powderfmu::envelope::HEADER..n - 8], powderfmu::envelope::FNV_OFFSET);
     old[n - 8..].copy_from_slice(&sum.to_le_bytes());
     assert_eq!(unsafe { de(c, old.as_ptr() as *const c_char, n, &mut s2) }, fmi2Error);
     let said = log.lock().unwrap().last().unwrap().2.clone();
     assert!(said.contains("format version 2") && said.contains("bincode"), "{said}");
+    // A state of format version 3, in its own layout (magic, version, the fields, the checksum of all
+    // before it, no length): refused by name, with what to do.
+    let fields = &bytes[powderfmu::envelope::HEADER..n - 8];
+    let mut v3: Vec<u8> = b"PFMUSTAT".to_vec();
+    v3.extend_from_slice(&3u32.to_le_bytes());
+    v3.extend(fields.iter().map(|&b| b as u8));
+    let sum = powderfmu::envelope::fnv1a64(&v3, powderfmu::envelope::FNV_OFFSET);
+    v3.extend_from_slice(&sum.to_le_bytes());
+    assert_eq!(unsafe { de(c, v3.as_ptr() as *const c_char, v3.len(), &mut s2) }, fmi2Error);
+    let said = log.lock().unwrap().last().unwrap().2.clone();
+    assert!(said.contains("format version 3") && said.contains("save the state again"), "{said}");
     assert_eq!(unsafe { de(c, bytes.as_ptr(), n, &mut s2) }, fmi2OK);
     assert_eq!(unsafe { set_state(c, s2) }, fmi2OK);
     assert_eq!(run(20), first, "a deserialized state continues identically");

@@ -20,7 +20,7 @@ fn bed() -> &'static (BedFile, BedScene) {
         )
         .unwrap();
         let (engine, _) = prepare::prepare(&scene, &mut |_| {}).unwrap();
-        (file::decode(&file::encode(&engine.to_file(&scene))).unwrap(), scene)
+        (file::decode(&file::encode(&engine.to_file(&scene).unwrap()).unwrap()).unwrap(), scene)
     })
 }
 
@@ -140,7 +140,7 @@ fn saved_test_continues_bit_for_bit(setup: Setup, threads: usize, steps_before: 
     for _ in 0..steps_before {
         test.advance(1e-4, None).unwrap();
     }
-    let bytes = test.save();
+    let bytes = test.save().unwrap();
     let mut back = Indentation::restore(&bytes, Some(threads)).unwrap();
     assert_eq!(back.engine.dt(), dt);
     // What a host reads right after restoring is what it read when it saved.
@@ -172,7 +172,7 @@ fn a_saved_test_keeps_its_own_indenter_and_die_walls() {
         test.advance(1e-4, None).unwrap();
     }
     assert!(test.reading().force > 0.0, "the indenter must be in the bed when the state is saved");
-    let mut back = Indentation::restore(&test.save(), None).unwrap();
+    let mut back = Indentation::restore(&test.save().unwrap(), None).unwrap();
     for _ in 0..20 {
         test.advance(1e-4, None).unwrap();
         back.advance(1e-4, None).unwrap();

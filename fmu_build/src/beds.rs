@@ -111,7 +111,7 @@ mod tests {
         let other = std::env::temp_dir().join(format!("powderfmu-beds-{}", std::process::id()));
         std::fs::create_dir_all(other.join("beds")).unwrap();
         bed.scene = bed.scene.replace("\"friction_coefficient\":0.15", "\"friction_coefficient\":0.3");
-        std::fs::write(other.join(SHIPPED_BED), file::encode(&bed)).unwrap();
+        std::fs::write(other.join(SHIPPED_BED), file::encode(&bed).unwrap()).unwrap();
         let e = shipped(&other).unwrap_err();
         assert!(e.contains("`particle_particle.friction_coefficient` differs"), "{e}");
         let bytes = std::fs::read(root.join(SHIPPED_BED)).unwrap();

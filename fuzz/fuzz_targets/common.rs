@@ -20,7 +20,7 @@ pub fn instantiate(kind: fmi2Type) -> fmi2Component {
 
 #[allow(dead_code)]
 pub fn vr(name: &str) -> fmi2ValueReference {
-    units::by_identifier(PWI).unwrap().vr_of(name) as fmi2ValueReference
+    units::by_identifier(PWI).unwrap().vr(name).expect("a variable of the unit") as fmi2ValueReference
 }
 
 /// fmi2Fatal means a panic was caught inside the unit: a bug, whatever the input.

@@ -1,7 +1,7 @@
 //! fmi2DeSerializeFMUstate on untrusted bytes: never a crash or an out-of-bounds read, and a state it
 //! accepts restores and steps. The first input byte chooses how the rest is used: as the whole byte
-//! string; as the body with a correct checksum appended (so the fuzzer reaches the parser behind it); or
-//! as edits (position, value pairs) of a genuine state, checksum fixed.
+//! string; as the payload of a correct envelope (so the fuzzer reaches the parser behind it); or as edits
+//! (position, value pairs) of a genuine state's payload, sealed again.
 #![no_main]
 
 #[path = "common.rs"]
@@ -39,10 +39,12 @@ fn make_genuine() -> Vec<u8> {
     }
 }
 
-fn with_checksum(mut body: Vec<u8>) -> Vec<u8> {
-    let sum = powderfmu::fmi2::saved_state::fnv1a(&body);
-    body.extend_from_slice(&sum.to_le_bytes());
-    body
+/// `payload` sealed as a genuine state is (the saved-data envelope with its magic, version, length and
+/// checksum), so the fuzzer reaches the parser behind the envelope.
+fn sealed(payload: &[u8]) -> Vec<u8> {
+    let g = genuine();
+    let format = powderfmu::envelope::Format { magic: b"PFMUSTAT", version: u32::from_le_bytes(g[8..12].try_into().unwrap()) };
+    powderfmu::envelope::seal(format, payload)
 }
 
 fuzz_target!(|data: &[u8]| {
@@ -50,10 +52,10 @@ fuzz_target!(|data: &[u8]| {
     let c = instantiate(fmi2CoSimulation);
     let bytes = match how % 3 {
         0 => rest.to_vec(),
-        1 => with_checksum(rest.to_vec()),
+        1 => sealed(rest),
         _ => {
-            let mut g = genuine();
-            g.truncate(g.len() - 8);
+            let g = genuine();
+            let mut g = g[powderfmu::envelope::HEADER..g.len() - powderfmu::envelope::TRAILER].to_vec();
             for pair in rest.chunks_exact(3) {
                 let at = u16::from_le_bytes([pair[0], pair[1]]) as usize;
                 if !g.is_empty() {
@@ -65,7 +67,7 @@ fuzz_target!(|data: &[u8]| {
                 let cut = rest[rest.len() - 1] as usize;
                 g.truncate(g.len().saturating_sub(cut));
             }
-            with_checksum(g)
+            sealed(&g)
         }
     };
     unsafe {

@@ -1,9 +1,9 @@
 //! The bed file: a prepared bed, compact and versioned.
 //!
-//! Layout: the magic `PFBED\0\0\0`, the format version (u32 little-endian), the payload length (u64),
-//! the payload (`codec`, postcard, of `BedFile`), and the FNV-1a checksum of the payload (u64). The reader checks
-//! each in turn and names what is wrong. The writer writes a temporary file beside the target and
-//! renames it, so a bed file is either whole or absent.
+//! The payload (`codec`, postcard, of `BedFile`) in the saved-data envelope (`envelope`: the magic
+//! `PFBED\0\0\0`, the format version, the length, the checksum). The reader checks each in turn and
+//! names what is wrong. The writer writes a temporary file beside the target and renames it, so a bed
+//! file is either whole or absent.
 
 use super::any::{AnyEngine, BedError};
 use super::engine::{Engine, WallContacts};
@@ -12,7 +12,7 @@ use super::particles::Particles;
 use super::scene::BedScene;
 use super::walls::Wall;
 use super::{Vec3, ZERO};
-use crate::fmi::saved_state::fnv1a;
+use crate::envelope::{self, EnvelopeError, Format};
 use std::io::Write;
 use std::path::Path;
 
@@ -22,6 +22,8 @@ type SavedWallContact<H> = (u32, H, Vec3, f64);
 pub const MAGIC: &[u8; 8] = b"PFBED\0\0\0";
 /// 3: postcard payload (`codec`). 2 and 1 were bincode 1.x, which is unmaintained (RUSTSEC-2025-0141).
 pub const VERSION: u32 = 3;
+/// The bed file's envelope.
+pub const FORMAT: Format = Format { magic: MAGIC, version: VERSION };
 
 /// What a bed file holds.
 #[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
@@ -46,8 +48,8 @@ pub struct BedFile {
 }
 
 impl<L: BedLaw> Engine<L> {
-    /// The contacts that remember something (history changed or spring loaded).
-    fn saved_contacts(&self) -> (Vec<u8>, Vec<u8>) {
+    /// The contacts that remember something (history changed or spring loaded), as `codec` bytes.
+    fn saved_contacts(&self) -> Result<(Vec<u8>, Vec<u8>), BedError> {
         let mut pairs = Vec::new();
         for i in 0..self.list.rows() {
             let si = self.particles.species[i] as usize;
@@ -73,7 +75,8 @@ impl<L: BedLaw> Engine<L> {
                     .collect()
             })
             .collect();
-        (crate::codec::to_bytes(&pairs).unwrap_or_default(), crate::codec::to_bytes(&walls).unwrap_or_default())
+        let bytes = |what: &str, r: Result<Vec<u8>, String>| r.map_err(|e| BedError::Setup(format!("bed file: the {what} cannot be written ({e})")));
+        Ok((bytes("contacts", crate::codec::to_bytes(&pairs))?, bytes("wall contacts", crate::codec::to_bytes(&walls))?))
     }
 
     /// Puts saved contacts back into the current lists (they are within range: they were in contact).
@@ -166,10 +169,11 @@ impl<L: BedLaw> Engine<L> {
 }
 
 impl AnyEngine {
-    pub fn to_file(&self, scene: &BedScene) -> BedFile {
+    /// The bed as a file holds it; an error where some part cannot be serialised.
+    pub fn to_file(&self, scene: &BedScene) -> Result<BedFile, BedError> {
         with_engine!(self, e => {
-            let (contacts, wall_contacts) = e.saved_contacts();
-            BedFile {
+            let (contacts, wall_contacts) = e.saved_contacts()?;
+            Ok(BedFile {
                 scene: scene.to_json().to_string(),
                 time: e.time,
                 position: e.particles.position.clone(),
@@ -182,7 +186,7 @@ impl AnyEngine {
                 force: e.totals().forces(),
                 torque: e.totals().torques(),
                 rolling: e.totals().rolling_loads(),
-            }
+            })
         })
     }
 
@@ -223,48 +227,24 @@ impl AnyEngine {
     }
 }
 
-/// Encodes a bed file.
-pub fn encode(file: &BedFile) -> Vec<u8> {
-    let payload = crate::codec::to_bytes(file).unwrap_or_default();
-    let mut out = Vec::with_capacity(payload.len() + 28);
-    out.extend_from_slice(MAGIC);
-    out.extend_from_slice(&VERSION.to_le_bytes());
-    out.extend_from_slice(&(payload.len() as u64).to_le_bytes());
-    out.extend_from_slice(&payload);
-    out.extend_from_slice(&fnv1a(&payload).to_le_bytes());
-    out
+/// Encodes a bed file; an error (not an empty payload) where it cannot be serialised.
+pub fn encode(file: &BedFile) -> Result<Vec<u8>, BedError> {
+    let payload = crate::codec::to_bytes(file).map_err(|e| BedError::Setup(format!("bed file: cannot be written ({e})")))?;
+    Ok(envelope::seal(FORMAT, &payload))
 }
 
 /// Decodes a bed file, naming what is wrong with a bad one.
 pub fn decode(bytes: &[u8]) -> Result<BedFile, BedError> {
     let bad = |why: String| BedError::Setup(format!("not a usable bed file: {why}"));
-    if bytes.len() < 20 || &bytes[..8] != MAGIC {
-        return Err(bad("it does not start with the bed file magic `PFBED`".into()));
-    }
-    let version = u32::from_le_bytes(bytes[8..12].try_into().unwrap_or([0; 4]));
-    if version == 1 || version == 2 {
-        return Err(bad(format!(
-            "format version {version} (bincode, written by powderfmu before postcard replaced it), this powderfmu reads version {VERSION}; prepare the bed again with `powderfmu bed prepare`"
-        )));
-    }
-    if version != VERSION {
-        return Err(bad(format!(
-            "format version {version}, this powderfmu reads version {VERSION}; prepare the bed again with `powderfmu bed prepare`"
-        )));
-    }
-    let len = u64::from_le_bytes(bytes[12..20].try_into().unwrap_or([0; 8]));
-    let want = 20u64.saturating_add(len).saturating_add(8);
-    if (bytes.len() as u64) < want {
-        return Err(bad(format!("truncated: {} bytes, the header promises {want}", bytes.len())));
-    }
-    if (bytes.len() as u64) > want {
-        return Err(bad(format!("{} bytes, the header promises {want}: trailing data", bytes.len())));
-    }
-    let payload = &bytes[20..20 + len as usize];
-    let sum = u64::from_le_bytes(bytes[20 + len as usize..].try_into().unwrap_or([0; 8]));
-    if sum != fnv1a(payload) {
-        return Err(bad("checksum mismatch: the file is corrupt".into()));
-    }
+    let payload = envelope::open(FORMAT, bytes).map_err(|e| match e {
+        EnvelopeError::Version { found: found @ (1 | 2), .. } => bad(format!(
+            "format version {found} (bincode, written by powderfmu before postcard replaced it), this powderfmu reads version {VERSION}; prepare the bed again with `powderfmu bed prepare`"
+        )),
+        EnvelopeError::Version { found, .. } => {
+            bad(format!("format version {found}, this powderfmu reads version {VERSION}; prepare the bed again with `powderfmu bed prepare`"))
+        }
+        other => bad(other.to_string()),
+    })?;
     crate::codec::from_bytes(payload).map_err(|e| bad(format!("payload unreadable ({e})")))
 }
 
@@ -291,8 +271,10 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     result
 }
 
+/// Saves the bed to `path` (atomically); a bed that cannot be serialised is an error before anything is written.
 pub fn save(path: &Path, engine: &AnyEngine, scene: &BedScene) -> std::io::Result<()> {
-    write_atomic(path, &encode(&engine.to_file(scene)))
+    let bytes = engine.to_file(scene).and_then(|f| encode(&f)).map_err(|e| std::io::Error::new(std::io::ErrorKind::InvalidData, e.to_string()))?;
+    write_atomic(path, &bytes)
 }
 
 pub fn load(path: &Path, threads: Option<usize>) -> Result<(AnyEngine, BedScene), BedError> {

@@ -682,11 +682,11 @@ impl Indentation {
     }
 
     /// The whole state as bytes: the bed (with the indenter, every contact's memory and the last
-    /// forces, `bed::file`) and the record.
-    pub fn save(&self) -> Vec<u8> {
+    /// forces, `bed::file`) and the record; an error where some part cannot be serialised.
+    pub fn save(&self) -> Result<Vec<u8>, BedError> {
         let (list_reference, wall_reference) = self.engine.list_reference();
         let saved = Saved {
-            bed: file::encode(&self.engine.to_file(&self.scene)),
+            bed: file::encode(&self.engine.to_file(&self.scene)?)?,
             setup: self.setup,
             record: self.record.clone(),
             indenter: self.indenter as u32,
@@ -699,7 +699,7 @@ impl Indentation {
             list_reference,
             wall_reference,
         };
-        crate::codec::to_bytes(&saved).expect("an indentation state serializes")
+        crate::codec::to_bytes(&saved).map_err(|e| BedError::Setup(format!("the indentation state cannot be saved: {e}")))
     }
 
     /// Reads back what `save` wrote, with `threads` threads.

@@ -171,9 +171,9 @@ impl Replicas {
     }
 
     /// Every bed's state (`Indentation::save`), in order.
-    pub fn save(&self) -> Vec<u8> {
-        let states: Vec<Vec<u8>> = self.tests.iter().map(Indentation::save).collect();
-        crate::codec::to_bytes(&states).expect("the replicas' states serialize")
+    pub fn save(&self) -> Result<Vec<u8>, BedError> {
+        let states: Vec<Vec<u8>> = self.tests.iter().map(Indentation::save).collect::<Result<_, _>>()?;
+        crate::codec::to_bytes(&states).map_err(|e| BedError::Setup(format!("the replicas' states cannot be saved: {e}")))
     }
 
     /// Reads back what `save` wrote, each bed with `threads` engine threads.

@@ -1,19 +1,21 @@
 //! The byte format of a saved FMU state (fmi2GetFMUstate, fmi2SerializeFMUstate): versioned, without
 //! pointers, little-endian, closed by a checksum, so a state saved in one process restores in another.
 //!
-//! Layout: magic `PFMUSTAT`, format version (u32), model identifier and GUID (length-prefixed UTF-8),
-//! interface kind (u8), mode (u8), time, start time (f64), stop time (u8 flag + f64), model ready (u8),
-//! the variable values (u32 count, then per value a type tag and its payload), the model's own bytes
-//! (u32 length + bytes), and an FNV-1a 64 checksum of everything before it.
+//! The saved-data envelope (`envelope`: magic `PFMUSTAT`, format version, length, checksum) around the
+//! payload: model identifier and GUID (length-prefixed UTF-8), interface kind (u8), mode (u8), time,
+//! start time (f64), stop time (u8 flag + f64), model ready (u8), the variable values (u32 count, then
+//! per value a type tag and its payload), and the model's own bytes (u32 length + bytes).
 
 use super::instance::{Instance, Kind};
 use super::Api;
 use crate::units::variables::{Value, VarType};
+use crate::envelope::{self, EnvelopeError, Format};
 use crate::units::UnitInfo;
 
-const MAGIC: &[u8; 8] = b"PFMUSTAT";
-/// 3: the model's own bytes are postcard (`codec`); 2 had bincode 1.x there.
-pub const VERSION: u32 = 3;
+/// 4: in the saved-data envelope (its checksum over the payload); 3 had its own header, the checksum
+/// over everything before it; 2 had bincode 1.x in the model's bytes.
+pub const VERSION: u32 = 4;
+const FORMAT: Format = Format { magic: b"PFMUSTAT", version: VERSION };
 
 /// What a saved state holds.
 pub struct Saved {
@@ -29,8 +31,6 @@ pub struct Saved {
 
 pub fn write(inst: &Instance) -> Result<Vec<u8>, String> {
     let mut b = Vec::with_capacity(4096);
-    b.extend_from_slice(MAGIC);
-    b.extend_from_slice(&VERSION.to_le_bytes());
     put_str(&mut b, inst.unit.model_identifier)?;
     put_str(&mut b, &inst.token())?;
     b.push(if inst.kind == Kind::ModelExchange { 0 } else { 1 });
@@ -64,9 +64,7 @@ pub fn write(inst: &Instance) -> Result<Vec<u8>, String> {
     let model = inst.model.save().map_err(|e| e.to_string())?;
     b.extend_from_slice(&length(model.len(), "model state")?.to_le_bytes());
     b.extend_from_slice(&model);
-    let sum = fnv1a(&b);
-    b.extend_from_slice(&sum.to_le_bytes());
-    Ok(b)
+    Ok(envelope::seal(FORMAT, &b))
 }
 
 fn put_str(b: &mut Vec<u8>, s: &str) -> Result<(), String> {
@@ -78,11 +76,6 @@ fn put_str(b: &mut Vec<u8>, s: &str) -> Result<(), String> {
 /// A length as the format's u32, refused (not truncated) beyond it.
 fn length(n: usize, what: &str) -> Result<u32, String> {
     u32::try_from(n).map_err(|_| format!("{what} of {n} bytes or entries is beyond the format's 4 GiB limit"))
-}
-
-/// The checksum that closes a saved state (public for the fuzzers, which repair it after a mutation).
-pub fn fnv1a(bytes: &[u8]) -> u64 {
-    crate::units::fnv1a64(bytes, 0xcbf2_9ce4_8422_2325)
 }
 
 /// A bounds-checked reader: every read says what it wanted when the bytes run out.
@@ -123,21 +116,14 @@ impl<'a> Reader<'a> {
 /// makes for it (a state of the FMI 2.0 unit carries its GUID, one of the FMI 3.0 unit its
 /// instantiationToken: neither restores into the other).
 pub fn read(unit: &UnitInfo, api: Api, bytes: &[u8]) -> Result<Saved, String> {
-    if bytes.len() < MAGIC.len() + 4 + 8 || &bytes[..8] != MAGIC {
-        return Err("not a powderfmu FMU state (wrong magic bytes or too short)".into());
-    }
-    let (body, sum) = bytes.split_at(bytes.len() - 8);
-    let mut r = Reader { bytes: body, at: 8 };
-    let version = r.u32("format version")?;
-    if version == 2 {
-        return Err(format!("format version 2 (its model part in bincode, from powderfmu before postcard replaced it); this FMU reads version {VERSION}: save the state again with this FMU"));
-    }
-    if version != VERSION {
-        return Err(format!("format version {version}; this FMU reads version {VERSION}"));
-    }
-    if fnv1a(body) != u64::from_le_bytes(sum.try_into().expect("8 bytes")) {
-        return Err("checksum mismatch: the bytes are corrupted".into());
-    }
+    let body = envelope::open(FORMAT, bytes).map_err(|e| match e {
+        EnvelopeError::NotThisKind(_) => "not a powderfmu FMU state (wrong magic bytes or too short)".to_string(),
+        EnvelopeError::Version { found: 2, .. } => format!("format version 2 (its model part in bincode, from powderfmu before postcard replaced it); this FMU reads version {VERSION}: save the state again with this FMU"),
+        EnvelopeError::Version { found: 3, .. } => format!("format version 3 (from powderfmu before the saved-data envelope); this FMU reads version {VERSION}: save the state again with this FMU"),
+        EnvelopeError::Version { found, .. } => format!("format version {found}; this FMU reads version {VERSION}"),
+        other => other.to_string(),
+    })?;
+    let mut r = Reader { bytes: body, at: 0 };
     let id = r.string("model identifier")?;
     let guid = r.string("GUID")?;
     let token = unit.token(api);

@@ -542,7 +542,10 @@ impl Model for BallIndentation {
     }
 
     fn save(&self) -> Result<Vec<u8>, UnitError> {
-        Ok(self.test.as_ref().map(Replicas::save).unwrap_or_default())
+        match &self.test {
+            Some(test) => test.save().map_err(|e| UnitError::SavedState(e.to_string())),
+            None => Ok(Vec::new()),
+        }
     }
 
     fn take_events(&mut self) -> Vec<String> {

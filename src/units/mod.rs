@@ -152,20 +152,12 @@ impl UnitInfo {
 
 /// A UUID-shaped hash of a text (two FNV-1a 64 with different offsets).
 fn uuid_of(text: &str) -> String {
-    let a = fnv1a64(text.as_bytes(), 0xcbf2_9ce4_8422_2325);
+    use crate::envelope::{fnv1a64, FNV_OFFSET};
+    let a = fnv1a64(text.as_bytes(), FNV_OFFSET);
     let b = fnv1a64(text.as_bytes(), 0x6c62_272e_07bb_0142);
     format!("{{{:08x}-{:04x}-{:04x}-{:04x}-{:012x}}}", a >> 32, (a >> 16) & 0xffff, a & 0xffff, b >> 48, b & 0xffff_ffff_ffff)
 }
 
-/// FNV-1a, 64 bit, from `seed` (the standard offset basis is 0xcbf2_9ce4_8422_2325).
-pub fn fnv1a64(bytes: &[u8], seed: u64) -> u64 {
-    let mut h = seed;
-    for b in bytes {
-        h ^= u64::from(*b);
-        h = h.wrapping_mul(0x0000_0100_0000_01b3);
-    }
-    h
-}
 
 /// Every unit of the crate, built once.
 pub fn all() -> &'static [UnitInfo] {
