@@ -8,9 +8,8 @@ use super::saved_state;
 use super::{Api, Status};
 use crate::units::variables::{Causality, Role, Value, VarType, Variability};
 use crate::units::{Model, UnitInfo, LOG_CATEGORIES};
-use crate::fmi2::types::fmi2CallbackLogger;
-use crate::fmi3::types::fmi3LogMessageCallback;
-use std::ffi::{c_void, CString};
+use std::ffi::{c_void, CStr, CString};
+use std::sync::Arc;
 
 /// The states of the FMI 2.0 calling sequence, by the standard's names (hence "...Mode").
 #[allow(clippy::enum_variant_names)]
@@ -129,12 +128,10 @@ pub fn failed<T>(message: impl Into<String>) -> Call<T> {
     Err(Failure { status: Status::Error, message: message.into(), enters_error_state: true })
 }
 
-/// The host's logging function: FMI 2.0's (printf-style, with the instance name) or FMI 3.0's.
-#[derive(Clone, Copy)]
-pub enum LogCallback {
-    Fmi2(fmi2CallbackLogger),
-    Fmi3(fmi3LogMessageCallback),
-}
+/// The host's logging function as its ABI's exports wrap it (FMI 2.0's takes printf-style text and the
+/// instance name, FMI 3.0's the text as it is): called with the host's environment pointer, the
+/// instance's name, the status, the category and the message. None: the host gave no logger.
+pub type LogCallback = Option<Arc<dyn Fn(*mut c_void, &CStr, Status, &CStr, &str) + Send + Sync>>;
 
 /// The host's logger and which categories are switched on.
 #[derive(Clone)]
@@ -172,20 +169,8 @@ impl Logger {
             return;
         }
         let category = CString::new(category).unwrap_or_default();
-        match self.callback {
-            LogCallback::Fmi2(Some(callback)) => {
-                // The host formats the message with printf: a literal % must be doubled.
-                let text = CString::new(message.replace('%', "%%").replace('\0', " ")).unwrap_or_default();
-                // SAFETY: the host gave this callback for exactly these arguments; the strings outlive the call.
-                unsafe { callback(self.environment, instance_name.as_ptr(), status as i32, category.as_ptr(), text.as_ptr()) };
-            }
-            LogCallback::Fmi3(Some(callback)) => {
-                // FMI 3.0 passes the message as it is (no printf); the instance name goes in front of it.
-                let text = CString::new(format!("{}: {message}", instance_name.to_string_lossy()).replace('\0', " ")).unwrap_or_default();
-                // SAFETY: the host gave this callback for exactly these arguments; the strings outlive the call.
-                unsafe { callback(self.environment, status as i32, category.as_ptr(), text.as_ptr()) };
-            }
-            LogCallback::Fmi2(None) | LogCallback::Fmi3(None) => {}
+        if let Some(callback) = &self.callback {
+            callback(self.environment, instance_name, status, &category, message);
         }
     }
 }
@@ -216,7 +201,9 @@ pub struct Instance {
     /// intermediate-update callback (called at the events inside a step).
     pub event_mode_used: bool,
     pub early_return_allowed: bool,
-    pub intermediate_update: crate::fmi3::types::fmi3IntermediateUpdateCallback,
+    /// What the ABI's exports keep with the instance (FMI 3.0: the intermediate-update callback); this
+    /// layer only holds it.
+    pub abi: Option<Box<dyn std::any::Any + Send>>,
     /// Model Exchange: an input was given a new value in Event Mode since the last event iteration.
     inputs_changed_in_event_mode: bool,
     /// Model Exchange: the event indicators at the last event or completed integrator step, against
@@ -247,13 +234,13 @@ impl Instance {
             inputs_changed_in_event_mode: false,
             indicators_seen: None,
             early_return_allowed: false,
-            intermediate_update: None,
+            abi: None,
         }
     }
 
     /// The GUID (FMI 2.0) or instantiationToken (FMI 3.0) of the unit: what a saved state is tied to.
     pub fn token(&self) -> String {
-        self.unit.token(self.api)
+        self.api.token(self.unit)
     }
 
     /// Keeps a message for the host's logger; `ffi::call_on` passes the messages on when the call is
@@ -705,7 +692,7 @@ mod tests {
             guid_cache: std::sync::OnceLock::new(),
             token_cache: std::sync::OnceLock::new(),
         }));
-        let mut inst = Instance::new(Api::Fmi2, "i", unit, Kind::CoSimulation, Logger::new(LogCallback::Fmi2(None), std::ptr::null_mut(), false), None);
+        let mut inst = Instance::new(Api::Fmi2, "i", unit, Kind::CoSimulation, Logger::new(None, std::ptr::null_mut(), false), None);
         inst.exit_initialization_mode().unwrap();
         let failure = inst.save().unwrap_err();
         assert_eq!(failure.status, Status::Error);

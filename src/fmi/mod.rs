@@ -26,6 +26,15 @@ pub enum Api {
 }
 
 impl Api {
+    /// What an instance of `unit` made through this standard is checked against at instantiation and in
+    /// saved states: the FMI 2.0 GUID or the FMI 3.0 instantiationToken.
+    pub fn token(self, unit: &crate::units::UnitInfo) -> String {
+        match self {
+            Api::Fmi2 => unit.guid(),
+            Api::Fmi3 => unit.instantiation_token(),
+        }
+    }
+
     /// The name of a function in this standard, given its FMI 2.0 name without the prefix
     /// ("DoStep" is fmi2DoStep or fmi3DoStep; a few were renamed in FMI 3.0).
     pub fn name(self, fmi2_name: &str) -> String {

@@ -126,7 +126,7 @@ pub fn read(unit: &UnitInfo, api: Api, bytes: &[u8]) -> Result<Saved, String> {
     let mut r = Reader { bytes: body, at: 0 };
     let id = r.string("model identifier")?;
     let guid = r.string("GUID")?;
-    let token = unit.token(api);
+    let token = api.token(unit);
     if id != unit.model_identifier || guid != token {
         return Err(format!("saved by {id} {guid}, not by this unit {} {token}", unit.model_identifier));
     }

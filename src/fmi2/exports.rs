@@ -20,6 +20,17 @@ use std::panic::{catch_unwind, AssertUnwindSafe};
 static INSTANCES: Registry = Registry::new();
 static STATES: Registry = Registry::new();
 
+/// The host's FMI 2.0 logger as the shared layer calls it.
+fn log_callback(logger: fmi2CallbackLogger) -> LogCallback {
+    let callback = logger?;
+    Some(std::sync::Arc::new(move |environment, name: &std::ffi::CStr, status: Status, category: &std::ffi::CStr, message: &str| {
+        // The host formats the message with printf: a literal % must be doubled.
+        let text = CString::new(message.replace('%', "%%").replace('\0', " ")).unwrap_or_default();
+        // SAFETY: the host gave this callback for exactly these arguments; the strings outlive the call.
+        unsafe { callback(environment, name.as_ptr(), status as i32, category.as_ptr(), text.as_ptr()) };
+    }))
+}
+
 /// Runs `f` on the instance behind `c` if `c` is live and the mode allows `function`.
 fn call(c: fmi2Component, function: &'static str, modes: u32, f: impl FnOnce(&mut Instance) -> Call) -> fmi2Status {
     call_for(c, function, None, modes, f)
@@ -100,7 +111,7 @@ pub unsafe extern "C" fn fmi2Instantiate(
     let result = catch_unwind(AssertUnwindSafe(|| {
         // SAFETY: `functions` is non-NULL (checked above) and points to the host's callback struct.
         let cb = unsafe { *functions };
-        let logger = Logger::new(LogCallback::Fmi2(cb.logger), cb.componentEnvironment, loggingOn != fmi2False);
+        let logger = Logger::new(log_callback(cb.logger), cb.componentEnvironment, loggingOn != fmi2False);
         let fail = |name: &str, msg: String| {
             let n = CString::new(name.replace('\0', " ")).unwrap_or_default();
             logger.log(&n, Status::Error, "logStatusError", &msg);

@@ -23,6 +23,17 @@ use std::path::PathBuf;
 static INSTANCES: Registry = Registry::new();
 static STATES: Registry = Registry::new();
 
+/// The host's FMI 3.0 logger as the shared layer calls it.
+fn log_callback(logger: fmi3LogMessageCallback) -> LogCallback {
+    let callback = logger?;
+    Some(std::sync::Arc::new(move |environment, name: &std::ffi::CStr, status: Status, category: &std::ffi::CStr, message: &str| {
+        // FMI 3.0 passes the message as it is (no printf); the instance name goes in front of it.
+        let text = CString::new(format!("{}: {message}", name.to_string_lossy()).replace('\0', " ")).unwrap_or_default();
+        // SAFETY: the host gave this callback for exactly these arguments; the strings outlive the call.
+        unsafe { callback(environment, status as i32, category.as_ptr(), text.as_ptr()) };
+    }))
+}
+
 fn call(c: fmi3Instance, function: &'static str, modes: u32, f: impl FnOnce(&mut Instance) -> Call) -> fmi3Status {
     ffi::call_on(&INSTANCES, c, function, None, modes, f) as fmi3Status
 }
@@ -110,7 +121,7 @@ unsafe fn instantiate(
     configure: impl FnOnce(&mut Instance),
 ) -> fmi3Instance {
     let result = catch_unwind(AssertUnwindSafe(|| {
-        let logger = Logger::new(LogCallback::Fmi3(logMessage), instanceEnvironment, loggingOn);
+        let logger = Logger::new(log_callback(logMessage), instanceEnvironment, loggingOn);
         let fail = |name: &str, msg: String| {
             let n = CString::new(name.replace('\0', " ")).unwrap_or_default();
             logger.log(&n, Status::Error, "logStatusError", &msg);
@@ -222,7 +233,8 @@ pub unsafe extern "C" fn fmi3InstantiateCoSimulation(
                 // Event Mode, whatever the master asks.
                 inst.event_mode_used = eventModeUsed && inst.unit.returns_early;
                 inst.early_return_allowed = earlyReturnAllowed && inst.unit.returns_early;
-                inst.intermediate_update = if inst.unit.returns_early { intermediateUpdate } else { None };
+                let update: fmi3IntermediateUpdateCallback = if inst.unit.returns_early { intermediateUpdate } else { None };
+                inst.abi = Some(Box::new(update));
             },
         )
     }
@@ -242,7 +254,7 @@ pub unsafe extern "C" fn fmi3InstantiateScheduledExecution(
     _unlockPreemption: fmi3UnlockPreemptionCallback,
 ) -> fmi3Instance {
     let _ = catch_unwind(AssertUnwindSafe(|| {
-        let logger = Logger::new(LogCallback::Fmi3(logMessage), instanceEnvironment, false);
+        let logger = Logger::new(log_callback(logMessage), instanceEnvironment, false);
         // SAFETY: the host passes NULL or a NUL-terminated string.
         let name = unsafe { c_str(instanceName, "fmi3InstantiateScheduledExecution", "instanceName") }.unwrap_or_default();
         let n = CString::new(name.replace('\0', " ")).unwrap_or_default();
@@ -1136,7 +1148,7 @@ pub unsafe extern "C" fn fmi3DoStep(
             out(lastSuccessfulTime, F, "lastSuccessfulTime")?;
             // The first piece is the master's step as given (bit for bit the step of a run without events).
             let h = if first { communicationStepSize } else { end - from };
-            let callback = inst.intermediate_update;
+            let callback = inst.abi.as_ref().and_then(|a| a.downcast_ref::<fmi3IntermediateUpdateCallback>()).copied().flatten();
             let result = inst.step(from, h, inst.early_return_allowed || callback.is_some());
             let event = result.as_ref().ok().copied().flatten();
             piece = Some((event, callback, inst.logger.environment, inst.early_return_allowed, inst.event_mode_used, inst.time));

@@ -128,14 +128,6 @@ impl UnitInfo {
         self.token_cache.get_or_init(|| uuid_of(&model_description_fmi3::xml(self, ""))).clone()
     }
 
-    /// What an instance made through `api` is checked against at instantiation and in saved states.
-    pub fn token(&self, api: crate::fmi::Api) -> String {
-        match api {
-            crate::fmi::Api::Fmi2 => self.guid(),
-            crate::fmi::Api::Fmi3 => self.instantiation_token(),
-        }
-    }
-
     pub fn model_description(&self) -> String {
         model_description::xml(self, &self.guid())
     }
