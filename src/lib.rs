@@ -1,15 +1,16 @@
 //! powderfmu: the contact mechanics of elasto-plastic, adhesive spheres (the laws of the seed papers
 //! `000` Nan et al., `003` Tykhoniuk et al., `004` Pasha), for system models of powder handling.
 //!
-//! Layers, one way (DESIGN 2):
-//! - `scene` (named inputs) -> `law` (the contact laws, their table and their parameters) -> `theory`
-//!   (closed-form results) -> `analysis` and `curves` (the reports of the command-line tool);
-//! - `law` -> `impact` (one contact followed in time, the sphere-wall dynamics and its integrators) ->
-//!   `units` (the FMUs: variable tables and models) -> `fmi2` (the C ABI);
-//! - `law` -> `bed` (the DEM bed engine and bed preparation).
-//!
-//! `numeric` (root finding, quadrature), `codec` (the byte format of saved data), `envelope` (the
-//! versioned, checksummed wrapper of bed files and FMU states) and `error` serve all of them.
+//! Layers, bottom to top, each using only those below (docs/architecture.md, "Layers", which
+//! `tests/layers.rs` checks):
+//! 0. `error`, `numeric` (root finding, quadrature), `codec` (the byte format of saved data), `envelope`
+//!    (the versioned, checksummed wrapper of bed files and FMU states);
+//! 1. `law` (the contact laws, their table and parameters) and `scene` (named inputs; with `law` the one
+//!    circle left, named in the architecture document);
+//! 2. `theory` (closed-form results); 3. `analysis`, `curves` (the reports);
+//! 4. `impact` (one contact in time, the sphere-wall integrators), `bed` (the DEM bed engine);
+//! 5. `units` (the FMUs: variable tables and models); 6. `fmi` (what both C ABIs share);
+//! 7. `fmi2`, `fmi3` (the C ABIs).
 
 // `!(x > y)` is how this crate refuses NaN together with out-of-range values; clippy's suggestion
 // (`partial_cmp`) would read worse and lose that on purpose.

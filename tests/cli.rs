@@ -19,7 +19,7 @@ fn run(args: &[&str]) -> (i32, String, String) {
     (out.status.code().unwrap_or(-1), String::from_utf8_lossy(&out.stdout).into(), String::from_utf8_lossy(&out.stderr).into())
 }
 
-/// 000 Table 5 (DESIGN 9: Gamma = 0.24 J/m^2, E* from particle and wall).
+/// 000 Table 5 (docs/models.md, "Reading the seeds": Gamma = 0.24 J/m^2, E* from particle and wall).
 fn table5(radius: f64, p_y: f64) -> Value {
     json!({
         "contact_model": "nan",

@@ -99,7 +99,7 @@ fn table6_sticking_velocities_within_1_percent() {
 
 #[test]
 fn table6_particles_are_in_the_adhesion_induced_plasticity_regime() {
-    // DESIGN 9: f_y < f_0 for these particles, so W_2 - W_1 < 0 in Eq. 79.
+    // docs/models.md, "Reading the seeds": f_y < f_0 for these particles, so W_2 - W_1 < 0 in Eq. 79.
     let (law, m) = nan_at(2.45e-6, 30e6);
     assert!(law.p.f_y < law.p.f_0);
     assert!(sticking_velocities(&law, m).adhesive_yield_velocity.is_none());

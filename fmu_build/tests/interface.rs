@@ -1,4 +1,4 @@
-//! The checked-in interface files must be what the variable tables generate (DESIGN 3): a change of a
+//! The checked-in interface files must be what the variable tables generate (docs/architecture.md, "One vocabulary"): a change of a
 //! unit's variables shows up in review as a change of `modelDescription/<Unit>.xml` and its docs table.
 
 use fmu_build::interface;

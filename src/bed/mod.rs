@@ -1,4 +1,4 @@
-//! The DEM bed engine (DESIGN 2, 5, 7): a bed of polydisperse adhesive, elasto-plastic spheres in a die,
+//! The DEM bed engine (docs/architecture.md; docs/bed.md): a bed of polydisperse adhesive, elasto-plastic spheres in a die,
 //! stepped with any normal law of the core, for the ball indentation test of `004` Chs. 5-7.
 //!
 //! One idea per file:

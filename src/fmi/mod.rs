@@ -1,4 +1,4 @@
-//! What the FMI 2.0 and FMI 3.0 C ABIs share (DESIGN 2, fourth layer): one `Instance` with its calling
+//! What the FMI 2.0 and FMI 3.0 C ABIs share (docs/architecture.md, "Layers", layers 6-7): one `Instance` with its calling
 //! sequence and value handling, the byte format of saved states, and the status numbers. `crate::fmi2` and
 //! `crate::fmi3` hold the `extern "C"` functions of each standard and their C types.
 

@@ -8,7 +8,7 @@
 //!   third is the overlap rate, so that every turning point (the largest overlap) is landed on.
 //!   A bound that moves with the overlap (plastic loading, where alpha_max follows alpha) is watched through
 //!   the sign of the overlap rate instead, so the turning point, where the history must be taken, is an
-//!   event too. Indicators carry a small hysteresis (DESIGN 6), so an event lands just beyond its bound.
+//!   event too. Indicators carry a small hysteresis (docs/architecture.md, "Dynamics and events"), so an event lands just beyond its bound.
 //! - Between events, trial evaluations stay on the accepted branch and continue it smoothly past its ends
 //!   (`force`); a branch decided from the trial state would be a jump no indicator announces.
 
@@ -170,7 +170,7 @@ impl Contact {
 
     /// Force at overlap `alpha` and overlap rate `rate` on the accepted branch (a trial: nothing kept).
     ///
-    /// Between events the right-hand side must not switch on the trial state (FMI 2.0 Sec. 3.1; DESIGN 6):
+    /// Between events the right-hand side must not switch on the trial state (FMI 2.0 Sec. 3.1; docs/architecture.md, "Dynamics and events"):
     /// a solver evaluates states past a bound before it locates the event there, and a jump no indicator
     /// announces makes CVode fail its error test. So where the law puts `alpha` on another branch than the
     /// accepted one, the accepted branch goes on as its tangent at the bound it crossed (the exact line for

@@ -1,4 +1,4 @@
-//! Dynamics of one contact in time (DESIGN 2, second layer): the contact bookkeeping shared by the
+//! Dynamics of one contact in time (docs/architecture.md, "Layers", layer 4): the contact bookkeeping shared by the
 //! units (`contact`), a sphere moving along a wall normal (`sphere`) and its three integrators (`exact`,
 //! `adaptive`, `verlet`). Knows laws through `AnyLaw`, time and geometry; knows nothing of FMI.
 

@@ -1,4 +1,4 @@
-//! Normal contact laws. Conventions (DESIGN 4): overlap `alpha > 0` is compression, force `f > 0` is
+//! Normal contact laws. Conventions (docs/architecture.md, "Contact law conventions"): overlap `alpha > 0` is compression, force `f > 0` is
 //! repulsion. Every law answers one question through `NormalLaw::evaluate`: at this overlap, with this
 //! history, what is the force, which branch is it on, how stiff is that branch, over which overlaps does
 //! the branch hold, and what would the history be if this state were accepted. Laws never integrate in

@@ -1,5 +1,5 @@
 //! Nan, Goh & Rahman's improved linear elasto-plastic adhesive law (`000` Sec. 2, Eqs. 3-20), read as
-//! the state machine of DESIGN 4.
+//! the state machine of docs/models.md, "Nan improved linear law".
 //!
 //! History: `established` (the paper's cs) and `alpha_max`, which starts at `alpha_y`, so the contact
 //! before yield is the same formulas with k_e = k_el, alpha_p = alpha_0, f_cp = f_ce, alpha_c0 = 0.

@@ -18,7 +18,7 @@ crate::scene_options! {
     }
 }
 
-/// The typed description of a contact pair every law is built from (DESIGN 4 conventions): effective
+/// The typed description of a contact pair every law is built from (docs/architecture.md, "Contact law conventions"): effective
 /// geometry, mass and materials. A scene gives one (`from_scene`); the bed mixes one per pair of species.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Effective {

@@ -1,4 +1,4 @@
-//! The one table of the normal contact laws (DESIGN 4), the way LAMMPS registers a granular sub-model in
+//! The one table of the normal contact laws (docs/architecture.md, "Contact law conventions"), the way LAMMPS registers a granular sub-model in
 //! one line. Each line declares a law: its variant name, its module (whose name is its scene name,
 //! `contact_model`), its type, and whether its branches are straight lines for a fixed history (what the
 //! `exact` integrator needs). The first line is the default law.

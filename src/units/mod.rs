@@ -1,4 +1,4 @@
-//! The FMUs: each unit is a variable table plus a `Model` that drives the dynamics (DESIGN 2). The FMI
+//! The FMUs: each unit is a variable table plus a `Model` that drives the dynamics (docs/architecture.md, "Layers"). The FMI
 //! glue in `crate::fmi2` knows only this module's `UnitInfo` and `Model` trait, never the physics.
 
 #[macro_use]

@@ -1,4 +1,4 @@
-//! The scene keys as FMU parameters (DESIGN 3: one vocabulary). Each key of `scene::KEYS` becomes one
+//! The scene keys as FMU parameters (docs/architecture.md, "One vocabulary": one vocabulary). Each key of `scene::KEYS` becomes one
 //! parameter of the same name: a String for the choices, a Real otherwise. Start values are the default
 //! scene (`000` Table 5, an ammonium fluorescein sphere on silicon). A Real whose scene default is
 //! derived from other values ("pi R* p_y", "rigid", ...) has start 0, and 0 means "derive it": such a

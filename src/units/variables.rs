@@ -1,4 +1,4 @@
-//! The variable table of a unit (DESIGN 3): every FMU variable defined once, with its value reference,
+//! The variable table of a unit (docs/architecture.md, "One vocabulary"): every FMU variable defined once, with its value reference,
 //! causality, variability, unit, start, range and description. The `modelDescription.xml`, the value
 //! reference dispatch of the C ABI and the docs tables are all generated from it.
 

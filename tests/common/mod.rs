@@ -3,7 +3,7 @@
 
 use powderfmu::scene::{ModelKind, Scene};
 
-/// 000 Table 5: ammonium fluorescein on silicon, Gamma = 0.24 J/m^2 (DESIGN 9's reading of "0.2 | 24").
+/// 000 Table 5: ammonium fluorescein on silicon, Gamma = 0.24 J/m^2 (docs/models.md's reading of "0.2 | 24").
 pub fn table5(model: ModelKind, radius: f64, yield_pressure: f64) -> Scene {
     let mut s = Scene::new(model, radius, 1350.0, 1.2e9, 0.33);
     s.particle_yield_pressure = Some(yield_pressure);
