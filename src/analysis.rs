@@ -3,7 +3,8 @@
 
 use crate::error::ParamError;
 use crate::law::nan::Nan;
-use crate::law::params::{alpha_y0, f_y0, k_hertz, w_jkr, Effective, NanParams};
+use crate::law::nan_params::NanParams;
+use crate::law::params::{alpha_y0, f_y0, k_hertz, w_jkr, Effective};
 use crate::law::{AnyLaw, NormalLaw};
 use crate::scene::Scene;
 use crate::theory::energy_balance;

@@ -3,14 +3,14 @@
 //!
 //! Layers, bottom to top, each using only those below (docs/architecture.md, "Layers", which
 //! `tests/layers.rs` checks):
-//! 0. `error`, `numeric` (root finding, quadrature), `codec` (the byte format of saved data), `envelope`
-//!    (the versioned, checksummed wrapper of bed files and FMU states);
-//! 1. `law` (the contact laws, their table and parameters) and `scene` (named inputs; with `law` the one
-//!    circle left, named in the architecture document);
-//! 2. `theory` (closed-form results); 3. `analysis`, `curves` (the reports);
-//! 4. `impact` (one contact in time, the sphere-wall integrators), `bed` (the DEM bed engine);
-//! 5. `units` (the FMUs: variable tables and models); 6. `fmi` (what both C ABIs share);
-//! 7. `fmi2`, `fmi3` (the C ABIs).
+//! 0. `error`; 1. `numeric` (root finding, quadrature), `codec` (the byte format of saved data),
+//!    `envelope` (the versioned, checksummed wrapper of bed files and FMU states), `vocabulary` (the
+//!    parameter keys and `scene_options!`);
+//! 2. `law` (the contact laws, their table and parameters); 3. `scene` (a contact's named inputs,
+//!    composed above the laws), `theory` (closed-form results); 4. `analysis`, `curves` (the reports);
+//! 5. `impact` (one contact in time, the sphere-wall integrators), `bed` (the DEM bed engine);
+//! 6. `units` (the FMUs: variable tables and models); 7. `fmi` (what both C ABIs share);
+//! 8. `fmi2`, `fmi3` (the C ABIs).
 
 // `!(x > y)` is how this crate refuses NaN together with out-of-range values; clippy's suggestion
 // (`partial_cmp`) would read worse and lose that on purpose.
@@ -34,6 +34,7 @@ pub mod numeric;
 pub mod scene;
 pub mod theory;
 pub mod units;
+pub mod vocabulary;
 
 pub use error::ParamError;
 pub use law::{AnyHistory, AnyLaw, Branch, Evaluation, NormalLaw};

@@ -7,8 +7,6 @@
 //! k_n is the law's damping stiffness (`NormalLaw::damping_stiffness`): the branch stiffness, its
 //! magnitude on the adhesive branches (000 Sec. 2.2 names k_c there), and 2 E* a for the JKR curves.
 
-use crate::scene::Scene;
-
 /// gamma of 000 Eq. 26.
 pub fn gamma(restitution: f64, beta: f64) -> f64 {
     if restitution >= 1.0 {
@@ -42,17 +40,6 @@ pub struct NormalDamping {
 }
 
 impl NormalDamping {
-    /// The damping of a scene: beta after yield defaults to 0.1 for nan and 1 for the other laws.
-    pub fn from_scene(s: &Scene, mass: f64) -> NormalDamping {
-        let default_plastic = s.contact_model.plastic_damping_factor().unwrap_or(s.damping_factor_elastic);
-        NormalDamping {
-            restitution: s.restitution_coefficient,
-            beta_elastic: s.damping_factor_elastic,
-            beta_plastic: s.damping_factor_plastic.unwrap_or(default_plastic),
-            mass,
-        }
-    }
-
     /// Damping force [N], positive repulsive, for an approach rate d alpha/dt [m/s].
     pub fn force(&self, stiffness: f64, yielded: bool, approach_rate: f64) -> f64 {
         self.coefficient(stiffness, yielded) * approach_rate
@@ -68,7 +55,7 @@ impl NormalDamping {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::ModelKind;
+    use crate::scene::{ModelKind, Scene};
 
     #[test]
     fn plastic_beta_defaults_to_0_1_for_nan_only() {

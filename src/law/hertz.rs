@@ -5,7 +5,7 @@ use super::tangential::TangentialModel;
 use super::{LawInfo, LawOptions};
 use super::{Branch, Evaluation, NormalLaw};
 use crate::error::ParamError;
-use crate::scene::NoOptions;
+use crate::vocabulary::NoOptions;
 
 #[derive(Debug, Clone, PartialEq)]
 pub struct Hertz {

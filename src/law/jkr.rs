@@ -16,7 +16,7 @@ use super::tangential::TangentialModel;
 use super::{LawInfo, LawOptions};
 use super::{Branch, Evaluation, NormalLaw};
 use crate::error::ParamError;
-use crate::scene::Range;
+use crate::vocabulary::Range;
 use std::f64::consts::PI;
 use crate::numeric::cbrt;
 

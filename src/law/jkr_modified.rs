@@ -15,7 +15,7 @@ use super::tangential::TangentialModel;
 use super::{LawInfo, LawOptions};
 use super::{Branch, Evaluation, NormalLaw};
 use crate::error::ParamError;
-use crate::scene::Range;
+use crate::vocabulary::Range;
 
 crate::choice_enum! {
     /// The normal force a modified JKR contact's Coulomb limit is proportional to.

@@ -8,9 +8,11 @@ pub mod damping;
 pub mod hertz;
 pub mod jkr;
 pub mod jkr_modified;
+mod kind;
 pub mod linear;
 pub mod luding;
 pub mod nan;
+pub mod nan_params;
 pub mod params;
 pub mod pasha;
 pub mod pasha_simplified;
@@ -21,9 +23,10 @@ pub mod tomas;
 pub mod walton_braun;
 
 use crate::error::ParamError;
-use crate::scene::{Key, ModelKind, Options, Scene};
+use crate::vocabulary::{Key, Options};
 use serde_json::{Map, Value};
 use params::Effective;
+pub use kind::ModelKind;
 use tangential::TangentialModel;
 
 /// The branch of a force-overlap diagram the contact is on.
@@ -234,11 +237,6 @@ macro_rules! define_any_law {
         }
 
         impl AnyLaw {
-            /// Builds the scene's law with its parameters derived and checked.
-            pub fn from_scene(s: &Scene) -> Result<AnyLaw, ParamError> {
-                AnyLaw::from_pair(s.contact_model, &Effective::from_scene(s)?, &s.laws)
-            }
-
             /// Builds the law `model` for a pair of effective properties (R*, m*, E*, G*, p_y, Gamma)
             /// under the laws' options. The bed mixes each pair of species into one (`bed::interaction`).
             pub fn from_pair(model: ModelKind, pair: &Effective, options: &LawOptions) -> Result<AnyLaw, ParamError> {

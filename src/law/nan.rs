@@ -15,10 +15,10 @@
 //!   Eqs. 11-14 so that the force stays continuous.
 
 use super::params::Effective;
-use super::params::NanParams;
+use super::nan_params::NanParams;
 use super::{Branch, Evaluation, LawInfo, LawOptions, NormalLaw};
 use crate::error::ParamError;
-use crate::scene::Range;
+use crate::vocabulary::Range;
 
 crate::choice_enum! {
     /// How k_e grows after yield in the Nan law.

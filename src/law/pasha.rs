@@ -23,7 +23,7 @@ use super::params::Effective;
 use super::params::StiffnessOptions;
 use super::{Branch, Evaluation, LawInfo, LawOptions, NormalLaw};
 use crate::error::ParamError;
-use crate::scene::Range;
+use crate::vocabulary::Range;
 
 crate::choice_enum! {
     /// Constant or load-dependent unloading stiffness in the Pasha laws.

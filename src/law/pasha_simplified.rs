@@ -11,7 +11,7 @@ use super::params::Effective;
 use super::pasha::{pasha_evaluate, PashaHistory, PashaPoints, PashaStiffness};
 use super::{Evaluation, LawInfo, LawOptions, NormalLaw};
 use crate::error::ParamError;
-use crate::scene::Range;
+use crate::vocabulary::Range;
 
 #[derive(Debug, Clone, PartialEq)]
 pub struct PashaSimplified {

@@ -20,7 +20,7 @@ use super::tangential::TangentialModel;
 use super::{Branch, Evaluation, LawInfo, LawOptions, NormalLaw};
 use crate::error::ParamError;
 use crate::numeric::brent;
-use crate::scene::NoOptions;
+use crate::vocabulary::NoOptions;
 use std::f64::consts::PI;
 use crate::numeric::cbrt;
 

@@ -24,7 +24,7 @@ use super::tangential::TangentialModel;
 use super::{Branch, Evaluation, LawInfo, LawOptions, NormalLaw};
 use crate::error::{check_closed_low, ParamError};
 use crate::numeric::brent;
-use crate::scene::Range;
+use crate::vocabulary::Range;
 use std::f64::consts::PI;
 
 #[derive(Debug, Clone, PartialEq)]

@@ -7,7 +7,7 @@
 use super::params::{k_el_default, Effective};
 use super::{Branch, Evaluation, LawInfo, LawOptions, NormalLaw};
 use crate::error::ParamError;
-use crate::scene::Range;
+use crate::vocabulary::Range;
 
 #[derive(Debug, Clone, PartialEq)]
 pub struct WaltonBraun {

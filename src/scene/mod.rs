@@ -1,14 +1,16 @@
 //! A scene: the named parameter values of one contact. The names are the FMU variable names, the keys
 //! of the scene JSON the command-line tool reads, and the names in `docs/models.md`. SI units.
 //!
-//! Each key is defined once, in a typed group (`scene_options!`, `key.rs`): the common keys here, the
+//! Each key is defined once, in a typed group (`scene_options!`, `vocabulary`): the common keys here, the
 //! shared stiffnesses beside their correlations (`law::params::StiffnessOptions`), each law's own keys
 //! beside the law (`LawInfo::Options`). `KEYS` lists them all in that order; the CLI help, the
 //! unknown-key check, the FMU parameters and the docs read it.
 
-mod key;
+mod build;
 
-pub use key::{choice_text, given, unknown_choice, Field, Key, KeyDefault, KeyKind, NoOptions, Options, Range};
+pub use crate::law::params::YieldCorrelation;
+pub use crate::law::ModelKind;
+pub use crate::vocabulary::{choice_text, given, unknown_choice, Field, Key, KeyDefault, KeyKind, NoOptions, Options, Range};
 
 use crate::error::ParamError;
 use crate::law::LawOptions;
@@ -22,81 +24,11 @@ macro_rules! model_names {
     };
 }
 
-/// Defines `ModelKind` from the rows of `law_table!`.
-macro_rules! define_model_kind {
-    ($d:tt; $($variant:ident, $module:ident, $ty:ty, $pl:literal;)*) => {
-        /// The normal contact laws a scene can name: the rows of `law_table!` (`src/law/table.rs`), in its
-        /// order.
-        #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-        pub enum ModelKind {
-            $($variant,)*
-        }
-
-        impl ModelKind {
-            /// Every law, in the table's order.
-            pub const ALL: [ModelKind; [$(stringify!($module)),*].len()] = [$(ModelKind::$variant),*];
-
-            /// The scene names, in the table's order.
-            pub const NAMES: &'static [&'static str] = &[$(stringify!($module)),*];
-
-            /// The scene name (`contact_model`).
-            pub const fn name(self) -> &'static str {
-                match self {
-                    $(ModelKind::$variant => stringify!($module),)*
-                }
-            }
-
-            /// Whether every branch is a straight line for a fixed history (the laws the `exact`
-            /// integrator solves in closed form).
-            pub fn is_piecewise_linear(self) -> bool {
-                match self {
-                    $(ModelKind::$variant => $pl,)*
-                }
-            }
-        }
-    };
-}
-
-crate::law_table!(define_model_kind; $);
-
-impl ModelKind {
-    /// The default law: the first line of the table.
-    pub const DEFAULT: ModelKind = ModelKind::ALL[0];
-
-    /// The scene names of the piecewise-linear laws, comma-separated.
-    pub fn piecewise_linear_names() -> String {
-        ModelKind::ALL.iter().filter(|m| m.is_piecewise_linear()).map(|m| m.name()).collect::<Vec<_>>().join(", ")
-    }
-
-    pub fn parse(s: &str) -> Result<ModelKind, ParamError> {
-        ModelKind::ALL.iter().copied().find(|m| m.name() == s).ok_or_else(|| unknown_choice("contact_model", s, ModelKind::NAMES))
-    }
-}
-
-impl Field for ModelKind {
-    fn parse(name: &'static str, value: &Value) -> Result<ModelKind, ParamError> {
-        ModelKind::parse(choice_text(name, value)?)
-    }
-    fn check(&self, _key: &Key) -> Result<(), ParamError> {
-        Ok(())
-    }
-}
-
 crate::choice_enum! {
     /// What the particle touches.
     pub enum Partner {
         Wall = "wall",
         Particle = "particle",
-    }
-}
-
-crate::choice_enum! {
-    /// Correlation from yield stress to limiting contact pressure.
-    pub enum YieldCorrelation {
-        /// 000 Eq. 32: p_y = 1.295 exp(0.736 nu) sigma_y.
-        JacksonGreen = "jackson_green",
-        /// 000 Eq. 33: p_y = (0.454 + 0.41 nu) 2.8 sigma_y.
-        Chang = "chang",
     }
 }
 

@@ -1,6 +1,8 @@
-//! One scene key, defined once: its name, unit, typed default, allowed range and meaning. A group of keys
-//! is a typed struct declared with `scene_options!`; the struct, its defaults, its part of the key table,
-//! its reading from JSON and its range checks are all generated from that one declaration.
+//! The parameter vocabulary (docs/architecture.md, "One vocabulary"; layer 0): one key defined once, with
+//! its name, unit, typed default, allowed range and meaning. A group of keys is a typed struct declared
+//! with `scene_options!`; the struct, its defaults, its part of the key table, its reading from JSON and
+//! its range checks are all generated from that one declaration. The laws declare their options with it,
+//! `scene::Scene` composes them, and `bed::scene` reads the bed's keys with its helpers.
 
 use crate::error::{check_closed_low, check_open, range_text, ParamError};
 use serde_json::{Map, Value};
@@ -200,14 +202,14 @@ macro_rules! choice_enum {
             }
         }
 
-        impl $crate::scene::Field for $ty {
+        impl $crate::vocabulary::Field for $ty {
             fn parse(name: &'static str, value: &serde_json::Value) -> Result<$ty, $crate::ParamError> {
-                match $crate::scene::choice_text(name, value)? {
+                match $crate::vocabulary::choice_text(name, value)? {
                     $($name => Ok($ty::$variant),)*
-                    other => Err($crate::scene::unknown_choice(name, other, $ty::NAMES)),
+                    other => Err($crate::vocabulary::unknown_choice(name, other, $ty::NAMES)),
                 }
             }
-            fn check(&self, _key: &$crate::scene::Key) -> Result<(), $crate::ParamError> {
+            fn check(&self, _key: &$crate::vocabulary::Key) -> Result<(), $crate::ParamError> {
                 Ok(())
             }
         }
@@ -233,8 +235,8 @@ macro_rules! scene_options {
             $($($(#[$gmeta])* pub $gfield: $gty,)*)?
         }
 
-        impl $crate::scene::Options for $group {
-            const OWN_KEYS: &'static [$crate::scene::Key] = &[$($crate::scene::Key {
+        impl $crate::vocabulary::Options for $group {
+            const OWN_KEYS: &'static [$crate::vocabulary::Key] = &[$($crate::vocabulary::Key {
                 name: stringify!($field),
                 unit: $unit,
                 default: $crate::scene_options!(@default $kind($($arg)*)),
@@ -242,30 +244,30 @@ macro_rules! scene_options {
                 doc: $doc,
             },)*];
 
-            fn keys(out: &mut Vec<$crate::scene::Key>) {
-                out.extend_from_slice(<$group as $crate::scene::Options>::OWN_KEYS);
-                $($(<$gty as $crate::scene::Options>::keys(out);)*)?
+            fn keys(out: &mut Vec<$crate::vocabulary::Key>) {
+                out.extend_from_slice(<$group as $crate::vocabulary::Options>::OWN_KEYS);
+                $($(<$gty as $crate::vocabulary::Options>::keys(out);)*)?
             }
 
             fn defaults() -> $group {
                 $group {
                     $($field: $crate::scene_options!(@value $kind($($arg)*)),)*
-                    $($($gfield: <$gty as $crate::scene::Options>::defaults(),)*)?
+                    $($($gfield: <$gty as $crate::vocabulary::Options>::defaults(),)*)?
                 }
             }
 
             fn read(&mut self, map: &serde_json::Map<String, serde_json::Value>) -> Result<(), $crate::ParamError> {
-                $(if let Some(v) = $crate::scene::given(map, stringify!($field)) {
-                    self.$field = $crate::scene::Field::parse(stringify!($field), v)?;
+                $(if let Some(v) = $crate::vocabulary::given(map, stringify!($field)) {
+                    self.$field = $crate::vocabulary::Field::parse(stringify!($field), v)?;
                 })*
-                $($($crate::scene::Options::read(&mut self.$gfield, map)?;)*)?
+                $($($crate::vocabulary::Options::read(&mut self.$gfield, map)?;)*)?
                 Ok(())
             }
 
             fn check(&self) -> Result<(), $crate::ParamError> {
-                let mut keys = <$group as $crate::scene::Options>::OWN_KEYS.iter();
-                $($crate::scene::Field::check(&self.$field, keys.next().expect("one key per field"))?;)*
-                $($($crate::scene::Options::check(&self.$gfield)?;)*)?
+                let mut keys = <$group as $crate::vocabulary::Options>::OWN_KEYS.iter();
+                $($crate::vocabulary::Field::check(&self.$field, keys.next().expect("one key per field"))?;)*
+                $($($crate::vocabulary::Options::check(&self.$gfield)?;)*)?
                 Ok(())
             }
         }
@@ -274,11 +276,11 @@ macro_rules! scene_options {
     (@type number($x:expr)) => { f64 };
     (@type derived($text:literal)) => { Option<f64> };
     (@type choice($ty:ident :: $variant:ident)) => { $ty };
-    (@default required()) => { $crate::scene::KeyDefault::Required };
-    (@default number($x:expr)) => { $crate::scene::KeyDefault::Number($x) };
-    (@default derived($text:literal)) => { $crate::scene::KeyDefault::Derived($text) };
+    (@default required()) => { $crate::vocabulary::KeyDefault::Required };
+    (@default number($x:expr)) => { $crate::vocabulary::KeyDefault::Number($x) };
+    (@default derived($text:literal)) => { $crate::vocabulary::KeyDefault::Derived($text) };
     (@default choice($ty:ident :: $variant:ident)) => {
-        $crate::scene::KeyDefault::Choice { default: $ty::$variant.name(), allowed: $ty::NAMES }
+        $crate::vocabulary::KeyDefault::Choice { default: $ty::$variant.name(), allowed: $ty::NAMES }
     };
     (@value required()) => { f64::NAN };
     (@value number($x:expr)) => { $x };
