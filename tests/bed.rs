@@ -379,7 +379,7 @@ fn contact_memory_survives_list_rebuilds_and_bed_files() {
         .map(|(a, b)| (0..3).map(|c| (a[c] - b[c]).abs()).fold(0.0, f64::max))
         .fold(0.0, f64::max);
     assert!(worst < 1e-12 * d, "rebuilding at every step moved a sphere by {worst:e} m");
-    let springs = with_engine!(&every, x => x.spring.iter().filter(|s| **s != Vec3::zeros()).count());
+    let springs = with_engine!(&every, x => x.memory.spring.iter().filter(|s| **s != Vec3::zeros()).count());
     assert!(springs > 50, "the bed must have loaded tangential springs ({springs})");
     std::fs::remove_dir_all(&dir).unwrap();
 }
@@ -471,7 +471,7 @@ fn an_indenter_added_to_a_prepared_bed_keeps_every_contact_and_feels_the_bed() {
     let d = scene.size_distribution.mean_diameter();
     let top = bed_height(with.particles());
     let radius = 1.5 * d;
-    let springs = |e: &AnyEngine| with_engine!(e, x => x.spring.iter().filter(|s| **s != Vec3::zeros()).count());
+    let springs = |e: &AnyEngine| with_engine!(e, x => x.memory.spring.iter().filter(|s| **s != Vec3::zeros()).count());
     let loaded = springs(&with);
     assert!(loaded > 50, "the prepared bed must have loaded tangential springs ({loaded})");
     // Clear of the bed, the indenter changes nothing: every contact keeps its memory.
@@ -641,7 +641,7 @@ fn a_changed_scene_keeps_the_memory_and_renews_the_untouched_pairs() {
     let slot =
         |e: &AnyEngine, i: usize, j: u32| with_engine!(e, inner => inner.list.start[i] as usize + inner.list.row(i).binary_search(&j).unwrap());
     let (touched, apart) = (slot(&e, 0, 1), slot(&e, 1, 2));
-    let history = |e: &AnyEngine, k: usize| with_engine!(e, inner => format!("{:?}", inner.normal[k]));
+    let history = |e: &AnyEngine, k: usize| with_engine!(e, inner => format!("{:?}", inner.memory.history[k]));
     let initial = |e: &AnyEngine| with_engine!(e, inner => format!("{:?}", inner.pairs[0].initial));
     let (kept, old_initial) = (history(&e, touched), initial(&e));
     assert_eq!(history(&e, apart), old_initial, "the apart pair never touched");

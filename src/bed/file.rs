@@ -11,7 +11,7 @@ use super::interaction::BedLaw;
 use super::particles::Particles;
 use super::scene::BedScene;
 use super::walls::Wall;
-use super::{Vec3, ZERO};
+use super::Vec3;
 use crate::envelope::{self, EnvelopeError, Format};
 use std::io::Write;
 use std::path::Path;
@@ -54,9 +54,9 @@ impl<L: BedLaw> Engine<L> {
         for i in 0..self.list.rows() {
             let si = self.particles.species[i] as usize;
             for (k, &j) in (self.list.start[i] as usize..).zip(self.list.row(i)) {
-                let init = self.pairs[si * self.species + self.particles.species[j as usize] as usize].initial;
-                if self.normal[k] != init || self.spring[k] != ZERO || self.radius[k] != 0.0 {
-                    pairs.push((i as u32, j, self.normal[k], self.spring[k], self.radius[k]));
+                if self.memory.remembers(k, self.pair(si, self.particles.species[j as usize] as usize).initial) {
+                    let (h, s, a) = self.memory.get(k);
+                    pairs.push((i as u32, j, h, s, a));
                 }
             }
         }
@@ -66,12 +66,11 @@ impl<L: BedLaw> Engine<L> {
             .enumerate()
             .map(|(w, wc)| {
                 (0..wc.particle.len())
-                    .filter(|&k| {
-                        wc.normal[k] != self.wall_pairs[w][self.particles.species[wc.particle[k] as usize] as usize].initial
-                            || wc.spring[k] != ZERO
-                            || wc.radius[k] != 0.0
+                    .filter(|&k| wc.memory.remembers(k, self.wall_pairs[w][self.particles.species[wc.particle[k] as usize] as usize].initial))
+                    .map(|k| {
+                        let (h, s, a) = wc.memory.get(k);
+                        (wc.particle[k], h, s, a)
                     })
-                    .map(|k| (wc.particle[k], wc.normal[k], wc.spring[k], wc.radius[k]))
                     .collect()
             })
             .collect();
@@ -95,9 +94,7 @@ impl<L: BedLaw> Engine<L> {
             self.list.insert_pairs(&outside);
             let slots = self.list.partner.len();
             let init = self.pairs[0].initial;
-            self.normal.resize(slots, init);
-            self.spring.resize(slots, ZERO);
-            self.radius.resize(slots, 0.0);
+            self.memory.resize_fresh(slots, init);
         }
         for (w, list) in walls.iter().enumerate() {
             if let Some(wc) = self.wall_contacts.get_mut(w) {
@@ -106,9 +103,7 @@ impl<L: BedLaw> Engine<L> {
                     if let Err(k) = wc.particle.binary_search(&i) {
                         if i < n {
                             wc.particle.insert(k, i);
-                            wc.normal.insert(k, init);
-                            wc.spring.insert(k, ZERO);
-                            wc.radius.insert(k, 0.0);
+                            wc.memory.insert_fresh(k, init);
                             grown = true;
                         }
                     }
@@ -124,16 +119,13 @@ impl<L: BedLaw> Engine<L> {
             let a = self.particles.species[i] as usize;
             for k in self.list.start[i] as usize..self.list.start[i + 1] as usize {
                 let b = self.particles.species[self.list.partner[k] as usize] as usize;
-                self.normal[k] = self.pairs[a * self.species + b].initial;
-                self.spring[k] = ZERO;
-                self.radius[k] = 0.0;
+                let init = self.pair(a, b).initial;
+                self.memory.reset(k, init);
             }
         }
         for (w, wc) in self.wall_contacts.iter_mut().enumerate() {
             for k in 0..wc.particle.len() {
-                wc.normal[k] = self.wall_pairs[w][self.particles.species[wc.particle[k] as usize] as usize].initial;
-                wc.spring[k] = ZERO;
-                wc.radius[k] = 0.0;
+                wc.memory.reset(k, self.wall_pairs[w][self.particles.species[wc.particle[k] as usize] as usize].initial);
             }
         }
         for (i, j, h, s, a) in pairs {
@@ -144,9 +136,7 @@ impl<L: BedLaw> Engine<L> {
             let k =
                 row.binary_search(&j).map_err(|_| BedError::Setup(format!("bed file: contact ({i}, {j}) is not within range of the positions")))?;
             let slot = self.list.start[i as usize] as usize + k;
-            self.normal[slot] = h;
-            self.spring[slot] = s;
-            self.radius[slot] = a;
+            self.memory.set(slot, (h, s, a));
         }
         if walls.len() != self.wall_contacts.len() {
             return Err(BedError::Setup("bed file: wall contact lists do not match the walls".into()));
@@ -158,9 +148,7 @@ impl<L: BedLaw> Engine<L> {
                     .particle
                     .binary_search(&i)
                     .map_err(|_| BedError::Setup(format!("bed file: wall contact of particle {i} is not within range")))?;
-                wc.normal[k] = h;
-                wc.spring[k] = s;
-                wc.radius[k] = a;
+                wc.memory.set(k, (h, s, a));
             }
         }
         self.compute_forces_without_increment();

@@ -17,7 +17,9 @@ pub use error::UnitError;
 pub use scene_params::DEFAULT_SCENE;
 use variables::Value;
 
-/// The log categories of every unit (FMI 2.0 Sec. 2.2.4), name and meaning.
+/// The log categories of every unit (FMI 2.0 Sec. 2.2.4), name and meaning. The descriptions name the
+/// statuses as FMI 2.0 does; the FMI 3.0 model description names them fmi3
+/// (`model_description::units_categories_experiment`).
 pub const LOG_CATEGORIES: &[(&str, &str)] = &[
     ("logEvents", "Branch switches of the contact law and other events"),
     ("logStatusWarning", "Calls that returned fmi2Warning"),

@@ -42,7 +42,7 @@ pub fn xml(unit: &UnitInfo, guid: &str) -> String {
         x,
         "  <CoSimulation modelIdentifier=\"{id}\" canHandleVariableCommunicationStepSize=\"true\"{interpolate} canGetAndSetFMUstate=\"true\" canSerializeFMUstate=\"true\"/>"
     );
-    x.push_str(&units_categories_experiment(unit));
+    x.push_str(&units_categories_experiment(unit, "fmi2"));
     x.push_str("  <ModelVariables>\n");
     for (i, v) in unit.variables.iter().enumerate() {
         let _ = writeln!(x, "    <!-- index {} -->", i + 1);
@@ -72,7 +72,9 @@ pub fn xml(unit: &UnitInfo, guid: &str) -> String {
 }
 
 /// `UnitDefinitions`, `LogCategories` and `DefaultExperiment`: the same text in FMI 2.0 and 3.0.
-pub fn units_categories_experiment(unit: &UnitInfo) -> String {
+/// The unit definitions, the log categories (their statuses named with `status_prefix`, "fmi2" or
+/// "fmi3") and the default experiment.
+pub fn units_categories_experiment(unit: &UnitInfo, status_prefix: &str) -> String {
     let mut x = String::from("  <UnitDefinitions>\n");
     for u in UNITS.iter().filter(|u| unit.variables.iter().any(|v| v.unit == u.name)) {
         let mut attrs = String::new();
@@ -85,7 +87,7 @@ pub fn units_categories_experiment(unit: &UnitInfo) -> String {
     }
     x.push_str("  </UnitDefinitions>\n  <LogCategories>\n");
     for (name, doc) in super::LOG_CATEGORIES {
-        let _ = writeln!(x, "    <Category name=\"{name}\" description=\"{}\"/>", escape(doc));
+        let _ = writeln!(x, "    <Category name=\"{name}\" description=\"{}\"/>", escape(&doc.replace("fmi2", status_prefix)));
     }
     x.push_str("  </LogCategories>\n");
     let _ = writeln!(

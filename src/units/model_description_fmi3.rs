@@ -46,7 +46,7 @@ pub fn xml(unit: &UnitInfo, token: &str) -> String {
         x,
         "  <CoSimulation modelIdentifier=\"{id}\" canHandleVariableCommunicationStepSize=\"true\" canGetAndSetFMUState=\"true\" canSerializeFMUState=\"true\"{events}/>"
     );
-    x.push_str(&units_categories_experiment(unit));
+    x.push_str(&units_categories_experiment(unit, "fmi3"));
     x.push_str("  <ModelVariables>\n");
     for (vr, v) in unit.variables.iter().enumerate() {
         x.push_str(&variable_xml(unit, vr, v));

@@ -82,11 +82,14 @@ impl<L: BedLaw> Engine<L> {
         // Cut the contact memory into the parts' pieces; each part's sink is its buffer (one thread: the
         // totals).
         let mut parts: Vec<Part<L::History>> = Vec::with_capacity(self.threads);
-        let mut normal: &mut [L::History] = &mut self.normal;
-        let mut spring: &mut [Vec3] = &mut self.spring;
-        let mut radius: &mut [f64] = &mut self.radius;
-        let mut wall_rest: Vec<WallMemory<'_, L::History>> =
-            self.wall_contacts.iter_mut().map(|wc| (&wc.particle[..], &mut wc.normal[..], &mut wc.spring[..], &mut wc.radius[..])).collect();
+        let mut normal: &mut [L::History] = &mut self.memory.history;
+        let mut spring: &mut [Vec3] = &mut self.memory.spring;
+        let mut radius: &mut [f64] = &mut self.memory.contact_radius;
+        let mut wall_rest: Vec<WallMemory<'_, L::History>> = self
+            .wall_contacts
+            .iter_mut()
+            .map(|wc| (&wc.particle[..], &mut wc.memory.history[..], &mut wc.memory.spring[..], &mut wc.memory.contact_radius[..]))
+            .collect();
         let mut consumed = 0usize;
         let mut sinks: Vec<Sink> = if self.threads == 1 {
             let t = &mut self.total;

@@ -4,17 +4,21 @@
 
 use super::super::interaction::BedLaw;
 use super::super::neighbors::carry;
-use super::super::{Vec3, ZERO};
+use super::super::Vec3;
+use super::contact_memory::ContactMemory;
 use super::Engine;
 
 /// Contacts of one wall: the particles within range (ascending) and their memory.
 #[derive(Debug, Clone)]
 pub struct WallContacts<H> {
     pub particle: Vec<u32>,
-    pub normal: Vec<H>,
-    pub spring: Vec<Vec3>,
-    /// Contact radius of the last step (the JKR laws' starting guess), 0 if none.
-    pub radius: Vec<f64>,
+    pub memory: ContactMemory<H>,
+}
+
+impl<H> WallContacts<H> {
+    pub fn new() -> WallContacts<H> {
+        WallContacts { particle: vec![], memory: ContactMemory::new() }
+    }
 }
 
 impl<L: BedLaw> Engine<L> {
@@ -54,32 +58,23 @@ impl<L: BedLaw> Engine<L> {
         // pair starts with the initial history of its own interaction.
         let old_slots: Vec<u32> = (0..old_partner.len() as u32).collect();
         let from = carry(&old_start, &old_partner, &old_slots, &self.list, u32::MAX);
-        let s = self.species;
-        let mut normal = Vec::with_capacity(from.len());
-        let mut spring = Vec::with_capacity(from.len());
-        let mut radius = Vec::with_capacity(from.len());
+        let mut memory = ContactMemory::with_capacity(from.len());
         for i in 0..self.list.rows() {
             let a = self.particles.species[i] as usize;
             for k in self.list.start[i] as usize..self.list.start[i + 1] as usize {
                 if from[k] == u32::MAX {
                     let b = self.particles.species[self.list.partner[k] as usize] as usize;
-                    normal.push(self.pairs[a * s + b].initial);
-                    spring.push(ZERO);
-                    radius.push(0.0);
+                    memory.push_fresh(self.pair(a, b).initial);
                 } else {
-                    normal.push(self.normal[from[k] as usize]);
-                    spring.push(self.spring[from[k] as usize]);
-                    radius.push(self.radius[from[k] as usize]);
+                    memory.push(self.memory.get(from[k] as usize));
                 }
             }
         }
-        self.normal = normal;
-        self.spring = spring;
-        self.radius = radius;
+        self.memory = memory;
         let skin = self.list.skin;
         self.wall_reference = self.walls.iter().map(|w| w.position).collect();
         for (w, wall) in self.walls.iter().enumerate() {
-            let old = std::mem::replace(&mut self.wall_contacts[w], WallContacts { particle: vec![], normal: vec![], spring: vec![], radius: vec![] });
+            let old = std::mem::replace(&mut self.wall_contacts[w], WallContacts::new());
             let mut k_old = 0;
             let new = &mut self.wall_contacts[w];
             for i in 0..self.particles.len() {
@@ -90,13 +85,9 @@ impl<L: BedLaw> Engine<L> {
                     }
                     new.particle.push(i as u32);
                     if k_old < old.particle.len() && old.particle[k_old] as usize == i {
-                        new.normal.push(old.normal[k_old]);
-                        new.spring.push(old.spring[k_old]);
-                        new.radius.push(old.radius[k_old]);
+                        new.memory.push(old.memory.get(k_old));
                     } else {
-                        new.normal.push(self.wall_pairs[w][self.particles.species[i] as usize].initial);
-                        new.spring.push(ZERO);
-                        new.radius.push(0.0);
+                        new.memory.push_fresh(self.wall_pairs[w][self.particles.species[i] as usize].initial);
                     }
                 }
             }

@@ -11,12 +11,14 @@
 //! - `isa`: the instruction set the force loop and the kick run with (AVX2 where the CPU has it);
 //! - `lanes`: the pair loop on AVX2 lanes, four contacts at once, for the laws that have it.
 
+mod contact_memory;
 mod force_loop;
 mod isa;
 mod lanes;
 mod memory;
 mod partition;
 
+pub use contact_memory::ContactMemory;
 pub use memory::WallContacts;
 pub use isa::Isa;
 pub use lanes::LaneLaw;
@@ -36,7 +38,7 @@ use rayon::prelude::*;
 pub struct Engine<L: BedLaw> {
     pub particles: Particles,
     pub walls: Vec<Wall>,
-    /// Interactions of species pairs, `pairs[a * species + b]`.
+    /// Interactions of species pairs, `pairs[a * species + b]` (`pair(a, b)`).
     pub pairs: Vec<Interaction<L>>,
     /// Interactions of each wall with each species, `wall_pairs[w][s]`.
     pub wall_pairs: Vec<Vec<Interaction<L>>>,
@@ -48,11 +50,8 @@ pub struct Engine<L: BedLaw> {
     pub time: f64,
     pub steps: u64,
     pub list: NeighborList,
-    /// Normal-law history and tangential spring of each list slot.
-    pub normal: Vec<L::History>,
-    pub spring: Vec<Vec3>,
-    /// Contact radius of each slot at the last step (the JKR laws' starting guess), 0 if none.
-    pub radius: Vec<f64>,
+    /// What each list slot's contact remembers: law history, tangential spring, contact radius.
+    pub memory: ContactMemory<L::History>,
     pub wall_contacts: Vec<WallContacts<L::History>>,
     /// Wall positions at the last rebuild.
     wall_reference: Vec<Vec3>,
@@ -87,6 +86,11 @@ impl<L: BedLaw> std::fmt::Debug for Engine<L> {
 }
 
 impl<L: BedLaw> Engine<L> {
+    /// The interaction of a sphere of species `a` with one of species `b`.
+    pub fn pair(&self, a: usize, b: usize) -> &Interaction<L> {
+        &self.pairs[a * self.species + b]
+    }
+
     /// An engine over these particles and walls. `threads` >= 1; more than one starts a pool the engine
     /// owns. The skin must exceed every interaction's reach.
     #[allow(clippy::too_many_arguments)] // the engine's whole set-up, each argument named at the one call site
@@ -119,7 +123,7 @@ impl<L: BedLaw> Engine<L> {
         let n_walls = walls.len();
         let mut e = Engine {
             particles,
-            wall_contacts: (0..n_walls).map(|_| WallContacts { particle: vec![], normal: vec![], spring: vec![], radius: vec![] }).collect(),
+            wall_contacts: (0..n_walls).map(|_| WallContacts::new()).collect(),
             wall_reference: walls.iter().map(|w| w.position).collect(),
             walls,
             pairs,
@@ -130,9 +134,7 @@ impl<L: BedLaw> Engine<L> {
             time: 0.0,
             steps: 0,
             list: NeighborList::new(skin),
-            normal: vec![],
-            spring: vec![],
-            radius: vec![],
+            memory: ContactMemory::default(),
             reach,
             total: Accum::default(),
             buffers: vec![],
@@ -197,7 +199,7 @@ impl<L: BedLaw> Engine<L> {
         self.wall_reference.push(wall.position);
         self.walls.push(wall);
         self.wall_pairs.push(row);
-        self.wall_contacts.push(WallContacts { particle: vec![], normal: vec![], spring: vec![], radius: vec![] });
+        self.wall_contacts.push(WallContacts::new());
         // The forces of the last step stay as they are (the next half kick needs the ones the drift was
         // made with); the wall's own contacts enter at the next force loop.
         self.rebuild();
@@ -233,16 +235,16 @@ impl<L: BedLaw> Engine<L> {
             let a = sp[i] as usize;
             for (k, &j) in (self.list.start[i] as usize..).zip(self.list.row(i)) {
                 let b = sp[j as usize] as usize;
-                if self.normal[k] == self.pairs[a * s + b].initial {
-                    self.normal[k] = pairs[a * s + b].initial;
+                if self.memory.history[k] == self.pairs[a * s + b].initial {
+                    self.memory.history[k] = pairs[a * s + b].initial;
                 }
             }
         }
         for (w, wc) in self.wall_contacts.iter_mut().enumerate() {
             for (k, &i) in wc.particle.iter().enumerate() {
                 let a = sp[i as usize] as usize;
-                if wc.normal[k] == self.wall_pairs[w][a].initial {
-                    wc.normal[k] = wall_pairs[w][a].initial;
+                if wc.memory.history[k] == self.wall_pairs[w][a].initial {
+                    wc.memory.history[k] = wall_pairs[w][a].initial;
                 }
             }
         }
@@ -303,19 +305,15 @@ impl<L: BedLaw> Engine<L> {
     pub fn compute_forces_without_increment(&mut self) {
         // The pass re-projects springs onto the tangent plane and the Coulomb limit, which moves them by
         // rounding; the memory is put back as it was so the pass leaves no trace.
-        let (normal, spring, radius) = (self.normal.clone(), self.spring.clone(), self.radius.clone());
-        let walls: Vec<_> = self.wall_contacts.iter().map(|w| (w.normal.clone(), w.spring.clone(), w.radius.clone())).collect();
+        let memory = self.memory.clone();
+        let walls: Vec<_> = self.wall_contacts.iter().map(|w| w.memory.clone()).collect();
         let dt = self.dt;
         self.dt = 0.0;
         self.compute_forces();
         self.dt = dt;
-        self.normal = normal;
-        self.spring = spring;
-        self.radius = radius;
-        for (w, (n, s, r)) in self.wall_contacts.iter_mut().zip(walls) {
-            w.normal = n;
-            w.spring = s;
-            w.radius = r;
+        self.memory = memory;
+        for (w, m) in self.wall_contacts.iter_mut().zip(walls) {
+            w.memory = m;
         }
     }
 
@@ -470,14 +468,12 @@ impl<L: BedLaw> Engine<L> {
     /// Bytes held by the engine's arrays (particles, list, contact memory, buffers).
     pub fn memory_bytes(&self) -> usize {
         use std::mem::size_of;
-        let (h, v, f, u) = (size_of::<L::History>(), size_of::<Vec3>(), size_of::<f64>(), size_of::<u32>());
+        let (v, u) = (size_of::<Vec3>(), size_of::<u32>());
         let acc = |a: &Accum| a.load.capacity() * size_of::<Load>() + a.wall_force.capacity() * v + a.dipole.capacity() * size_of::<Tensor>();
         self.particles.memory_bytes()
             + self.list.memory_bytes()
-            + self.normal.capacity() * h
-            + self.spring.capacity() * v
-            + self.radius.capacity() * f
-            + self.wall_contacts.iter().map(|w| w.particle.capacity() * u + w.normal.capacity() * h + w.spring.capacity() * v + w.radius.capacity() * f).sum::<usize>()
+            + self.memory.memory_bytes()
+            + self.wall_contacts.iter().map(|w| w.particle.capacity() * u + w.memory.memory_bytes()).sum::<usize>()
             + self.buffers.iter().map(acc).sum::<usize>()
             + acc(&self.total)
     }
@@ -489,8 +485,8 @@ impl<L: BedLaw> Engine<L> {
             (self.list.start[i] as usize..).zip(self.list.row(i)).filter_map(move |(k, &j)| {
                 let j = j as usize;
                 let alpha = p.radius[i] + p.radius[j] - (p.position[j] - p.position[i]).norm();
-                let it = &self.pairs[p.species[i] as usize * self.species + p.species[j] as usize];
-                law::NormalLaw::evaluate(&it.law, alpha, &self.normal[k]).branch.in_contact().then_some((i, j, alpha))
+                let it = self.pair(p.species[i] as usize, p.species[j] as usize);
+                law::NormalLaw::evaluate(&it.law, alpha, &self.memory.history[k]).branch.in_contact().then_some((i, j, alpha))
             })
         })
     }
