@@ -5,6 +5,7 @@
 pub mod ffi;
 pub mod instance;
 pub(crate) mod saved_state;
+pub mod state_calls;
 pub(crate) mod uri;
 
 /// The status of a call: fmi2Status and fmi3Status have the same numbers (FMI 2.0 Sec. 2.1.3, FMI 3.0

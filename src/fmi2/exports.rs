@@ -6,10 +6,10 @@
 #![allow(non_snake_case, non_upper_case_globals, clippy::missing_safety_doc)]
 
 use super::types::*;
-use crate::fmi::ffi::{self, c_str, out, saved, slice, slice_mut, Registry, SavedState};
+use crate::fmi::ffi::{self, c_str, out, slice, slice_mut, Registry};
 use crate::fmi::instance::{allowed, error, Call, Instance, Kind, LogCallback, Logger, Mode};
 use crate::fmi::uri::file_uri_to_path;
-use crate::fmi::{Api, Status};
+use crate::fmi::{state_calls, Api, Status};
 use crate::units::variables::{Value, VarType};
 use crate::units::{self, LOG_CATEGORIES};
 use std::ffi::CString;
@@ -353,68 +353,32 @@ pub unsafe extern "C" fn fmi2SetString(c: fmi2Component, vr: *const fmi2ValueRef
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi2GetFMUstate(c: fmi2Component, FMUstate: *mut fmi2FMUstate) -> fmi2Status {
-    call(c, "fmi2GetFMUstate", allowed::ANY_LIVE, |inst| {
-        let p = out(FMUstate, "fmi2GetFMUstate", "FMUstate")?;
-        let bytes = inst.save()?;
-        // SAFETY: an output argument of the host, checked non-NULL by `out` above.
-        let existing = unsafe { *p };
-        if !existing.is_null() && STATES.live(existing as usize) {
-            // SAFETY: a live state pointer came from Box::into_raw of a SavedState.
-            unsafe { (*(existing as *mut SavedState)).bytes = bytes };
-        } else {
-            let s = Box::into_raw(Box::new(SavedState { bytes }));
-            STATES.register(s as usize);
-            // SAFETY: an output argument of the host, checked non-NULL by `out` above.
-            unsafe { *p = s as fmi2FMUstate };
-        }
-        Ok(())
-    })
+    // SAFETY: the host's output argument (`state_calls::get` checks NULL).
+    call(c, "fmi2GetFMUstate", allowed::ANY_LIVE, |inst| unsafe { state_calls::get(&STATES, inst, FMUstate, "fmi2GetFMUstate", "FMUstate") })
 }
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi2SetFMUstate(c: fmi2Component, FMUstate: fmi2FMUstate) -> fmi2Status {
-    call(c, "fmi2SetFMUstate", allowed::ANY_LIVE, |inst| {
-        let bytes = saved(&STATES, FMUstate, "fmi2SetFMUstate")?.bytes.clone();
-        inst.restore(&bytes)
-    })
+    call(c, "fmi2SetFMUstate", allowed::ANY_LIVE, |inst| state_calls::set(&STATES, inst, FMUstate, "fmi2SetFMUstate"))
 }
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi2FreeFMUstate(c: fmi2Component, FMUstate: *mut fmi2FMUstate) -> fmi2Status {
-    call(c, "fmi2FreeFMUstate", allowed::ANY_LIVE, |inst| {
-        // SAFETY: the host's argument, as `free_state` requires.
-        if let Some(mistake) = unsafe { ffi::free_state(&STATES, FMUstate, "fmi2FreeFMUstate", "FMUstate") }? {
-            inst.log(Status::Warning, "logStatusWarning", &mistake);
-        }
-        Ok(())
-    })
+    // SAFETY: the host's argument, as `state_calls::free` requires.
+    call(c, "fmi2FreeFMUstate", allowed::ANY_LIVE, |inst| unsafe { state_calls::free(&STATES, inst, FMUstate, "fmi2FreeFMUstate", "FMUstate") })
 }
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi2SerializedFMUstateSize(c: fmi2Component, FMUstate: fmi2FMUstate, size: *mut usize) -> fmi2Status {
-    call(c, "fmi2SerializedFMUstateSize", allowed::ANY_LIVE, |_| {
-        let p = out(size, "fmi2SerializedFMUstateSize", "size")?;
-        // SAFETY: an output argument of the host, checked non-NULL by `out` above.
-        unsafe { *p = saved(&STATES, FMUstate, "fmi2SerializedFMUstateSize")?.bytes.len() };
-        Ok(())
-    })
+    // SAFETY: the host's output argument (NULL is refused inside).
+    call(c, "fmi2SerializedFMUstateSize", allowed::ANY_LIVE, |_| unsafe { state_calls::size(&STATES, FMUstate, size, "fmi2SerializedFMUstateSize") })
 }
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi2SerializeFMUstate(c: fmi2Component, FMUstate: fmi2FMUstate, serializedState: *mut fmi2Byte, size: usize) -> fmi2Status {
-    call(c, "fmi2SerializeFMUstate", allowed::ANY_LIVE, |_| {
-        let bytes = &saved(&STATES, FMUstate, "fmi2SerializeFMUstate")?.bytes;
-        if size < bytes.len() {
-            return error(format!(
-                "fmi2SerializeFMUstate: size = {size} is smaller than the state ({} bytes, see fmi2SerializedFMUstateSize)",
-                bytes.len()
-            ));
-        }
-        // SAFETY: the host passes an array of this length (FMI 2.0 Sec. 2.1); NULL and impossible lengths are refused inside.
-        let dst = unsafe { slice_mut(serializedState as *mut u8, bytes.len(), "fmi2SerializeFMUstate", "serializedState") }?;
-        dst.copy_from_slice(bytes);
-        Ok(())
-    })
+    const F: &str = "fmi2SerializeFMUstate";
+    // SAFETY: the host passes an array of this length (FMI 2.0 Sec. 2.1); NULL and impossible lengths are refused inside.
+    call(c, F, allowed::ANY_LIVE, |_| unsafe { state_calls::serialize(&STATES, FMUstate, serializedState as *mut u8, size, F, "fmi2SerializedFMUstateSize") })
 }
 
 #[no_mangle]
@@ -424,19 +388,9 @@ pub unsafe extern "C" fn fmi2DeSerializeFMUstate(
     size: usize,
     FMUstate: *mut fmi2FMUstate,
 ) -> fmi2Status {
-    call(c, "fmi2DeSerializeFMUstate", allowed::ANY_LIVE, |inst| {
-        let p = out(FMUstate, "fmi2DeSerializeFMUstate", "FMUstate")?;
-        // SAFETY: the host passes an array of this length (FMI 2.0 Sec. 2.1); NULL and impossible lengths are refused inside.
-        let src = unsafe { slice(serializedState as *const u8, size, "fmi2DeSerializeFMUstate", "serializedState") }?;
-        if let Err(m) = crate::fmi::saved_state::read(inst.unit, Api::Fmi2, src) {
-            return error(format!("fmi2DeSerializeFMUstate: {m}"));
-        }
-        let s = Box::into_raw(Box::new(SavedState { bytes: src.to_vec() }));
-        STATES.register(s as usize);
-        // SAFETY: an output argument of the host, checked non-NULL by `out` above.
-        unsafe { *p = s as fmi2FMUstate };
-        Ok(())
-    })
+    const F: &str = "fmi2DeSerializeFMUstate";
+    // SAFETY: the host passes an array of this length (FMI 2.0 Sec. 2.1) and its output argument; NULLs are refused inside.
+    call(c, F, allowed::ANY_LIVE, |inst| unsafe { state_calls::deserialize(&STATES, inst, serializedState as *const u8, size, FMUstate, F, "FMUstate") })
 }
 
 #[no_mangle]

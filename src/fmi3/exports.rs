@@ -9,9 +9,9 @@
 #![allow(non_snake_case, non_upper_case_globals, clippy::missing_safety_doc, clippy::too_many_arguments)]
 
 use super::types::*;
-use crate::fmi::ffi::{self, c_str, out, saved, slice, slice_mut, Registry, SavedState};
+use crate::fmi::ffi::{self, c_str, out, slice, slice_mut, Registry};
 use crate::fmi::instance::{allowed, error, Call, Instance, Kind, LogCallback, Logger, Mode};
-use crate::fmi::{Api, Status};
+use crate::fmi::{state_calls, Api, Status};
 use crate::units::variables::{Value, VarType};
 use crate::units::{self, LOG_CATEGORIES};
 use std::ffi::CString;
@@ -874,66 +874,33 @@ pub unsafe extern "C" fn fmi3GetOutputDerivatives(
 #[no_mangle]
 pub unsafe extern "C" fn fmi3GetFMUState(c: fmi3Instance, FMUState: *mut fmi3FMUState) -> fmi3Status {
     const F: &str = "fmi3GetFMUState";
-    call(c, F, allowed::ANY_LIVE, |inst| {
-        let p = out(FMUState, F, "FMUState")?;
-        let bytes = inst.save()?;
-        // SAFETY: an output argument of the host, checked non-NULL by `out` above.
-        let existing = unsafe { *p };
-        if !existing.is_null() && STATES.live(existing as usize) {
-            // SAFETY: a live state pointer came from Box::into_raw of a SavedState.
-            unsafe { (*(existing as *mut SavedState)).bytes = bytes };
-        } else {
-            let s = Box::into_raw(Box::new(SavedState { bytes }));
-            STATES.register(s as usize);
-            // SAFETY: an output argument of the host, checked non-NULL by `out` above.
-            unsafe { *p = s as fmi3FMUState };
-        }
-        Ok(())
-    })
+    // SAFETY: the host's output argument (`state_calls::get` checks NULL).
+    call(c, F, allowed::ANY_LIVE, |inst| unsafe { state_calls::get(&STATES, inst, FMUState, F, "FMUState") })
 }
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi3SetFMUState(c: fmi3Instance, FMUState: fmi3FMUState) -> fmi3Status {
-    call(c, "fmi3SetFMUState", allowed::ANY_LIVE, |inst| {
-        let bytes = saved(&STATES, FMUState, "fmi3SetFMUState")?.bytes.clone();
-        inst.restore(&bytes)
-    })
+    call(c, "fmi3SetFMUState", allowed::ANY_LIVE, |inst| state_calls::set(&STATES, inst, FMUState, "fmi3SetFMUState"))
 }
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi3FreeFMUState(c: fmi3Instance, FMUState: *mut fmi3FMUState) -> fmi3Status {
-    call(c, "fmi3FreeFMUState", allowed::ANY_LIVE, |inst| {
-        // SAFETY: the host's argument, as `free_state` requires.
-        if let Some(mistake) = unsafe { ffi::free_state(&STATES, FMUState, "fmi3FreeFMUState", "FMUState") }? {
-            inst.log(Status::Warning, "logStatusWarning", &mistake);
-        }
-        Ok(())
-    })
+    // SAFETY: the host's argument, as `state_calls::free` requires.
+    call(c, "fmi3FreeFMUState", allowed::ANY_LIVE, |inst| unsafe { state_calls::free(&STATES, inst, FMUState, "fmi3FreeFMUState", "FMUState") })
 }
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi3SerializedFMUStateSize(c: fmi3Instance, FMUState: fmi3FMUState, size: *mut usize) -> fmi3Status {
     const F: &str = "fmi3SerializedFMUStateSize";
-    call(c, F, allowed::ANY_LIVE, |_| {
-        let n = saved(&STATES, FMUState, F)?.bytes.len();
-        // SAFETY: the host's output argument; NULL is refused inside.
-        unsafe { put(size, n, F, "size") }
-    })
+    // SAFETY: the host's output argument (NULL is refused inside).
+    call(c, F, allowed::ANY_LIVE, |_| unsafe { state_calls::size(&STATES, FMUState, size, F) })
 }
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi3SerializeFMUState(c: fmi3Instance, FMUState: fmi3FMUState, serializedState: *mut fmi3Byte, size: usize) -> fmi3Status {
     const F: &str = "fmi3SerializeFMUState";
-    call(c, F, allowed::ANY_LIVE, |_| {
-        let bytes = &saved(&STATES, FMUState, F)?.bytes;
-        if size < bytes.len() {
-            return error(format!("{F}: size = {size} is smaller than the state ({} bytes, see fmi3SerializedFMUStateSize)", bytes.len()));
-        }
-        // SAFETY: the host passes an array of this length; NULL and impossible lengths are refused inside.
-        let dst = unsafe { slice_mut(serializedState, bytes.len(), F, "serializedState") }?;
-        dst.copy_from_slice(bytes);
-        Ok(())
-    })
+    // SAFETY: the host passes an array of this length; NULL and impossible lengths are refused inside.
+    call(c, F, allowed::ANY_LIVE, |_| unsafe { state_calls::serialize(&STATES, FMUState, serializedState, size, F, "fmi3SerializedFMUStateSize") })
 }
 
 #[no_mangle]
@@ -944,19 +911,8 @@ pub unsafe extern "C" fn fmi3DeserializeFMUState(
     FMUState: *mut fmi3FMUState,
 ) -> fmi3Status {
     const F: &str = "fmi3DeserializeFMUState";
-    call(c, F, allowed::ANY_LIVE, |inst| {
-        let p = out(FMUState, F, "FMUState")?;
-        // SAFETY: the host passes an array of this length; NULL and impossible lengths are refused inside.
-        let src = unsafe { slice(serializedState, size, F, "serializedState") }?;
-        if let Err(m) = crate::fmi::saved_state::read(inst.unit, Api::Fmi3, src) {
-            return error(format!("{F}: {m}"));
-        }
-        let s = Box::into_raw(Box::new(SavedState { bytes: src.to_vec() }));
-        STATES.register(s as usize);
-        // SAFETY: an output argument of the host, checked non-NULL by `out` above.
-        unsafe { *p = s as fmi3FMUState };
-        Ok(())
-    })
+    // SAFETY: the host passes an array of this length and its output argument; NULLs are refused inside.
+    call(c, F, allowed::ANY_LIVE, |inst| unsafe { state_calls::deserialize(&STATES, inst, serializedState, size, FMUState, F, "FMUState") })
 }
 
 // ---------------------------------------------------------------------------------------------------
