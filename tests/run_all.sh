@@ -44,9 +44,9 @@ fi
 echo "== Building the FMUs (target/fmu)"
 cargo run --locked --quiet -p fmu_build -- "${fmu_flags[@]}" || status=$?
 
-echo "== fmpy suite (tests/python)"
+echo "== fmpy suite (tests/python) and the Python package's own tests (python/tests)"
 POWDERFMU_FMU_DIR="$PWD/target/fmu" POWDERFMU_CLI="$PWD/target/debug/powderfmu" \
-    "$python" -m pytest tests/python -q -p no:cacheprovider --durations=12 2>&1 | tee "$pylog" || status=$?
+    "$python" -m pytest tests/python python/tests -q -p no:cacheprovider --durations=12 2>&1 | tee "$pylog" || status=$?
 py_passed=$( (grep -Eo '[0-9]+ passed' "$pylog" || true) | tail -1 | grep -Eo '[0-9]+' || true)
 py_failed=$( (grep -Eo '[0-9]+ (failed|error)' "$pylog" || true) | awk '{s += $1} END {print s + 0}')
 

@@ -1,5 +1,7 @@
-"""Where the .fmu files are: $POWDERFMU_FMU_DIR, else `target/fmu` of the powderfmu repository this
-package sits in (or the current directory's), built there with `cargo run -p fmu_build` when missing."""
+"""Where the .fmu files are, in this order: a folder the caller names; $POWDERFMU_FMU_DIR; the FMUs the
+installed package carries (a wheel made by `tools/wheel.sh`); the `target/fmu` folder of the powderfmu
+repository this package or the current directory sits in. Nothing is built unless the caller asks
+(`build=True`, in a clone of the repository)."""
 
 from __future__ import annotations
 
@@ -8,6 +10,9 @@ import subprocess
 from pathlib import Path
 
 UNITS = ("ParticleWallImpact", "ContactElement", "BallIndentation")
+
+#: The FMUs a wheel carries, beside this module.
+PACKAGED = Path(__file__).resolve().parent / "fmus"
 
 
 class FmuNotFound(RuntimeError):
@@ -23,22 +28,27 @@ def repository() -> Path | None:
     return None
 
 
-def fmu_path(unit: str = "ParticleWallImpact", build: bool = True) -> Path:
-    """The path of a unit's .fmu; builds the FMUs (linux64 only) in the repository when they are missing."""
+def fmu_path(unit: str = "ParticleWallImpact", directory: str | os.PathLike[str] | None = None, build: bool = False) -> Path:
+    """The path of a unit's FMI 2.0 .fmu (see the module's text for where it is looked for). `build`: in a
+    clone of the repository, build the FMUs (linux64) with cargo when they are missing."""
     if unit not in UNITS:
         raise ValueError(f"unit {unit!r} is not one of {', '.join(UNITS)}")
-    if "POWDERFMU_FMU_DIR" in os.environ:
-        path = Path(os.environ["POWDERFMU_FMU_DIR"]) / f"{unit}.fmu"
-        if not path.is_file():
-            raise FmuNotFound(f"{path} does not exist (POWDERFMU_FMU_DIR is set; build the FMUs with `cargo run -p fmu_build`)")
-        return path
+    name = f"{unit}.fmu"
+    for folder, why in ((directory, "the folder given"), (os.environ.get("POWDERFMU_FMU_DIR"), "POWDERFMU_FMU_DIR is set")):
+        if folder is not None:
+            path = Path(folder) / name
+            if not path.is_file():
+                raise FmuNotFound(f"{path} does not exist ({why}; build the FMUs with `cargo run -p fmu_build` in a clone of powderfmu)")
+            return path
+    if (PACKAGED / name).is_file():
+        return PACKAGED / name
     repo = repository()
     if repo is None:
         raise FmuNotFound(
-            f"{unit}.fmu not found: set POWDERFMU_FMU_DIR to the folder that holds the .fmu files, "
-            "or run from a clone of the powderfmu repository"
+            f"{name} not found: this installation carries no FMUs. Install a wheel made by tools/wheel.sh, pass "
+            "the folder that holds the .fmu files, or set POWDERFMU_FMU_DIR to it"
         )
-    path = repo / "target" / "fmu" / f"{unit}.fmu"
+    path = repo / "target" / "fmu" / name
     if not path.is_file():
         if not build:
             raise FmuNotFound(f"{path} does not exist; build it with `cargo run -p fmu_build` in {repo}")

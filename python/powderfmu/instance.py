@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import atexit
 import shutil
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Mapping
 
@@ -19,14 +20,28 @@ from fmpy.fmi2 import (
 )
 
 
+@dataclass
+class LogRecord:
+    """One message the unit logged: its instance, status (fmi2OK = 0 ... fmi2Fatal = 4), category, text."""
+
+    instance: str
+    status: int
+    category: str
+    message: str
+
+
 class Messages:
-    """Keep this object alive while the instance lives: ctypes does not hold the callback for the FMU."""
+    """fmi2CallbackFunctions whose logger keeps every message in `records`. Keep this object alive while
+    the instance lives: ctypes does not hold the callback for the FMU."""
 
-    def __init__(self):
-        self.records: list[tuple[int, str]] = []
+    def __init__(self) -> None:
+        self.records: list[LogRecord] = []
 
-        def logger(_env, _instance, status, _category, message):
-            self.records.append((int(status), message.decode("utf-8", "replace") if message is not None else ""))
+        def text(b: bytes | None) -> str:
+            return b.decode("utf-8", "replace") if b is not None else ""
+
+        def logger(_env, instance, status, category, message):
+            self.records.append(LogRecord(text(instance), int(status), text(category), text(message)))
 
         self._logger = fmi2CallbackLoggerTYPE(logger)
         self.callbacks = fmi2CallbackFunctions()
@@ -34,9 +49,16 @@ class Messages:
         self.callbacks.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
         self.callbacks.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
 
+    def messages(self, min_status: int = 0) -> list[str]:
+        """The texts of the messages whose status is at least `min_status`."""
+        return [r.message for r in self.records if r.status >= min_status]
+
     def errors(self) -> str:
         """The messages of calls that returned fmi2Error or worse, joined."""
-        return "; ".join(m for s, m in self.records if s >= 3)
+        return "; ".join(self.messages(3))
+
+    def clear(self) -> None:
+        self.records.clear()
 
 
 class RefusedStart(ValueError):

@@ -27,8 +27,10 @@ import json
 import math
 import os
 import platform
+import importlib
 import sys
 import time
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Callable, Iterable, Mapping
 
@@ -37,7 +39,34 @@ import numpy as np
 from . import __version__
 from .fmus import fmu_path
 
-TASKS = ("sieve", "indentation")
+@dataclass(frozen=True)
+class Task:
+    """A kind of task a sweep can run: the unit it drives and the module that runs it. The module gives
+    `resolve(inputs, check_unit=True)` (every input checked, nothing run), `run(inputs)` (the summary row,
+    a mapping, or an object with `summary()`) and `SUMMARY_KEYS` (the row's columns in order)."""
+
+    unit: str
+    module: str
+
+    def code(self):
+        return importlib.import_module(f".{self.module}", __package__)
+
+    def resolve(self, inputs: Mapping[str, Any]) -> None:
+        self.code().resolve(inputs, check_unit=True)
+
+    def run(self, inputs: Mapping[str, Any]) -> dict[str, Any]:
+        out = self.code().run(inputs)
+        return out.summary() if hasattr(out, "summary") else out
+
+    def summary_keys(self) -> tuple[str, ...]:
+        return self.code().SUMMARY_KEYS
+
+
+#: The tasks by the name a spec's `task` gives; a new kind of task is one line here and its module.
+TASKS: dict[str, Task] = {
+    "sieve": Task(unit="ParticleWallImpact", module="sieve"),
+    "indentation": Task(unit="BallIndentation", module="indentation"),
+}
 
 
 class SweepError(ValueError):
@@ -127,14 +156,7 @@ def check(spec: Mapping[str, Any]) -> tuple[str, dict[str, Any], list[dict[str, 
 
 
 def resolve_task(task: str, inputs: Mapping[str, Any]) -> None:
-    if task == "sieve":
-        from . import sieve
-
-        sieve.resolve(inputs, check_unit=True)
-    else:
-        from . import indentation
-
-        indentation.resolve(inputs, check_unit=True)
+    TASKS[task].resolve(inputs)
 
 
 # ---------------------------------------------------------------------------------------------------
@@ -144,13 +166,7 @@ def resolve_task(task: str, inputs: Mapping[str, Any]) -> None:
 def run_task(task: str, inputs: Mapping[str, Any]) -> dict[str, Any]:
     """One system run (or indentation test): its summary row. Deterministic: the same inputs give the
     same numbers on any worker."""
-    if task == "sieve":
-        from . import sieve
-
-        return sieve.run(inputs).summary()
-    from . import indentation
-
-    return indentation.run(inputs)
+    return TASKS[task].run(inputs)
 
 
 # ---------------------------------------------------------------------------------------------------
@@ -210,17 +226,13 @@ def _has_header(path: Path) -> bool:
 
 
 def _summary_keys(task: str) -> tuple[str, ...]:
-    if task == "sieve":
-        from .sieve import SUMMARY_KEYS
-    else:
-        from .indentation import SUMMARY_KEYS
-    return SUMMARY_KEYS
+    return TASKS[task].summary_keys()
 
 
 def _fmu_identity(task: str) -> str:
     from fmpy import read_model_description
 
-    path = fmu_path("ParticleWallImpact" if task == "sieve" else "BallIndentation")
+    path = fmu_path(TASKS[task].unit)
     return f"{path.name} guid {read_model_description(str(path)).guid}"
 
 

@@ -1,5 +1,5 @@
 """Shared helpers of the fmpy suite: the two FMUs (extracted once), the command-line tool for
-energy-balance reference values, and a logger callback that collects the FMU's messages.
+energy-balance reference values, and the package's logger that collects the FMU's messages.
 
 Reference values come from the FMUs' own model descriptions and from `powderfmu analyze` at run time;
 the only numbers written into the tests are published ones (000 Table 6, 004 Table 4.2).
@@ -17,16 +17,10 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
-from fmpy import calloc, free, simulate_fmu
-from fmpy.fmi2 import (
-    FMU2Model,
-    FMU2Slave,
-    fmi2CallbackAllocateMemoryTYPE,
-    fmi2CallbackFreeMemoryTYPE,
-    fmi2CallbackFunctions,
-    fmi2CallbackLoggerTYPE,
-)
+from fmpy import simulate_fmu
+from fmpy.fmi2 import FMU2Model, FMU2Slave
 from fmpy.model_description import ModelDescription
+from powderfmu.instance import LogRecord, Messages, set_values  # noqa: F401 - LogRecord for the tests
 
 REPO = Path(__file__).resolve().parents[2]
 
@@ -55,39 +49,8 @@ def rel(a: float, b: float) -> float:
 # Logging
 
 
-@dataclass
-class LogRecord:
-    instance: str
-    status: int
-    category: str
-    message: str
-
-
-@dataclass
-class MessageLog:
-    """fmi2CallbackFunctions whose logger appends to `records` (keep this object alive while the
-    instance lives: ctypes does not hold the callback for the FMU)."""
-
-    records: list[LogRecord] = field(default_factory=list)
-
-    def __post_init__(self):
-        def logger(_env, instance, status, category, message):
-            def text(b):
-                return b.decode("utf-8", "replace") if b is not None else ""
-
-            self.records.append(LogRecord(text(instance), int(status), text(category), text(message)))
-
-        self._logger = fmi2CallbackLoggerTYPE(logger)
-        self.callbacks = fmi2CallbackFunctions()
-        self.callbacks.logger = self._logger
-        self.callbacks.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
-        self.callbacks.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
-
-    def messages(self, min_status: int = 0) -> list[str]:
-        return [r.message for r in self.records if r.status >= min_status]
-
-    def clear(self):
-        self.records.clear()
+# The package's own log (records of instance, status, category, message), one implementation for both.
+MessageLog = Messages
 
 
 # ---------------------------------------------------------------------------------------------------
@@ -174,17 +137,9 @@ class Unit:
         return fmu
 
     def set_start_values(self, fmu, start_values: dict):
-        """Sets parameters by name through fmi2SetReal / fmi2SetString / fmi2SetInteger."""
-        for name, value in start_values.items():
-            v = self.variables[name]
-            if v.type == "Real":
-                fmu.setReal([v.valueReference], [float(value)])
-            elif v.type == "String":
-                fmu.setString([v.valueReference], [value])
-            elif v.type == "Integer":
-                fmu.setInteger([v.valueReference], [int(value)])
-            else:
-                fmu.setBoolean([v.valueReference], [bool(value)])
+        """Sets parameters by name through fmi2SetReal / fmi2SetString / fmi2SetInteger (the package's
+        `set_values`)."""
+        set_values(fmu, self.variables, start_values)
 
     def initialize(self, fmu, start_values: dict | None = None, start_time: float = 0.0, stop_time: float | None = None):
         fmu.setupExperiment(startTime=start_time, stopTime=stop_time)
