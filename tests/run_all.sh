@@ -4,7 +4,8 @@
 # the fmpy suite (tests/python) against them; cargo clippy with warnings as errors runs in between.
 # Installs what it needs: the project's Python virtual environment (.venv, pinned fmpy, numpy,
 # matplotlib, pytest) and the Windows toolchain of the win64 binaries and their test under wine (the Rust
-# target x86_64-pc-windows-gnu, Debian's gcc-mingw-w64-x86-64 and wine; tools/windows_toolchain.sh).
+# target x86_64-pc-windows-gnu, Debian's gcc-mingw-w64-x86-64 and wine; tools/windows_toolchain.sh) and
+# the peer DEM codes the peer tests compare with (Debian's lammps and yade; tools/peers.sh).
 # POWDERFMU_SKIP_WINDOWS=1 builds linux64 only and skips the wine tests. Ends with one line of totals.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -22,6 +23,8 @@ else
     echo "== Windows toolchain (Rust target, mingw-w64, wine)"
     bash tools/windows_toolchain.sh
 fi
+echo "== Peer DEM codes (LAMMPS, Yade: the peer tests of the fmpy suite)"
+bash tools/peers.sh || echo "run_all.sh: the peer codes could not be installed; their tests skip" >&2
 headers=$("$python" -c 'import fmpy, os; print(os.path.join(os.path.dirname(fmpy.__file__), "c-code"))')
 
 log=$(mktemp)
@@ -46,7 +49,7 @@ cargo run --locked --quiet -p fmu_build -- "${fmu_flags[@]}" || status=$?
 
 echo "== fmpy suite (tests/python) and the Python package's own tests (python/tests)"
 POWDERFMU_FMU_DIR="$PWD/target/fmu" POWDERFMU_CLI="$PWD/target/debug/powderfmu" \
-    "$python" -m pytest tests/python python/tests -q -p no:cacheprovider --durations=12 2>&1 | tee "$pylog" || status=$?
+    "$python" -m pytest tests/python python/tests -q -rs -p no:cacheprovider --durations=12 2>&1 | tee "$pylog" || status=$?
 py_passed=$( (grep -Eo '[0-9]+ passed' "$pylog" || true) | tail -1 | grep -Eo '[0-9]+' || true)
 py_failed=$( (grep -Eo '[0-9]+ (failed|error)' "$pylog" || true) | awk '{s += $1} END {print s + 0}')
 
