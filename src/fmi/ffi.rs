@@ -42,21 +42,22 @@ impl Default for Registry {
     }
 }
 
-/// A saved FMU state: the bytes of `saved_state`.
-pub struct SavedState {
+/// The FMU state behind a pointer handed to the host (fmi2FMUstate, fmi3FMUState): the bytes of
+/// `state_format`.
+pub struct FmuState {
     pub bytes: Vec<u8>,
 }
 
 /// The saved state behind a host's pointer, if it is a live one of `states`.
-pub fn saved<'a>(states: &Registry, state: *mut c_void, function: &str) -> Call<&'a SavedState> {
+pub fn saved<'a>(states: &Registry, state: *mut c_void, function: &str) -> Call<&'a FmuState> {
     if state.is_null() {
         return error(format!("{function}: argument `FMUState` is NULL"));
     }
     if !states.live(state as usize) {
         return error(format!("{function}: the FMU state is not a live state of this library (freed, or made by another FMU)"));
     }
-    // SAFETY: live state pointers come from Box::into_raw of a SavedState and are not yet freed.
-    Ok(unsafe { &*(state as *const SavedState) })
+    // SAFETY: live state pointers come from Box::into_raw of a FmuState and are not yet freed.
+    Ok(unsafe { &*(state as *const FmuState) })
 }
 
 /// fmi2FreeFMUstate and fmi3FreeFMUState: frees the state at `*p` and sets `*p` to NULL (NULL: nothing to
@@ -74,8 +75,8 @@ pub unsafe fn free_state(states: &Registry, p: *mut *mut c_void, function: &str,
         return error(format!("{function}: argument `{arg}` is NULL"));
     }
     if states.unregister(p as usize) {
-        // SAFETY: just unregistered; live states come from Box::into_raw of a SavedState.
-        drop(unsafe { Box::from_raw(p as *mut SavedState) });
+        // SAFETY: just unregistered; live states come from Box::into_raw of a FmuState.
+        drop(unsafe { Box::from_raw(p as *mut FmuState) });
         return Ok(Some(format!(
             "{function}: `{arg}` is the FMU state itself, not the address of the host's pointer to it (FMI passes the address, so that the pointer can be set to NULL); the state is freed, and the host's pointer still holds it"
         )));
@@ -88,8 +89,8 @@ pub unsafe fn free_state(states: &Registry, p: *mut *mut c_void, function: &str,
     if !states.unregister(s as usize) {
         return error(format!("{function}: `*{arg}` is not a live state of this library (already freed?)"));
     }
-    // SAFETY: just unregistered; it came from Box::into_raw of a SavedState.
-    drop(unsafe { Box::from_raw(s as *mut SavedState) });
+    // SAFETY: just unregistered; it came from Box::into_raw of a FmuState.
+    drop(unsafe { Box::from_raw(s as *mut FmuState) });
     // SAFETY: the address of the host's variable, checked non-NULL above.
     unsafe { *p = std::ptr::null_mut() };
     Ok(None)

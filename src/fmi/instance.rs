@@ -4,7 +4,7 @@
 //! C pointers into slices before calling here. The two standards share the status numbers, the modes the
 //! units use and what a call may change; they differ in names, which `Api` gives.
 
-use super::saved_state;
+use super::state_format;
 use super::{Api, Status};
 use crate::units::variables::{Causality, Role, Value, VarType, Variability};
 use crate::units::{Model, UnitInfo, LOG_CATEGORIES};
@@ -602,11 +602,11 @@ impl Instance {
     /// The saved state; a model that cannot serialize itself is an error the host sees (fmi2Error), never
     /// an empty state that would restore as "not initialized".
     pub fn save(&self) -> Call<Vec<u8>> {
-        saved_state::write(self).map_err(|m| Failure { status: Status::Error, message: format!("FMU state not saved: {m}"), enters_error_state: false })
+        state_format::write(self).map_err(|m| Failure { status: Status::Error, message: format!("FMU state not saved: {m}"), enters_error_state: false })
     }
 
     pub fn restore(&mut self, bytes: &[u8]) -> Call {
-        let s = saved_state::read(self.unit, self.api, bytes).map_err(|m| Failure {
+        let s = state_format::read(self.unit, self.api, bytes).map_err(|m| Failure {
             status: Status::Error,
             message: format!("FMU state rejected: {m}"),
             enters_error_state: false,

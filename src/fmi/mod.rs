@@ -4,7 +4,7 @@
 
 pub mod ffi;
 pub mod instance;
-pub(crate) mod saved_state;
+pub(crate) mod state_format;
 pub mod state_calls;
 pub(crate) mod uri;
 

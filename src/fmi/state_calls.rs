@@ -1,9 +1,9 @@
 //! The FMU-state calls of both standards (fmi2GetFMUstate ... fmi2DeSerializeFMUstate, fmi3GetFMUState ...
 //! fmi3DeserializeFMUState), written once: each ABI's export passes its registry of live states, its
 //! function's name and the name of its state argument, and casts its C state pointer (a `void *` in both).
-//! A state is the saved bytes (`saved_state`) boxed behind the pointer handed to the host.
+//! A state is the saved bytes (`state_format`) boxed behind the pointer handed to the host.
 
-use super::ffi::{self, out, saved, slice, slice_mut, Registry, SavedState};
+use super::ffi::{self, out, saved, slice, slice_mut, Registry, FmuState};
 use super::instance::{error, Call, Instance};
 use super::Status;
 use std::ffi::c_void;
@@ -18,8 +18,8 @@ pub unsafe fn get(states: &Registry, inst: &mut Instance, p: *mut *mut c_void, f
     // SAFETY: an output argument of the host, checked non-NULL by `out` above.
     let existing = unsafe { *p };
     if !existing.is_null() && states.live(existing as usize) {
-        // SAFETY: a live state pointer came from Box::into_raw of a SavedState.
-        unsafe { (*(existing as *mut SavedState)).bytes = bytes };
+        // SAFETY: a live state pointer came from Box::into_raw of a FmuState.
+        unsafe { (*(existing as *mut FmuState)).bytes = bytes };
     } else {
         // SAFETY: `p` checked non-NULL above.
         unsafe { *p = new_state(states, bytes) };
@@ -80,7 +80,7 @@ pub unsafe fn deserialize(states: &Registry, inst: &Instance, src: *const u8, si
     let p = out(p, function, arg)?;
     // SAFETY: the caller's contract; NULL and impossible lengths are refused inside.
     let src = unsafe { slice(src, size, function, "serializedState") }?;
-    if let Err(m) = super::saved_state::read(inst.unit, inst.api, src) {
+    if let Err(m) = super::state_format::read(inst.unit, inst.api, src) {
         return error(format!("{function}: {m}"));
     }
     // SAFETY: `p` checked non-NULL above.
@@ -90,7 +90,7 @@ pub unsafe fn deserialize(states: &Registry, inst: &Instance, src: *const u8, si
 
 /// A new state holding `bytes`, registered as live.
 fn new_state(states: &Registry, bytes: Vec<u8>) -> *mut c_void {
-    let s = Box::into_raw(Box::new(SavedState { bytes }));
+    let s = Box::into_raw(Box::new(FmuState { bytes }));
     states.register(s as usize);
     s as *mut c_void
 }

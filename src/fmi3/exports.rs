@@ -869,7 +869,7 @@ pub unsafe extern "C" fn fmi3GetOutputDerivatives(
 }
 
 // ---------------------------------------------------------------------------------------------------
-// FMU state: get, set, free, serialize (the bytes of `crate::fmi::saved_state`, tied to the FMI 3.0 token)
+// FMU state: get, set, free, serialize (the bytes of `crate::fmi::state_format`, tied to the FMI 3.0 token)
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi3GetFMUState(c: fmi3Instance, FMUState: *mut fmi3FMUState) -> fmi3Status {

@@ -18,7 +18,7 @@ pub const VERSION: u32 = 4;
 const FORMAT: Format = Format { magic: b"PFMUSTAT", version: VERSION };
 
 /// What a saved state holds.
-pub struct Saved {
+pub struct StateRecord {
     pub kind: u8,
     pub mode: u8,
     pub time: f64,
@@ -115,7 +115,7 @@ impl<'a> Reader<'a> {
 /// Reads a saved state for `unit` made through `api`, refusing anything that is not exactly what `write`
 /// makes for it (a state of the FMI 2.0 unit carries its GUID, one of the FMI 3.0 unit its
 /// instantiationToken: neither restores into the other).
-pub fn read(unit: &UnitInfo, api: Api, bytes: &[u8]) -> Result<Saved, String> {
+pub fn read(unit: &UnitInfo, api: Api, bytes: &[u8]) -> Result<StateRecord, String> {
     let body = envelope::open(FORMAT, bytes).map_err(|e| match e {
         EnvelopeError::NotThisKind(_) => "not a powderfmu FMU state (wrong magic bytes or too short)".to_string(),
         EnvelopeError::Version { found: 2, .. } => format!("format version 2 (its model part in bincode, from powderfmu before postcard replaced it); this FMU reads version {VERSION}: save the state again with this FMU"),
@@ -158,5 +158,5 @@ pub fn read(unit: &UnitInfo, api: Api, bytes: &[u8]) -> Result<Saved, String> {
     if r.at != body.len() {
         return Err(format!("{} bytes left over after the model state", body.len() - r.at));
     }
-    Ok(Saved { kind, mode, time, start_time, stop_time: has_stop.then_some(stop), model_ready, values, model })
+    Ok(StateRecord { kind, mode, time, start_time, stop_time: has_stop.then_some(stop), model_ready, values, model })
 }
