@@ -53,6 +53,21 @@ pub fn check_closed_low(name: &'static str, value: f64, lo: f64, hi: f64, unit: 
     }
 }
 
+/// Checks `lo < value <= hi` and finiteness.
+pub fn check_open_closed(name: &'static str, value: f64, lo: f64, hi: f64, unit: &str) -> Result<f64, ParamError> {
+    if value.is_finite() && value > lo && value <= hi {
+        Ok(value)
+    } else {
+        Err(ParamError::OutOfRange { name, value, allowed: open_closed_text(lo, hi, unit) })
+    }
+}
+
+/// `(lo, hi] unit`.
+pub fn open_closed_text(lo: f64, hi: f64, unit: &str) -> String {
+    let unit = if unit.is_empty() { String::new() } else { format!(" {unit}") };
+    format!("({}, {}]{unit}", bound(lo), bound(hi))
+}
+
 /// A finite, strictly positive value.
 pub fn check_positive(name: &'static str, value: f64, unit: &str) -> Result<f64, ParamError> {
     check_open(name, value, 0.0, f64::INFINITY, unit)

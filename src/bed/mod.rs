@@ -44,7 +44,7 @@ pub mod walls;
 
 pub use any::{AnyEngine, BedError};
 pub use engine::{Engine, Isa};
-pub use scene::{BedScene, IndenterMaterial};
+pub use scene::{keys_help as scene_keys_help, BedKeys, BedScene, IndenterMaterial, STRUCTURED_KEYS};
 
 /// A 3-vector [m], [m/s], [N], ...: nalgebra's, so the geometry reads as vector algebra (`x - wall.position`,
 /// `d.dot(&normal)`, `n * lever`, Bagi's `n F^T`). The engine still stores them structure-of-arrays

@@ -14,36 +14,19 @@
 //! one of the "non-cohesive elastic geometries" with the walls' interaction (Table 6.3).
 
 use super::psd::SizeDistribution;
-use crate::error::{check_closed_low, check_open, ParamError};
+use crate::error::ParamError;
 use crate::scene::{ModelKind, Scene};
+use crate::vocabulary::{Options, Range};
 use serde_json::{json, Map, Value};
 
-/// What the indenter is made of.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum IndenterMaterial {
-    /// The particles' material (004 Sec. 5.1.3: "a cohesionless spherical indenter made of Material 1"):
-    /// `particle_particle`'s keys with the interface energy 0, and `rolling_friction`.
-    Particle,
-    /// A geometry like the die (004 Sec. 6.1, Table 6.3): `particle_wall`'s keys and `wall_rolling_friction`.
-    Wall,
-}
-
-impl IndenterMaterial {
-    pub const NAMES: [&'static str; 2] = ["particle", "wall"];
-
-    pub fn name(self) -> &'static str {
-        match self {
-            IndenterMaterial::Particle => "particle",
-            IndenterMaterial::Wall => "wall",
-        }
-    }
-
-    pub fn from_name(name: &str) -> Option<IndenterMaterial> {
-        match name {
-            "particle" => Some(IndenterMaterial::Particle),
-            "wall" => Some(IndenterMaterial::Wall),
-            _ => None,
-        }
+crate::choice_enum! {
+    /// What the indenter is made of.
+    pub enum IndenterMaterial {
+        /// The particles' material (004 Sec. 5.1.3: "a cohesionless spherical indenter made of Material
+        /// 1"): `particle_particle`'s keys with the interface energy 0, and `rolling_friction`.
+        Particle = "particle",
+        /// A geometry like the die (004 Sec. 6.1, Table 6.3): `particle_wall`'s keys and `wall_rolling_friction`.
+        Wall = "wall",
     }
 }
 
@@ -85,35 +68,65 @@ pub struct BedScene {
     pub threads: usize,
 }
 
-/// The keys of a bed scene, with their defaults and units, for the docs and for typo hints.
-pub const BED_KEYS: [(&str, &str, &str); 22] = [
-    ("particle_particle", "-", "scene keys of the particle-particle law (004 Tables 5.2-5.3, column 1)"),
-    ("particle_wall", "-", "scene keys that differ against the die, floor and piston (Table 5.3, column 2)"),
-    ("rolling_friction", "-", "particle-particle rolling friction coefficient mu_r (Table 5.3: 0.1)"),
-    ("wall_rolling_friction", "-", "particle-wall rolling friction coefficient (Table 5.3: 0)"),
-    (
-        "indenter_material",
-        "-",
-        "particle (default: the particles' material and friction without cohesion, 004 Sec. 5.1.3) or wall (the walls' contact, 004 Table 6.3)",
-    ),
-    ("size_distribution", "m, -", "{\"diameters\": [...], \"frequencies\": [...]} by number; default Table 5.1"),
-    ("size_scale", "-", "factor on every diameter (default 1)"),
-    ("particle_count", "-", "number of spheres (default 16000, 004 Sec. 5.1.3)"),
-    ("die_diameter", "m", "inner diameter of the die (default 0.039)"),
-    ("die_height", "m", "height of the die: the loose fill must fit in it (default 0.06)"),
-    ("die_sector", "-", "part of the die simulated, with mirror planes for the rest: 1 (default), 0.5 or 0.25; particle_count is the sector's"),
-    ("gravity", "m/s^2", "gravitational acceleration, downward (default 9.81)"),
-    ("time_step", "s", "fixed time step; 0 derives rayleigh_fraction x the Rayleigh time of the smallest sphere"),
-    ("rayleigh_fraction", "-", "time step as a fraction of the Rayleigh time, 000 Eq. 71 (default 0.2)"),
-    ("skin", "m", "Verlet list skin; 0 derives a tenth of the mean diameter"),
-    ("fill_solid_fraction", "-", "solid fraction of the loose random fill (default 0.3)"),
-    ("settle_energy_ratio", "-", "settled when kinetic energy < this x sum(m g d_mean) (default 1e-6)"),
-    ("consolidation_stress", "Pa", "piston stress to consolidate to (default 10 kPa, 004 Sec. 5.1.3)"),
-    ("strain_rate", "1/s", "piston strain rate, loading and unloading (default 1)"),
-    ("seed", "-", "seed of the random fill (default 1)"),
-    ("threads", "-", "threads of the force loop (default 1)"),
+crate::scene_options! {
+    /// The bed scene's keys that take a number or a name, each declared once: read, range-checked and
+    /// listed in the help (`powderfmu bed prepare --help`) from here. `to_json` writes them back; a test
+    /// holds it to this list.
+    pub struct BedKeys {
+        rolling_friction: number(0.1), "-", Range::ClosedLow(0.0, 10.0), "particle-particle rolling friction coefficient mu_r (004 Table 5.3: 0.1)";
+        wall_rolling_friction: number(0.0), "-", Range::ClosedLow(0.0, 10.0), "particle-wall rolling friction coefficient (004 Table 5.3: 0)";
+        indenter_material: choice(IndenterMaterial::Particle), "-", Range::Names, "particle: the particles' material and friction without cohesion (004 Sec. 5.1.3); wall: the walls' contact (004 Table 6.3)";
+        size_scale: number(1.0), "-", Range::Open(1e-4, 1e4), "factor on every diameter of size_distribution";
+        particle_count: number(16000.0), "-", Range::ClosedLow(2.0, 1e7), "number of spheres, a whole number (004 Sec. 5.1.3: 16000); the sector's with die_sector";
+        die_diameter: number(0.039), "m", Range::Open(0.0, 100.0), "inner diameter of the die (004 Sec. 5.1.3: 39 mm)";
+        die_height: number(0.06), "m", Range::Open(0.0, 100.0), "height of the die: the loose fill must fit in it";
+        die_sector: number(1.0), "-", Range::OpenClosed(0.0, 1.0), "part of the die simulated, with mirror planes for the rest: 1, 0.5 or 0.25";
+        gravity: number(9.81), "m/s^2", Range::ClosedLow(0.0, 1e6), "gravitational acceleration, downward";
+        time_step: number(0.0), "s", Range::ClosedLow(0.0, 1.0), "fixed time step; 0 derives rayleigh_fraction x the Rayleigh time of the smallest sphere";
+        rayleigh_fraction: number(0.2), "-", Range::OpenClosed(0.0, 1.0), "time step as a fraction of the Rayleigh time (000 Eq. 71)";
+        skin: number(0.0), "m", Range::ClosedLow(0.0, 1.0), "Verlet list skin; 0 derives a tenth of the mean diameter";
+        fill_solid_fraction: number(0.3), "-", Range::Open(0.0, 0.5), "solid fraction of the loose random fill";
+        settle_energy_ratio: number(1e-6), "-", Range::Open(0.0, 1.0), "settled when the kinetic energy < this x sum(m g d_mean)";
+        consolidation_stress: number(10e3), "Pa", Range::Open(0.0, 1e9), "piston stress to consolidate to (004 Sec. 5.1.3: 10 kPa)";
+        strain_rate: number(1.0), "1/s", Range::Open(0.0, 1e4), "piston strain rate, loading and unloading (004 Sec. 5.1.3: 1/s)";
+        seed: number(1.0), "-", Range::ClosedLow(0.0, 1e15), "seed of the random fill, a whole number";
+        threads: number(1.0), "-", Range::ClosedLow(1.0, 257.0), "threads of the force loop, a whole number";
+    }
+}
+
+/// The bed scene's keys that hold structures (read by hand in `from_map`): name, unit, meaning.
+pub const STRUCTURED_KEYS: [(&str, &str, &str); 4] = [
+    ("particle_particle", "-", "scene keys of the particle-particle law (004 Tables 5.2-5.3, column 1; `powderfmu analyze --help` lists them)"),
+    ("particle_wall", "-", "scene keys that differ against the die, floor and piston (004 Table 5.3, column 2)"),
+    ("size_distribution", "m, -", "{\"diameters\": [...], \"frequencies\": [...]} by number; default 004 Table 5.1"),
     ("comment", "-", "free text, ignored"),
 ];
+
+/// Every bed scene key's name: the structured ones, then `BedKeys`.
+fn bed_key_names() -> impl Iterator<Item = &'static str> {
+    STRUCTURED_KEYS.iter().map(|k| k.0).chain(BedKeys::OWN_KEYS.iter().map(|k| k.name))
+}
+
+/// The bed scene's keys as the help lists them: name, unit, default, what is allowed, meaning.
+pub fn keys_help() -> String {
+    let mut s = String::from("BED SCENE KEYS\n\n");
+    for (name, unit, doc) in STRUCTURED_KEYS {
+        s += &format!("  {name:<24} [{unit}] {doc}\n");
+    }
+    for k in BedKeys::OWN_KEYS {
+        s += &format!("  {:<24} [{}] default {}, allowed {}\n      {}\n", k.name, k.unit, k.default_text(), k.allowed_text(), k.doc);
+    }
+    s
+}
+
+/// A whole number, or an error naming the key.
+fn whole(name: &'static str, x: f64) -> Result<f64, ParamError> {
+    if x.fract() == 0.0 {
+        Ok(x)
+    } else {
+        Err(ParamError::OutOfRange { name, value: x, allowed: "a whole number".into() })
+    }
+}
 
 impl Default for BedScene {
     fn default() -> BedScene {
@@ -130,18 +143,14 @@ impl BedScene {
 
     pub fn from_map(map: &Map<String, Value>) -> Result<BedScene, ParamError> {
         for k in map.keys() {
-            if !BED_KEYS.iter().any(|key| key.0 == k) {
-                let known: Vec<&str> = BED_KEYS.iter().map(|k| k.0).collect();
-                return Err(ParamError::UnknownKey { name: k.clone(), hint: format!(" (bed scene keys: {})", known.join(", ")) });
+            if !bed_key_names().any(|known| known == k) {
+                let hint = match crate::vocabulary::nearest_name(k, bed_key_names()) {
+                    Some(name) => format!(" (did you mean `{name}`?)"),
+                    None => "; run `powderfmu bed prepare --help` for the list of bed scene keys".into(),
+                };
+                return Err(ParamError::UnknownKey { name: k.clone(), hint });
             }
         }
-        let num = |name: &'static str, default: f64| -> Result<f64, ParamError> {
-            match map.get(name) {
-                None | Some(Value::Null) => Ok(default),
-                Some(Value::Number(n)) => Ok(n.as_f64().unwrap_or(f64::NAN)),
-                Some(other) => Err(ParamError::Malformed { what: format!("`{name}` must be a number, got {other}") }),
-            }
-        };
         let object = |name: &'static str| -> Result<Map<String, Value>, ParamError> {
             match map.get(name) {
                 None | Some(Value::Null) => Ok(Map::new()),
@@ -212,8 +221,10 @@ impl BedScene {
         };
         let scene_pp = probe(&pp, "particle")?;
         probe(&pw, "wall")?;
-        let scale = num("size_scale", 1.0)?;
-        check_open("size_scale", scale, 1e-4, 1e4, "-")?;
+        let mut keys = BedKeys::defaults();
+        keys.read(map)?;
+        keys.check()?;
+        let scale = keys.size_scale;
         let size_distribution = match map.get("size_distribution") {
             None | Some(Value::Null) => SizeDistribution::table_5_1(scale),
             Some(Value::Object(d)) => {
@@ -228,38 +239,16 @@ impl BedScene {
             }
             Some(other) => return Err(ParamError::Malformed { what: format!("`size_distribution` must be an object, got {other}") }),
         };
-        let count = num("particle_count", 16000.0)?;
-        check_closed_low("particle_count", count, 2.0, 1e7 + 1.0, "")?;
-        if count.fract() != 0.0 {
-            return Err(ParamError::OutOfRange { name: "particle_count", value: count, allowed: "a whole number in [2, 1e7]".into() });
-        }
-        let time_step = num("time_step", 0.0)?;
-        check_closed_low("time_step", time_step, 0.0, 1.0, "s")?;
-        let skin = num("skin", 0.0)?;
-        check_closed_low("skin", skin, 0.0, 1.0, "m")?;
-        let die_sector = num("die_sector", 1.0)?;
-        if ![1.0, 0.5, 0.25].contains(&die_sector) {
+        let count = whole("particle_count", keys.particle_count)?;
+        if ![1.0, 0.5, 0.25].contains(&keys.die_sector) {
             return Err(ParamError::OutOfRange {
                 name: "die_sector",
-                value: die_sector,
+                value: keys.die_sector,
                 allowed: "1 (the whole die), 0.5 (half) or 0.25 (a quarter)".into(),
             });
         }
-        let threads = num("threads", 1.0)?;
-        check_closed_low("threads", threads, 1.0, 257.0, "")?;
-        let indenter_material = match map.get("indenter_material") {
-            None | Some(Value::Null) => IndenterMaterial::Particle,
-            Some(Value::String(name)) => IndenterMaterial::from_name(name).ok_or_else(|| ParamError::UnknownChoice {
-                name: "indenter_material".into(),
-                value: name.clone(),
-                allowed: IndenterMaterial::NAMES.join(", "),
-            })?,
-            Some(other) => {
-                return Err(ParamError::Malformed {
-                    what: format!("`indenter_material` must be one of {}, got {other}", IndenterMaterial::NAMES.join(", ")),
-                })
-            }
-        };
+        let threads = whole("threads", keys.threads)?;
+        let seed = whole("seed", keys.seed)?;
         Ok(BedScene {
             model: scene_pp.contact_model,
             density: scene_pp.particle_density,
@@ -267,23 +256,23 @@ impl BedScene {
             poisson_ratio: scene_pp.particle_poisson_ratio,
             particle_particle: pp,
             particle_wall: pw,
-            rolling_friction: check_closed_low("rolling_friction", num("rolling_friction", 0.1)?, 0.0, 10.0, "-")?,
-            wall_rolling_friction: check_closed_low("wall_rolling_friction", num("wall_rolling_friction", 0.0)?, 0.0, 10.0, "-")?,
-            indenter_material,
+            rolling_friction: keys.rolling_friction,
+            wall_rolling_friction: keys.wall_rolling_friction,
+            indenter_material: keys.indenter_material,
             size_distribution,
             particle_count: count as usize,
-            die_diameter: check_open("die_diameter", num("die_diameter", 0.039)?, 0.0, 100.0, "m")?,
-            die_height: check_open("die_height", num("die_height", 0.06)?, 0.0, 100.0, "m")?,
-            die_sector,
-            gravity: check_closed_low("gravity", num("gravity", 9.81)?, 0.0, 1e6, "m/s^2")?,
-            time_step: if time_step > 0.0 { Some(time_step) } else { None },
-            rayleigh_fraction: check_open("rayleigh_fraction", num("rayleigh_fraction", 0.2)?, 0.0, 1.0 + 1e-12, "-")?,
-            skin: if skin > 0.0 { Some(skin) } else { None },
-            fill_solid_fraction: check_open("fill_solid_fraction", num("fill_solid_fraction", 0.3)?, 0.0, 0.5, "-")?,
-            settle_energy_ratio: check_open("settle_energy_ratio", num("settle_energy_ratio", 1e-6)?, 0.0, 1.0, "-")?,
-            consolidation_stress: check_open("consolidation_stress", num("consolidation_stress", 10e3)?, 0.0, 1e9, "Pa")?,
-            strain_rate: check_open("strain_rate", num("strain_rate", 1.0)?, 0.0, 1e4, "1/s")?,
-            seed: num("seed", 1.0)? as u64,
+            die_diameter: keys.die_diameter,
+            die_height: keys.die_height,
+            die_sector: keys.die_sector,
+            gravity: keys.gravity,
+            time_step: (keys.time_step > 0.0).then_some(keys.time_step),
+            rayleigh_fraction: keys.rayleigh_fraction,
+            skin: (keys.skin > 0.0).then_some(keys.skin),
+            fill_solid_fraction: keys.fill_solid_fraction,
+            settle_energy_ratio: keys.settle_energy_ratio,
+            consolidation_stress: keys.consolidation_stress,
+            strain_rate: keys.strain_rate,
+            seed: seed as u64,
             threads: threads as usize,
         })
     }
@@ -374,5 +363,46 @@ impl BedScene {
     pub fn rayleigh_time(&self) -> f64 {
         let (e, nu) = (self.youngs_modulus, self.poisson_ratio);
         crate::theory::time_step::rayleigh_time_step(0.5 * self.size_distribution.min_diameter(), self.density, e / (2.0 * (1.0 + nu)), nu)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn to_json_writes_every_declared_key_and_reads_back_the_same_scene() {
+        let given = r#"{"particle_count": 500, "die_sector": 0.25, "time_step": 1e-7, "seed": 7, "threads": 2,
+            "indenter_material": "wall", "rolling_friction": 0.05, "size_scale": 2, "comment": "a test"}"#;
+        for scene in [BedScene::default(), BedScene::from_json(given).unwrap()] {
+            let json = scene.to_json();
+            let map = json.as_object().unwrap();
+            // Every declared key is written, except the two that leave no value of their own: the comment,
+            // and size_scale, which is applied to the written diameters.
+            for name in bed_key_names().filter(|n| !["comment", "size_scale"].contains(n)) {
+                assert!(map.contains_key(name), "to_json leaves out `{name}`");
+            }
+            for k in map.keys() {
+                assert!(bed_key_names().any(|n| n == k), "to_json writes `{k}`, which is not a declared key");
+            }
+            assert_eq!(BedScene::from_json(&json.to_string()).unwrap(), scene);
+        }
+    }
+
+    #[test]
+    fn a_bad_bed_key_is_named_with_its_range_or_the_nearest_key() {
+        let err = |text: &str| BedScene::from_json(text).unwrap_err().to_string();
+        let e = err(r#"{"consolidation_stres": 1e4}"#);
+        assert!(e.contains("did you mean `consolidation_stress`"), "{e}");
+        let e = err(r#"{"gravity": -1}"#);
+        assert!(e.contains("gravity") && e.contains("[0, 1e6) m/s^2"), "{e}");
+        let e = err(r#"{"particle_count": 100.5}"#);
+        assert!(e.contains("particle_count") && e.contains("whole number"), "{e}");
+        let e = err(r#"{"rayleigh_fraction": 1.5}"#);
+        assert!(e.contains("rayleigh_fraction") && e.contains("(0, 1]"), "{e}");
+        assert!(BedScene::from_json(r#"{"rayleigh_fraction": 1}"#).is_ok());
+        let e = err(r#"{"threads": "two"}"#);
+        assert!(e.contains("threads") && e.contains("must be a number"), "{e}");
+        assert!(keys_help().contains("consolidation_stress") && keys_help().contains("(0, 1e9) Pa"));
     }
 }

@@ -20,8 +20,9 @@ pub enum BedCommand {
     ///
     /// A preparation of hours runs in parts: every --checkpoint minutes the bed goes to
     /// OUT.checkpoint.pfbed, and `--resume` goes on from a checkpoint or from a bed saved with --until.
+    #[command(after_long_help = powderfmu::bed::scene_keys_help())]
     Prepare {
-        /// The bed scene (JSON; `docs/bed.md` lists its keys); not with --resume
+        /// The bed scene (JSON; `--help` lists its keys with their ranges); not with --resume
         #[arg(required_unless_present = "resume", conflicts_with = "resume")]
         scene: Option<PathBuf>,
         /// The bed file to write (default: the scene's name with .bed, or the resumed file)

@@ -161,26 +161,11 @@ impl Scene {
     }
 }
 
-/// " (did you mean `x`?)" for the closest known key, or "" when nothing is close.
+/// " (did you mean `x`?)" for the closest known key, or where to find the keys.
 fn nearest_key_hint(unknown: &str) -> String {
-    let best = KEYS.iter().map(|k| (edit_distance(unknown, k.name), k.name)).min();
-    match best {
-        Some((d, name)) if d <= 3.max(unknown.len() / 4) => format!(" (did you mean `{name}`?)"),
-        _ => "; run `powderfmu analyze --help` for the list of keys".into(),
-    }
-}
-
-fn edit_distance(a: &str, b: &str) -> usize {
-    let b: Vec<char> = b.chars().collect();
-    let mut prev: Vec<usize> = (0..=b.len()).collect();
-    for (i, ca) in a.chars().enumerate() {
-        let mut cur = vec![i + 1; b.len() + 1];
-        for (j, cb) in b.iter().enumerate() {
-            cur[j + 1] = (prev[j] + usize::from(ca != *cb)).min(prev[j + 1] + 1).min(cur[j] + 1);
-        }
-        prev = cur;
-    }
-    prev[b.len()]
+    crate::vocabulary::nearest_name(unknown, KEYS.iter().map(|k| k.name))
+        .map(|name| format!(" (did you mean `{name}`?)"))
+        .unwrap_or_else(|| "; run `powderfmu analyze --help` for the list of keys".into())
 }
 
 #[cfg(test)]
