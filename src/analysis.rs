@@ -146,7 +146,23 @@ fn active_sticking_velocity(law: &AnyLaw, mass: f64, radius: f64) -> Option<f64>
 }
 
 /// Analyses a scene: derived parameters, closed-form results, and, with `velocity`, one undamped impact
-/// of the active law by energy balance.
+/// of the active law by energy balance. The keys of the answer are `powderfmu analyze --help`'s.
+///
+/// 000 Table 5's ammonium fluorescein particle on silicon (`scenes/ammonium_fluorescein_on_silicon.json`,
+/// Gamma = 0.24 J/m^2 as docs/models.md, "Reading the seeds", reads it): 000 Table 6's V_s = 0.66 m/s
+/// and V_ys = 1.86 m/s.
+/// ```
+/// let scene = powderfmu::Scene::from_json(
+///     r#"{"contact_model": "nan", "particle_radius": 2.45e-6, "particle_density": 1350,
+///         "particle_youngs_modulus": 1.2e9, "particle_poisson_ratio": 0.33, "particle_yield_pressure": 30e6,
+///         "wall_youngs_modulus": 166e9, "wall_poisson_ratio": 0.28, "wall_yield_pressure": 120e6,
+///         "surface_energy": 0.24}"#,
+/// )?;
+/// let report = powderfmu::analysis::analyze(&scene, None)?;
+/// let (v_s, v_ys) = (report["jkr_sticking_velocity"].as_f64().unwrap(), report["sticking_velocity"].as_f64().unwrap());
+/// assert!((v_s - 0.66).abs() < 0.01 && (v_ys - 1.86).abs() < 0.01, "{v_s} m/s, {v_ys} m/s");
+/// # Ok::<(), powderfmu::ParamError>(())
+/// ```
 pub fn analyze(scene: &Scene, velocity: Option<f64>) -> Result<Value, ParamError> {
     analyze_with(scene, velocity, true)
 }

@@ -224,6 +224,33 @@ pub fn piston_stress(e: &AnyEngine, scene: &BedScene) -> f64 {
 pub const PHASES: [&str; 5] = ["fill", "settle", "consolidate", "unload", "relax"];
 
 /// The whole protocol, from an empty die to a relaxed, pre-consolidated bed.
+///
+/// A small soft bed, prepared and indented to h/r = 0.1 (compiled, not run here: a bed takes minutes in
+/// a debug build; `tests/indentation.rs` runs the same steps):
+/// ```no_run
+/// use powderfmu::bed::indentation::{DepthOrigin, Indentation, Motion, Setup, TestState, PLATEAU};
+/// use powderfmu::bed::{prepare, BedScene};
+///
+/// let scene = BedScene::from_json(r#"{"particle_particle": {"particle_youngs_modulus": 55e6},
+///                                     "particle_count": 800, "die_diameter": 0.007}"#)?;
+/// let (bed, report) = prepare::prepare(&scene, &mut |p| eprintln!("{} {:.0} %", p.phase, 100.0 * p.fraction))?;
+/// let setup = Setup {
+///     indenter_diameter: 0.004,
+///     indentation_speed: 0.05,
+///     max_penetration: 0.1 * 0.002,
+///     constraint_factor: 3.0,
+///     motion: Motion::Prescribed,
+///     shortcut: None,
+///     plateau: PLATEAU,
+///     depth_origin: DepthOrigin::FirstTouch,
+/// };
+/// let mut test = Indentation::new(bed, scene, setup, None, None)?;
+/// while test.reading().state != TestState::Done {
+///     test.advance(1e-4, None)?;
+/// }
+/// println!("{report:?}: hardness {:.0} Pa", test.reading().hardness);
+/// # Ok::<(), powderfmu::bed::BedError>(())
+/// ```
 pub fn prepare(scene: &BedScene, progress: &mut dyn FnMut(&Progress)) -> Result<(AnyEngine, Report), BedError> {
     prepare_until(scene, "relax", progress)
 }

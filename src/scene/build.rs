@@ -10,6 +10,22 @@ use crate::law::AnyLaw;
 
 impl AnyLaw {
     /// Builds the scene's law with its parameters derived and checked.
+    ///
+    /// A Hertzian sphere against a rigid wall, evaluated at 1 um of overlap (004 Eq. 3.14):
+    /// ```
+    /// use powderfmu::{AnyLaw, NormalLaw, Scene};
+    ///
+    /// let scene = Scene::from_json(
+    ///     r#"{"contact_model": "hertz", "particle_radius": 1e-3, "particle_density": 2500,
+    ///         "particle_youngs_modulus": 1e9, "particle_poisson_ratio": 0.3}"#,
+    /// )?;
+    /// let law = AnyLaw::from_scene(&scene)?;
+    /// let at = law.evaluate(1e-6, &law.initial_history());
+    /// // 4/3 E* sqrt(R*) alpha^(3/2), E* = E / (1 - nu^2) against a rigid wall, R* = R.
+    /// let hertz = 4.0 / 3.0 * 1e9 / (1.0 - 0.09) * 1e-3_f64.sqrt() * 1e-6_f64.powf(1.5);
+    /// assert!((at.force - hertz).abs() < 1e-12 * hertz);
+    /// # Ok::<(), powderfmu::ParamError>(())
+    /// ```
     pub fn from_scene(s: &Scene) -> Result<AnyLaw, ParamError> {
         AnyLaw::from_pair(s.contact_model, &Effective::from_scene(s)?, &s.laws)
     }
