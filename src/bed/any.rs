@@ -337,4 +337,24 @@ impl AnyEngine {
     pub fn memory_bytes(&self) -> usize {
         with_engine!(self, e => e.memory_bytes())
     }
+
+    /// Particle-particle contacts carrying force now, and their mean overlap [m].
+    pub fn contact_statistics(&self) -> (usize, f64) {
+        with_engine!(self, e => e.contact_statistics())
+    }
+
+    /// Builds of the neighbour list so far.
+    pub fn list_builds(&self) -> u64 {
+        with_engine!(self, e => e.list.builds)
+    }
+
+    /// A hash of every particle's and wall's state, bit for bit (two runs are the same run when it agrees).
+    pub fn state_digest(&self) -> u64 {
+        with_engine!(self, e => e.state_digest())
+    }
+
+    /// The instruction set of the force loop and the kick, and which pair loop runs ("vector", "scalar").
+    pub fn isa_and_pair_loop(&self) -> (&'static str, &'static str) {
+        with_engine!(self, e => (e.isa().name(), e.pair_loop()))
+    }
 }

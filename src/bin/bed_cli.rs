@@ -8,7 +8,6 @@ use powderfmu::bed::indentation::{DepthOrigin, Indentation, Motion, Setup, Short
 use powderfmu::bed::prepare::{self, Progress};
 use powderfmu::bed::stress::{bagi, Region};
 use powderfmu::bed::{export, render, AnyEngine, BedScene};
-use powderfmu::with_engine;
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -353,7 +352,7 @@ fn describe(engine: &mut AnyEngine, scene: &BedScene) {
     let height = prepare::bed_height(p);
     let solid: f64 = p.radius.iter().map(|r| 4.0 / 3.0 * std::f64::consts::PI * r.powi(3)).sum();
     let die_area = scene.sector_area();
-    let (contacts, mean_overlap) = with_engine!(&*engine, e => e.contact_statistics());
+    let (contacts, mean_overlap) = engine.contact_statistics();
     let mean_d = 2.0 * p.radius.iter().sum::<f64>() / n.max(1) as f64;
     if scene.die_sector < 1.0 {
         println!(
@@ -488,11 +487,10 @@ fn bench_cmd(a: BenchArgs) -> Result<(), String> {
     engine.run(steps);
     let seconds = start.elapsed().as_secs_f64();
     let ke = engine.particles().kinetic_energy();
-    let builds = with_engine!(&engine, e => e.list.builds);
-    let (contacts, _) = with_engine!(&engine, e => e.contact_statistics());
-    let digest = with_engine!(&engine, e => e.state_digest());
-    let isa = with_engine!(&engine, e => e.isa().name());
-    let pair_loop = with_engine!(&engine, e => e.pair_loop());
+    let builds = engine.list_builds();
+    let (contacts, _) = engine.contact_statistics();
+    let digest = engine.state_digest();
+    let (isa, pair_loop) = engine.isa_and_pair_loop();
     println!(
         "model={model} particles={n} steps={steps} threads={threads} dt={:.4e} seconds={seconds:.4} particle_steps_per_s={:.4e} bytes_per_particle={:.0} kinetic_energy={ke:.3e} list_builds={builds} contacts_per_particle={:.3} isa={isa} pair_loop={pair_loop} state_digest={digest:016x}",
         engine.dt(),
