@@ -4,10 +4,9 @@
 //! the instance is unchanged (its serialized state is the same to the bit) and goes on.
 
 #[macro_use]
-mod fmi_host;
-use fmi_host::*;
+mod host;
+use host::*;
 
-use libloading::Symbol;
 use powderfmu::fmi2::types::*;
 use powderfmu::units;
 use std::ptr::{null, null_mut};

@@ -6,11 +6,10 @@
 //! to the bit) and goes on.
 
 #[macro_use]
-mod fmi_host;
-use fmi_host::fmi3::{Api3, DoStep3, GetF64, SetF64};
-use fmi_host::*;
+mod host;
+use host::fmi3::{Api3, DoStep3, GetF64, SetF64};
+use host::*;
 
-use libloading::Symbol;
 use powderfmu::fmi2::types::{fmi2CoSimulation, fmi2FMUstate};
 use powderfmu::fmi3::types::*;
 use powderfmu::units;
@@ -250,7 +249,7 @@ fn every_bad_argument_is_refused_by_name_and_changes_nothing() {
                 vec!["fmi3SetString", "UTF-8"],
                 Box::new(move || unsafe { api.sym::<Typed>(b"fmi3SetString")(c, &model, 1, bad, 1) }),
             ));
-            let step: Symbol<DoStep3> = api.sym(b"fmi3DoStep");
+            let step: DoStep3 = api.sym(b"fmi3DoStep");
             let flag = std::cell::Cell::new(false);
             let fp = flag.as_ptr();
             let mut t_last = 0.0;
@@ -262,7 +261,6 @@ fn every_bad_argument_is_refused_by_name_and_changes_nothing() {
                 ("DoStep lastSuccessfulTime NULL", 3),
             ] {
                 let words = vec!["fmi3DoStep", ["eventHandlingNeeded", "terminateSimulation", "earlyReturn", "lastSuccessfulTime"][arg]];
-                let step = step.clone();
                 table.push((
                     what,
                     words,
@@ -371,9 +369,9 @@ fn a_wrong_token_or_resource_path_is_refused_at_instantiation() {
     let guid = CString::new(units::by_identifier(PWI).unwrap().guid()).unwrap();
     let token = CString::new(units::by_identifier(PWI).unwrap().instantiation_token()).unwrap();
     let nowhere = CString::new("/nonexistent/resources/").unwrap();
-    type Me = fmi_host::fmi3::InstantiateMe;
+    type Me = host::fmi3::InstantiateMe;
     let make = |t: &CString, r: *const std::os::raw::c_char| unsafe {
-        api.sym::<Me>(b"fmi3InstantiateModelExchange")(name.as_ptr(), t.as_ptr(), r, false, false, env, Some(fmi_host::fmi3::logger3))
+        api.sym::<Me>(b"fmi3InstantiateModelExchange")(name.as_ptr(), t.as_ptr(), r, false, false, env, Some(host::fmi3::logger3))
     };
     assert!(make(&guid, null()).is_null());
     assert!(log.lock().unwrap().iter().any(|m| m.2.contains("is the GUID of the FMI 2.0 ParticleWallImpact")), "{:?}", log.lock().unwrap());
@@ -420,11 +418,11 @@ fn an_instance_freed_inside_its_intermediate_update_ends_the_step_with_an_error(
     let unit = units::by_identifier(PWI).unwrap();
     let name = CString::new("freed").unwrap();
     let token = CString::new(unit.instantiation_token()).unwrap();
-    let free = *api.sym::<unsafe extern "C" fn(Comp)>(b"fmi3FreeInstance");
+    let free = api.sym::<unsafe extern "C" fn(Comp)>(b"fmi3FreeInstance");
     let mut freer = Freer { free, instance: null_mut(), calls: 0 };
     let env = &mut freer as *mut Freer as *mut c_void;
     let c = unsafe {
-        api.sym::<fmi_host::fmi3::InstantiateCs>(b"fmi3InstantiateCoSimulation")(
+        api.sym::<host::fmi3::InstantiateCs>(b"fmi3InstantiateCoSimulation")(
             name.as_ptr(),
             token.as_ptr(),
             null(),
@@ -486,8 +484,8 @@ fn a_logger_that_calls_back_in_or_frees_the_instance_finds_it_consistent() {
     let name = CString::new("reentrant").unwrap();
     for free_it in [false, true] {
         let mut r = Reentrant {
-            get: *api.sym::<unsafe extern "C" fn(Comp, *const u32, usize, *mut f64, usize) -> fmi3Status>(b"fmi3GetFloat64"),
-            free: *api.sym::<unsafe extern "C" fn(Comp)>(b"fmi3FreeInstance"),
+            get: api.sym::<unsafe extern "C" fn(Comp, *const u32, usize, *mut f64, usize) -> fmi3Status>(b"fmi3GetFloat64"),
+            free: api.sym::<unsafe extern "C" fn(Comp)>(b"fmi3FreeInstance"),
             instance: null_mut(),
             force: unit.vr("force").unwrap() as u32,
             free_it,
@@ -495,7 +493,7 @@ fn a_logger_that_calls_back_in_or_frees_the_instance_finds_it_consistent() {
         };
         let env = &mut r as *mut Reentrant as *mut c_void;
         let c = unsafe {
-            api.sym::<fmi_host::fmi3::InstantiateMe>(b"fmi3InstantiateModelExchange")(name.as_ptr(), token.as_ptr(), null(), false, false, env, Some(reentrant_logger))
+            api.sym::<host::fmi3::InstantiateMe>(b"fmi3InstantiateModelExchange")(name.as_ptr(), token.as_ptr(), null(), false, false, env, Some(reentrant_logger))
         };
         assert!(!c.is_null());
         assert_eq!(api.enter_initialization(c), fmi3OK);

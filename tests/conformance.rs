@@ -8,10 +8,9 @@
 //! the file differs (`POWDERFMU_UPDATE_DOCS=1 cargo test --test conformance` rewrites it).
 
 #[macro_use]
-mod fmi_host;
-use fmi_host::*;
+mod host;
+use host::*;
 
-use libloading::Symbol;
 use powderfmu::fmi2::types::*;
 use powderfmu::units;
 use std::ptr::{null, null_mut};

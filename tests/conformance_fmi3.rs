@@ -10,9 +10,9 @@
 //! (`POWDERFMU_UPDATE_DOCS=1 cargo test --test conformance_fmi3` rewrites it).
 
 #[macro_use]
-mod fmi_host;
-use fmi_host::fmi3::{Api3, EnterInit};
-use fmi_host::*;
+mod host;
+use host::fmi3::{Api3, EnterInit};
+use host::*;
 
 use powderfmu::fmi3::types::*;
 use std::ffi::c_void;

@@ -1,10 +1,9 @@
-//! An importer in Rust: loads the cdylib with libloading and drives the C ABI through whole Model Exchange
+//! An importer in Rust: loads the cdylib through `fmi_host` and drives the C ABI through whole Model Exchange
 //! and Co-Simulation runs, as fmpy would, so that ABI faults show up in `cargo test` with a backtrace.
 //! The logger is a plain C function (see `logger`): messages are collected per instance.
 
 #![allow(non_snake_case)]
 
-use libloading::Symbol;
 use powderfmu::fmi2::types::*;
 use powderfmu::law::params::Effective;
 use powderfmu::law::AnyLaw;
@@ -15,8 +14,8 @@ use std::ffi::CString;
 use std::os::raw::c_char;
 
 #[macro_use]
-mod fmi_host;
-use fmi_host::*;
+mod host;
+use host::*;
 
 /// The default scene at 3 m/s: its undamped rebound speed by the energy balance.
 fn expected_rebound(v: f64) -> f64 {

@@ -4,11 +4,10 @@
 //! return are the FMI 2.0 ones to the bit.
 
 #[macro_use]
-mod fmi_host;
-use fmi_host::fmi3::Api3;
-use fmi_host::*;
+mod host;
+use host::fmi3::Api3;
+use host::*;
 
-use libloading::Symbol;
 use powderfmu::fmi2::types::*;
 
 const PWI: &str = "ParticleWallImpact";

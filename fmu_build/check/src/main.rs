@@ -1,4 +1,5 @@
-//! `fmu_check`: a small FMI 2.0 and 3.0 importer, independent of the powderfmu crate, that does what a
+//! `fmu_check`: a small FMI 2.0 and 3.0 importer, independent of the powderfmu crate (its calls are
+//! `fmi_host`'s, the project's one Rust FMI host), that does what a
 //! host on another platform does with a `.fmu`: unzip it, read `modelDescription.xml`, load the binary of
 //! its platform (`binaries/win64/*.dll` or `x86_64-windows` when built for Windows and run under wine,
 //! `linux64/*.so` or `x86_64-linux` on Linux), and run the unit in Co-Simulation and, where offered (FMI
@@ -11,7 +12,6 @@
 //!                     platform) at halfway, and go on to the end
 
 mod fmi;
-mod fmi3;
 mod model_description;
 mod runs;
 
@@ -48,7 +48,7 @@ fn run() -> Result<(), String> {
     let unpacked = fmi::Unpacked::open(&fmu)?;
     let md = &unpacked.model_description;
     let platform = if md.fmi3 { fmi::PLATFORM_FMI3 } else { fmi::PLATFORM };
-    println!("{} {} ({})", md.model_identifier, platform, unpacked.binary.display());
+    println!("{} {} ({})", md.model_identifier, platform, unpacked.binary.path().display());
     if md.fmi3 {
         return runs::co_simulation_fmi3(&unpacked, state_out.as_deref(), state_in.as_deref());
     }

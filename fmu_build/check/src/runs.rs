@@ -4,8 +4,9 @@
 //! with early return (FMI 3.0 has no input derivatives: the wall stands still). Each prints its final
 //! outputs with `{:e}` (the shortest text that reads back to the same f64), to be compared across platforms.
 
-use crate::fmi::{Instance, Unpacked, CO_SIMULATION, MODEL_EXCHANGE};
-use crate::fmi3::Instance3;
+use crate::fmi::{print_warnings, Unpacked, CO_SIMULATION, MODEL_EXCHANGE};
+use fmi_host::fmi2::Instance;
+use fmi_host::fmi3::Instance as Instance3;
 use std::path::Path;
 
 /// A unit's scenario: start values, the steps, the inputs at a time, and the outputs to print.
@@ -125,7 +126,7 @@ fn line(what: &str, i: &impl Reads, s: &Scenario, t: f64) -> Result<(), String> 
 }
 
 fn start<'a>(fmu: &'a Unpacked, kind: i32, s: &Scenario) -> Result<Instance<'a>, String> {
-    let i = Instance::new(fmu, kind)?;
+    let i = fmu.instance(kind)?;
     i.setup(0.0)?;
     for (name, value) in s.strings {
         i.set_string(name, value)?;
@@ -171,7 +172,9 @@ pub fn co_simulation(fmu: &Unpacked, state_out: Option<&Path>, state_in: Option<
         i.do_step(t, s.step)?;
     }
     line("CS final", &i, &s, s.steps as f64 * s.step)?;
-    i.call("fmi2Terminate")
+    let end = i.call("fmi2Terminate");
+    print_warnings(i.log());
+    end
 }
 
 /// Model Exchange: explicit Euler at 1/1000 of the CS step, an event when an indicator changes sign or
@@ -219,7 +222,9 @@ pub fn model_exchange(fmu: &Unpacked) -> Result<(), String> {
         std::mem::swap(&mut z, &mut z_new);
     }
     line(&format!("ME final ({events} events)"), &i, &s, n as f64 * h)?;
-    i.call("fmi2Terminate")
+    let end = i.call("fmi2Terminate");
+    print_warnings(i.log());
+    end
 }
 
 /// FMI 3.0 Co-Simulation with early return: the scenario's grid, each step ending early at a contact
@@ -227,7 +232,7 @@ pub fn model_exchange(fmu: &Unpacked) -> Result<(), String> {
 /// `co_simulation`. Prints the final outputs and the number of early returns.
 pub fn co_simulation_fmi3(fmu: &Unpacked, state_out: Option<&Path>, state_in: Option<&Path>) -> Result<(), String> {
     let s = scenario(&fmu.model_description.model_identifier)?;
-    let i = Instance3::new(fmu, true)?;
+    let i = fmu.instance3(true)?;
     i.enter_initialization(0.0)?;
     for (name, value) in s.strings {
         i.set_string(name, value)?;
@@ -262,7 +267,7 @@ pub fn co_simulation_fmi3(fmu: &Unpacked, state_out: Option<&Path>, state_in: Op
         // On the grid: a step of the scenario; after an early return: to the next grid point.
         let on_grid = t == k as f64 * s.step;
         let h = if on_grid { s.step } else { (k + 1) as f64 * s.step - t };
-        let (early, last) = i.do_step(t, h)?;
+        let (_, early, last) = i.do_step(t, h)?;
         if early {
             early_returns += 1;
             t = last;
@@ -272,5 +277,7 @@ pub fn co_simulation_fmi3(fmu: &Unpacked, state_out: Option<&Path>, state_in: Op
         }
     }
     line(&format!("CS3 final ({early_returns} early returns)"), &i, &s, t)?;
-    i.call("fmi3Terminate")
+    let end = i.call("fmi3Terminate");
+    print_warnings(i.log());
+    end
 }
