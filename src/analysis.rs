@@ -14,9 +14,13 @@ use serde_json::{json, Map, Value};
 
 /// One output of `analyze`: key, unit, the law or group it belongs to, and meaning.
 pub struct Output {
+    /// The value's key in the JSON output and its label in the text output.
     pub name: &'static str,
+    /// The value's unit as printed ("-" for a pure number or a yes/no flag).
     pub unit: &'static str,
+    /// The section the value belongs to.
     pub group: Group,
+    /// What the value is, with its source equation.
     pub doc: &'static str,
 }
 
@@ -40,6 +44,8 @@ pub enum Group {
 }
 
 impl Group {
+    /// The section's heading in the text output; `model` is the active law's scene name, used in the
+    /// `Active` and `Impact` headings.
     pub fn title(self, model: &str) -> String {
         match self {
             Group::Pair => "the pair (000 Sec. 3, whatever the law)".into(),

@@ -24,15 +24,36 @@ pub const TRAILER: usize = 8;
 /// Why an envelope was refused.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 pub enum EnvelopeError {
+    /// The bytes do not start with the expected magic, or are too short to hold magic and version; holds
+    /// the expected magic.
     #[error("it does not start with the magic bytes `{}`", String::from_utf8_lossy(&.0[..]).trim_end_matches('\0'))]
     NotThisKind(&'static [u8; 8]),
     /// A well-formed header of another format version (the caller says what that version was).
     #[error("format version {found}, this build reads version {reads}")]
-    Version { found: u32, reads: u32 },
+    Version {
+        /// The version in the header.
+        found: u32,
+        /// The version this build reads.
+        reads: u32,
+    },
+    /// Fewer bytes than the header's payload length (plus header and trailer) requires, or too few to
+    /// hold the length at all.
     #[error("truncated: {len} bytes, the header promises {promised}")]
-    Truncated { len: u64, promised: u64 },
+    Truncated {
+        /// The number of bytes given.
+        len: u64,
+        /// The number of bytes the header promises (header, payload and trailer).
+        promised: u64,
+    },
+    /// More bytes than the header's payload length (plus header and trailer) accounts for.
     #[error("{len} bytes, the header promises {promised}: trailing data")]
-    Trailing { len: u64, promised: u64 },
+    Trailing {
+        /// The number of bytes given.
+        len: u64,
+        /// The number of bytes the header promises (header, payload and trailer).
+        promised: u64,
+    },
+    /// The payload's FNV-1a 64 checksum differs from the one in the trailer.
     #[error("checksum mismatch: the bytes are corrupt")]
     Checksum,
 }

@@ -6,22 +6,54 @@
 pub enum ParamError {
     /// A numeric value outside its allowed range.
     #[error("parameter `{name}` = {value:e} is out of range: allowed {allowed}")]
-    OutOfRange { name: &'static str, value: f64, allowed: String },
+    OutOfRange {
+        /// The parameter's scene key.
+        name: &'static str,
+        /// The value given.
+        value: f64,
+        /// The allowed range as text, with its unit.
+        allowed: String,
+    },
     /// A value the law needs that the scene does not give.
     #[error("parameter `{name}` is required: {why}")]
-    Missing { name: &'static str, why: String },
+    Missing {
+        /// The parameter's scene key.
+        name: &'static str,
+        /// Why the value is needed.
+        why: String,
+    },
     /// A string value that is not one of the known choices.
     #[error("parameter `{name}` = \"{value}\" is not known: allowed {allowed}")]
-    UnknownChoice { name: String, value: String, allowed: String },
+    UnknownChoice {
+        /// The parameter's scene key.
+        name: String,
+        /// The name given.
+        value: String,
+        /// The known names, comma-separated.
+        allowed: String,
+    },
     /// Two or more values that are each valid but not together.
     #[error("parameter `{name}`: {why}")]
-    Inconsistent { name: &'static str, why: String },
+    Inconsistent {
+        /// The parameter's scene key.
+        name: &'static str,
+        /// Which values conflict, and how.
+        why: String,
+    },
     /// A scene key that no parameter has (most often a typo).
     #[error("unknown scene key `{name}`{hint}")]
-    UnknownKey { name: String, hint: String },
+    UnknownKey {
+        /// The key as given.
+        name: String,
+        /// Text appended to the message: the nearest known key, or where to find the list of keys.
+        hint: String,
+    },
     /// The scene file is not what it should be (not JSON, wrong type of a value).
     #[error("malformed scene: {what}")]
-    Malformed { what: String },
+    Malformed {
+        /// What is wrong, and where.
+        what: String,
+    },
 }
 
 impl ParamError {

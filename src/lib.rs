@@ -18,6 +18,11 @@
 // The bed's structure-of-arrays loops index several parallel arrays with one counter.
 #![allow(clippy::needless_range_loop)]
 #![deny(unsafe_op_in_unsafe_fn)]
+// Every public item says what it holds, with its unit (docs/architecture.md, "One vocabulary").
+#![warn(missing_docs)]
+// Units are written in brackets ([m], [N], [Pa]), which rustdoc would take for links to items of those
+// names: 242 false warnings in `cargo doc`.
+#![allow(rustdoc::broken_intra_doc_links)]
 
 pub mod analysis;
 pub mod bed;

@@ -30,7 +30,12 @@ pub enum KeyDefault {
     /// Derived from other keys, as the text says ("pi R* p_y", "rigid", "none").
     Derived(&'static str),
     /// This name, one of `allowed`.
-    Choice { default: &'static str, allowed: &'static [&'static str] },
+    Choice {
+        /// The default name.
+        default: &'static str,
+        /// Every name the key accepts.
+        allowed: &'static [&'static str],
+    },
 }
 
 /// The values a number may take (finite always).
@@ -49,14 +54,20 @@ pub enum Range {
 /// One scene key.
 #[derive(Debug, Clone, Copy)]
 pub struct Key {
+    /// The key's name in a scene.
     pub name: &'static str,
+    /// The unit of its value ("-" for none).
     pub unit: &'static str,
+    /// Its default.
     pub default: KeyDefault,
+    /// The values it accepts.
     pub range: Range,
+    /// Its meaning, as the help and the FMU's description print it.
     pub doc: &'static str,
 }
 
 impl Key {
+    /// The kind of value the key takes, from its default.
     pub fn kind(&self) -> KeyKind {
         match self.default {
             KeyDefault::Required => KeyKind::Required,

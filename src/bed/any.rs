@@ -15,7 +15,10 @@ macro_rules! define_any_engine {
     ($d:tt; $($variant:ident, $module:ident, $ty:ty, $pl:literal;)*) => {
         /// The bed's engine, compiled for the law of its scene.
         pub enum AnyEngine {
-            $($variant(Engine<$ty>),)*
+            $(
+            /// The engine of one row of `law_table!`, for the law of the same name in `ModelKind`.
+            $variant(Engine<$ty>),
+            )*
         }
 
         /// Runs `$body` with `$e` bound to the engine inside `$any`. Within the crate it is in scope by
@@ -43,8 +46,10 @@ crate::law_table!(define_any_engine; $);
 /// Why an engine cannot be built: a parameter (named) or the set-up.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum BedError {
+    /// A parameter out of range or missing, named in the error.
     #[error(transparent)]
     Param(#[from] ParamError),
+    /// A set-up that cannot be built, with the reason.
     #[error("{0}")]
     Setup(String),
 }
@@ -185,6 +190,7 @@ impl AnyEngine {
         engine_of(scene, particles, walls)
     }
 
+    /// The spheres.
     pub fn particles(&self) -> &Particles {
         with_engine!(self, e => &e.particles)
     }
@@ -276,18 +282,22 @@ impl AnyEngine {
         })
     }
 
+    /// The walls.
     pub fn walls(&self) -> &[Wall] {
         with_engine!(self, e => &e.walls)
     }
 
+    /// The walls, to set their positions and velocities.
     pub fn walls_mut(&mut self) -> &mut Vec<Wall> {
         with_engine!(self, e => &mut e.walls)
     }
 
+    /// One step of velocity Verlet.
     pub fn step(&mut self) {
         with_engine!(self, e => e.step())
     }
 
+    /// Runs `steps` steps.
     pub fn run(&mut self, steps: u64) {
         with_engine!(self, e => e.run(steps))
     }
@@ -312,6 +322,7 @@ impl AnyEngine {
         with_engine!(self, e => e.rebuild_at(reference, wall_reference))
     }
 
+    /// The force on each sphere when it was held [N] (see `Engine::held_reference`).
     pub fn held_reference(&self) -> Vec<Vec3> {
         with_engine!(self, e => e.held_reference().to_vec())
     }
@@ -326,14 +337,17 @@ impl AnyEngine {
         with_engine!(self, e => e.rebuild())
     }
 
+    /// Time step [s].
     pub fn dt(&self) -> f64 {
         with_engine!(self, e => e.dt)
     }
 
+    /// Simulated time [s].
     pub fn time(&self) -> f64 {
         with_engine!(self, e => e.time)
     }
 
+    /// Bytes held by the engine's arrays (see `Engine::memory_bytes`).
     pub fn memory_bytes(&self) -> usize {
         with_engine!(self, e => e.memory_bytes())
     }

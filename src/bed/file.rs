@@ -19,6 +19,7 @@ use std::path::Path;
 /// A wall contact as the file keeps it: the particle, its law history, tangential spring and contact radius.
 type SavedWallContact<H> = (u32, H, Vec3, f64);
 
+/// The magic bytes that open a bed file's envelope.
 pub const MAGIC: &[u8; 8] = b"PFBED\0\0\0";
 /// 3: postcard payload (`codec`). 2 and 1 were bincode 1.x, which is unmaintained (RUSTSEC-2025-0141).
 pub const VERSION: u32 = 3;
@@ -30,11 +31,17 @@ pub const FORMAT: Format = Format { magic: MAGIC, version: VERSION };
 pub struct BedFile {
     /// The bed scene (JSON text) the bed was made with.
     pub scene: String,
+    /// Simulated time when saved [s].
     pub time: f64,
+    /// Centre position of each particle [m].
     pub position: Vec<Vec3>,
+    /// Velocity of each particle [m/s].
     pub velocity: Vec<Vec3>,
+    /// Angular velocity of each particle [rad/s].
     pub angular_velocity: Vec<Vec3>,
+    /// Species (size class) of each particle; radius and mass follow from the scene.
     pub species: Vec<u16>,
+    /// The walls, with their positions, velocities and forces of the last step.
     pub walls: Vec<Wall>,
     /// `codec` bytes of the particle contacts `Vec<(i, j, history, spring, contact radius)>` of the scene's law.
     pub contacts: Vec<u8>,
@@ -43,7 +50,9 @@ pub struct BedFile {
     /// The forces, torques and rolling loads of the last step: a loaded bed continues exactly where it
     /// was saved (velocity Verlet's next half kick uses them).
     pub force: Vec<Vec3>,
+    /// Torque on each particle in the last step [N m].
     pub torque: Vec<Vec3>,
+    /// Rolling friction load of each particle in the last step, the sum of mu_r |f_n| over its contacts [N].
     pub rolling: Vec<f64>,
 }
 
@@ -265,6 +274,7 @@ pub fn save(path: &Path, engine: &AnyEngine, scene: &BedScene) -> std::io::Resul
     write_atomic(path, &bytes)
 }
 
+/// Loads a bed file from `path`: the engine (with `threads` threads, or the scene's) and the scene it was made with.
 pub fn load(path: &Path, threads: Option<usize>) -> Result<(AnyEngine, BedScene), BedError> {
     let bytes = std::fs::read(path).map_err(|e| BedError::Setup(format!("cannot read bed file `{}`: {e}", path.display())))?;
     AnyEngine::from_file(&decode(&bytes)?, threads)

@@ -67,6 +67,7 @@ pub enum DepthOrigin {
 }
 
 impl DepthOrigin {
+    /// Its name in scenes and reports: `first_touch` or `mean_surface`.
     pub fn name(self) -> &'static str {
         match self {
             DepthOrigin::FirstTouch => "first_touch",
@@ -74,6 +75,7 @@ impl DepthOrigin {
         }
     }
 
+    /// The origin of this name (`name`), or none for an unknown one.
     pub fn parse(text: &str) -> Option<DepthOrigin> {
         [DepthOrigin::FirstTouch, DepthOrigin::MeanSurface].into_iter().find(|o| o.name() == text)
     }
@@ -100,11 +102,13 @@ pub struct Setup {
     pub max_penetration: f64,
     /// C of Eq. 2.10.
     pub constraint_factor: f64,
+    /// How the indenter moves.
     pub motion: Motion,
     /// The shortcut of `fidelity = fast` (none: every sphere moves, `fidelity = full`).
     pub shortcut: Option<Shortcut>,
     /// The window of the plateau hardness, h/r from and to (`PLATEAU` by default).
     pub plateau: (f64, f64),
+    /// Where the depth h is measured from.
     pub depth_origin: DepthOrigin,
 }
 
@@ -114,7 +118,9 @@ pub struct Setup {
 /// scale of the consolidated bed, consolidation_stress x d_mean^2 (checked every `CHECK_EVERY` steps).
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Shortcut {
+    /// m: the moving zone's size in contact radii a_max [-].
     pub zone: f64,
+    /// Release threshold as a fraction of consolidation_stress x d_mean^2 [-].
     pub release: f64,
 }
 
@@ -140,17 +146,22 @@ pub fn held_outside(p: &Particles, setup: &Setup, touch: f64, mean_diameter: f64
 /// Ordered as the test runs: loading before unloading before done.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, serde::Serialize, serde::Deserialize)]
 pub enum TestState {
+    /// The indenter goes into the bed.
     Loading = 0,
+    /// The indenter comes out of the bed after the turn.
     Unloading = 1,
+    /// The indenter has left the bed after unloading.
     Done = 2,
 }
 
 /// What the test has recorded so far (saved with the bed in a saved state).
 #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Record {
+    /// Where the test is.
     pub state: TestState,
     /// Largest force and largest depth of the loading [N], [m].
     pub f_max: f64,
+    /// Largest depth of the loading [m].
     pub h_max: f64,
     /// (h, F) of the upper part of the unloading curve.
     pub unloading: Vec<(f64, f64)>,
@@ -257,13 +268,19 @@ pub struct Reading {
     /// After the turn, the standard error of `hardness` from the fluctuations of the force at the turn
     /// (`Record::hardness_after_turn_error`); 0 while loading (the hardness is then one sample) [Pa].
     pub hardness_standard_error: f64,
+    /// `hardness` / C (004 Eq. 2.10) [Pa].
     pub unconfined_yield_strength: f64,
     /// `hardness_standard_error` / C [Pa].
     pub unconfined_yield_strength_standard_error: f64,
+    /// Hydrostatic stress of Bagi's tensor in the dynamic bin (004 Eq. 5.2) [Pa].
     pub hydrostatic_stress: f64,
+    /// Deviatoric stress of Bagi's tensor in the dynamic bin (004 Eq. 5.3) [Pa].
     pub deviatoric_stress: f64,
+    /// Spheres touching the indenter (the whole die's on a sector).
     pub contacts: usize,
+    /// Kinetic energy of the bed, translational plus rotational (the whole die's on a sector) [J].
     pub kinetic_energy: f64,
+    /// Where the test is.
     pub state: TestState,
     /// h_c from the tangent to the unloading curve; h_max (so far) where there is none [m].
     pub contact_depth: f64,
@@ -280,9 +297,13 @@ pub struct Reading {
 
 /// A prepared bed with the indenter in it.
 pub struct Indentation {
+    /// The bed's engine, the indenter among its walls.
     pub engine: AnyEngine,
+    /// The bed's scene.
     pub scene: BedScene,
+    /// The test's set-up.
     pub setup: Setup,
+    /// What the test has recorded so far.
     pub record: Record,
     /// The indenter's index among the walls.
     indenter: usize,

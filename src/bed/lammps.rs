@@ -4,6 +4,8 @@
 use super::any::AnyEngine;
 use std::fmt::Write;
 
+/// The bed's spheres as a LAMMPS data file: one atom type, the particle `density` [kg/m^3], positions
+/// [m] and velocities [m/s], angular velocities [rad/s], in a box around the spheres with a margin.
 pub fn data_file(engine: &AnyEngine, density: f64) -> String {
     let p = engine.particles();
     let n = p.len();

@@ -4,6 +4,7 @@
 use super::Vec3;
 use std::f64::consts::PI;
 
+/// The spheres of a bed, one entry per sphere in each array (all of the same length).
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Particles {
     /// Centre position [m].
@@ -28,10 +29,12 @@ pub struct Particles {
 }
 
 impl Particles {
+    /// Number of spheres.
     pub fn len(&self) -> usize {
         self.position.len()
     }
 
+    /// Whether there are no spheres.
     pub fn is_empty(&self) -> bool {
         self.position.is_empty()
     }

@@ -14,11 +14,13 @@ use std::f64::consts::PI;
 /// Progress of a long preparation, for a progress bar.
 #[derive(Clone)]
 pub struct Progress<'a> {
+    /// The phase running: `fill`, `settle`, `consolidate`, `unload` or `relax`.
     pub phase: &'static str,
     /// Estimated fraction of the whole preparation done, in [0, 1].
     pub fraction: f64,
     /// Simulated time [s] and steps so far.
     pub time: f64,
+    /// Steps taken in this phase so far.
     pub steps: u64,
     /// A short reading of the phase's own measure (kinetic energy, piston stress).
     pub detail: String,
@@ -37,6 +39,7 @@ pub struct Report {
     /// cross-section of the die (where static equilibrium makes its sigma_zz the piston's stress plus
     /// the weight above).
     pub stress_at_target: Option<Stress>,
+    /// The engine's time step [s].
     pub time_step: f64,
 }
 
@@ -164,8 +167,11 @@ pub fn die(scene: &BedScene) -> Vec<Wall> {
     walls
 }
 
+/// Index of the floor among the walls of `die`.
 pub const FLOOR: usize = 0;
+/// Index of the die's cylinder among the walls of `die`.
 pub const DIE: usize = 1;
+/// Index of the piston among the walls of `die`.
 pub const PISTON: usize = 2;
 
 /// Height of the bed: the highest sphere top [m].

@@ -8,10 +8,15 @@ use super::any::AnyEngine;
 /// What was drawn: image size and the colour scale [Pa].
 #[derive(Debug, Clone, Copy)]
 pub struct Legend {
+    /// Image width [pixels].
     pub width: u32,
+    /// Image height [pixels].
     pub height: u32,
+    /// Stress at the dark blue end of the scale [Pa].
     pub stress_low: f64,
+    /// Stress at the yellow end of the scale, the largest drawn [Pa].
     pub stress_high: f64,
+    /// Number of spheres the plane y = 0 cuts (the discs drawn).
     pub spheres_cut: usize,
 }
 

@@ -19,11 +19,13 @@ use super::BedError;
 /// spread [Pa].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct OverBeds {
+    /// Mean of the beds' plateau hardnesses [Pa].
     pub mean: f64,
     /// The sample standard deviation of the beds' plateaus (0 for one bed).
     pub standard_deviation: f64,
     /// standard_deviation / sqrt(beds) (0 for one bed).
     pub standard_error: f64,
+    /// Number of beds.
     pub beds: usize,
 }
 
@@ -91,6 +93,7 @@ fn least_advanced(states: impl Iterator<Item = TestState>) -> TestState {
 
 /// The test on each bed.
 pub struct Replicas {
+    /// One indentation test per bed, the first the reference bed.
     pub tests: Vec<Indentation>,
 }
 

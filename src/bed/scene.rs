@@ -30,31 +30,45 @@ crate::choice_enum! {
     }
 }
 
+/// A bed scene, read and checked (`from_json`): the contact laws, the spheres, the die and the preparation.
 #[derive(Debug, Clone, PartialEq)]
 pub struct BedScene {
+    /// Scene keys of the particle-particle law, the defaults with the user's laid over them.
     pub particle_particle: Map<String, Value>,
     /// `particle_particle` with the `particle_wall` keys laid over it.
     pub particle_wall: Map<String, Value>,
+    /// The contact law of every contact in the bed (`contact_model`).
     pub model: ModelKind,
     /// The particles' density [kg/m^3], Young's modulus [Pa] and Poisson ratio, as `particle_particle` gives them.
     pub density: f64,
+    /// The particles' Young's modulus [Pa].
     pub youngs_modulus: f64,
+    /// The particles' Poisson ratio [-].
     pub poisson_ratio: f64,
+    /// Particle-particle rolling friction coefficient mu_r [-] (004 Table 5.3: 0.1).
     pub rolling_friction: f64,
+    /// Particle-wall rolling friction coefficient [-] (004 Table 5.3: 0).
     pub wall_rolling_friction: f64,
     /// What the indenter of a test is made of (`indenter_pair`, `indenter_rolling_friction`).
     pub indenter_material: IndenterMaterial,
+    /// The spheres' diameters and their number fractions.
     pub size_distribution: SizeDistribution,
+    /// Number of spheres in the simulated part of the die (the sector's with `die_sector`).
     pub particle_count: usize,
+    /// Inner diameter of the die [m].
     pub die_diameter: f64,
+    /// Height of the die [m]: the loose fill must fit in it.
     pub die_height: f64,
     /// The part of the die simulated: 1 (whole), 0.5 (half: y >= 0, mirror plane y = 0) or 0.25 (a
     /// quarter: x, y >= 0, mirror planes x = 0 and y = 0). The mirror planes stand for the spheres'
     /// images, so every output is the whole die's.
     pub die_sector: f64,
+    /// Gravitational acceleration, downward [m/s^2].
     pub gravity: f64,
     /// Fixed step [s], or None to derive it from `rayleigh_fraction`.
     pub time_step: Option<f64>,
+    /// Time step, when `time_step` is None, as a fraction of the stability limit (`any::stability_limit`:
+    /// the Rayleigh time of the smallest sphere, 000 Eq. 71, or less for stiff springs) [-].
     pub rayleigh_fraction: f64,
     /// Verlet skin [m], or None for a tenth of the mean diameter.
     pub skin: Option<f64>,
@@ -62,9 +76,13 @@ pub struct BedScene {
     pub fill_solid_fraction: f64,
     /// Settling ends when the kinetic energy falls below this fraction of sum(m g d_mean).
     pub settle_energy_ratio: f64,
+    /// Piston stress to consolidate to [Pa] (004 Sec. 5.1.3: 10 kPa).
     pub consolidation_stress: f64,
+    /// Piston strain rate, loading and unloading [1/s] (004 Sec. 5.1.3: 1/s).
     pub strain_rate: f64,
+    /// Seed of the random fill.
     pub seed: u64,
+    /// Threads the engine runs on (force loop and kick).
     pub threads: usize,
 }
 
@@ -135,12 +153,15 @@ impl Default for BedScene {
 }
 
 impl BedScene {
+    /// Reads a bed scene from JSON text: an object of bed scene keys, unknown keys refused, the rest defaulted.
     pub fn from_json(text: &str) -> Result<BedScene, ParamError> {
         let value: Value = serde_json::from_str(text).map_err(|e| ParamError::Malformed { what: format!("not valid JSON: {e}") })?;
         let map = value.as_object().ok_or_else(|| ParamError::Malformed { what: "the top level of a bed scene must be a JSON object".into() })?;
         BedScene::from_map(map)
     }
 
+    /// Reads a bed scene from a JSON object of bed scene keys: the two contact maps over their defaults and
+    /// checked at a representative radius, every other key range-checked.
     pub fn from_map(map: &Map<String, Value>) -> Result<BedScene, ParamError> {
         for k in map.keys() {
             if !bed_key_names().any(|known| known == k) {

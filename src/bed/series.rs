@@ -26,9 +26,11 @@ pub const RELIABLE_SAMPLES_PER_TAU: f64 = 50.0;
 /// The mean of a series and its standard error.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct MeanEstimate {
+    /// Mean of the series [the series' unit].
     pub mean: f64,
     /// sqrt(sigma^2 tau / n) [the series' unit]; 0 for fewer than `MIN_SAMPLES` samples.
     pub standard_error: f64,
+    /// Number of samples in the series.
     pub samples: usize,
     /// The integrated autocorrelation time tau of the residuals [samples]; 0 when not estimated.
     pub correlation_time: f64,

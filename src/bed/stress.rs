@@ -9,15 +9,20 @@ use super::{Tensor, Vec3};
 
 /// A measurement volume: what it holds and how big it is.
 pub trait Volume {
+    /// Its volume [m^3].
     fn volume(&self) -> f64;
+    /// Whether the point `x` [m] lies inside it (a particle counts when its centre does).
     fn contains(&self, x: Vec3) -> bool;
 }
 
 /// A vertical cylinder about the die axis between two heights.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Region {
+    /// Radius about the die axis [m].
     pub radius: f64,
+    /// Lower height, included [m].
     pub z_low: f64,
+    /// Upper height, excluded [m].
     pub z_high: f64,
 }
 
@@ -37,8 +42,11 @@ impl Volume for Region {
 pub struct Cuboid {
     /// Widths in x and y [m].
     pub width_x: f64,
+    /// Width in y [m].
     pub width_y: f64,
+    /// Lower height, included [m].
     pub z_low: f64,
+    /// Upper height, excluded [m].
     pub z_high: f64,
 }
 
@@ -63,6 +71,7 @@ impl Stress {
         Stress(self.0 / die_sector)
     }
 
+    /// Component sigma_ij [Pa], with 0, 1, 2 for x, y, z.
     pub fn get(&self, i: usize, j: usize) -> f64 {
         self.0[(i, j)]
     }

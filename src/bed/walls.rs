@@ -4,23 +4,39 @@
 
 use super::{Vec3, ZERO};
 
+/// The geometry of a wall, placed by the wall's `position`.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum Shape {
     /// Plane through `position`; particles stay on the side `normal` (unit) points to.
-    Plane { normal: Vec3 },
+    Plane {
+        /// Unit normal, pointing to the particles' side.
+        normal: Vec3,
+    },
     /// Cylinder of this radius around the vertical axis through `position`; particles stay inside.
-    Cylinder { radius: f64 },
+    Cylinder {
+        /// Inner radius [m].
+        radius: f64,
+    },
     /// Sphere of this radius centred at `position`; particles stay outside.
-    Sphere { radius: f64 },
+    Sphere {
+        /// Radius [m].
+        radius: f64,
+    },
     /// Mirror plane of a die sector through `position` with unit `normal` into the sector: a particle
     /// meets its own mirror image there. The overlap is the pair's, 2 (r - distance); the interaction
     /// is the particle-particle law of the particle with its image (`any::mirror_row`).
-    Mirror { normal: Vec3 },
+    Mirror {
+        /// Unit normal, pointing into the sector.
+        normal: Vec3,
+    },
 }
 
+/// A wall of the bed: its shape and place, its prescribed velocity and the force the particles exert on it.
 #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Wall {
+    /// Name (`floor`, `die`, `piston`, `indenter`, `mirror_x`, `mirror_y`).
     pub name: String,
+    /// Geometry.
     pub shape: Shape,
     /// A point of the plane, the axis point of the cylinder, the centre of the sphere [m].
     pub position: Vec3,
@@ -30,33 +46,40 @@ pub struct Wall {
     pub force: Vec3,
 }
 
-/// Where a particle meets a wall: its overlap, the unit normal from the particle's centre towards the
-/// wall, and the wall's velocity there.
+/// Where a particle meets a wall: its overlap and the unit normal from the particle's centre towards the
+/// wall (the wall's velocity is the wall's own, `Wall::velocity`).
 #[derive(Debug, Clone, Copy)]
 pub struct WallTouch {
+    /// Overlap, positive in contact [m] (for a mirror plane, the pair's overlap with the image).
     pub overlap: f64,
+    /// Unit normal from the particle's centre towards the wall.
     pub normal: Vec3,
 }
 
 impl Wall {
+    /// A plane named `name` through `point` with `normal` (normalised here) pointing to the particles' side; at rest.
     pub fn plane(name: &str, point: Vec3, normal: Vec3) -> Wall {
         let l = normal.norm();
         Wall { name: name.into(), shape: Shape::Plane { normal: normal * (1.0 / l) }, position: point, velocity: ZERO, force: ZERO }
     }
 
+    /// A vertical cylinder named `name` around the axis through `axis_point`, of inner `radius` [m]; at rest.
     pub fn cylinder(name: &str, axis_point: Vec3, radius: f64) -> Wall {
         Wall { name: name.into(), shape: Shape::Cylinder { radius }, position: axis_point, velocity: ZERO, force: ZERO }
     }
 
+    /// A mirror plane named `name` through `point` with `normal` (normalised here) pointing into the sector; at rest.
     pub fn mirror(name: &str, point: Vec3, normal: Vec3) -> Wall {
         let l = normal.norm();
         Wall { name: name.into(), shape: Shape::Mirror { normal: normal * (1.0 / l) }, position: point, velocity: ZERO, force: ZERO }
     }
 
+    /// Whether this is a mirror plane of a die sector.
     pub fn is_mirror(&self) -> bool {
         matches!(self.shape, Shape::Mirror { .. })
     }
 
+    /// A sphere named `name` centred at `centre` of `radius` [m] (the indenter); at rest.
     pub fn sphere(name: &str, centre: Vec3, radius: f64) -> Wall {
         Wall { name: name.into(), shape: Shape::Sphere { radius }, position: centre, velocity: ZERO, force: ZERO }
     }

@@ -17,20 +17,24 @@ const MAX_ARRAY: usize = 1 << 24;
 pub struct Registry(Mutex<BTreeSet<usize>>);
 
 impl Registry {
+    /// An empty registry; `const`, so that it can be a `static`.
     pub const fn new() -> Registry {
         Registry(Mutex::new(BTreeSet::new()))
     }
 
+    /// Whether `p` is registered (false also if the lock is poisoned).
     pub fn live(&self, p: usize) -> bool {
         self.0.lock().map(|s| s.contains(&p)).unwrap_or(false)
     }
 
+    /// Records `p` as live (nothing happens if the lock is poisoned).
     pub fn register(&self, p: usize) {
         if let Ok(mut s) = self.0.lock() {
             s.insert(p);
         }
     }
 
+    /// Removes `p`; whether it was live (false also if the lock is poisoned).
     pub fn unregister(&self, p: usize) -> bool {
         self.0.lock().map(|mut s| s.remove(&p)).unwrap_or(false)
     }
@@ -45,6 +49,7 @@ impl Default for Registry {
 /// The FMU state behind a pointer handed to the host (fmi2FMUstate, fmi3FMUState): the bytes of
 /// `state_format`.
 pub struct FmuState {
+    /// The saved instance, in the byte format of `state_format`.
     pub bytes: Vec<u8>,
 }
 

@@ -15,13 +15,22 @@ use std::sync::Arc;
 #[allow(clippy::enum_variant_names)]
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Mode {
+    /// Instantiated: after instantiation or a reset, before Initialization Mode.
     Instantiated,
+    /// Initialization Mode: between EnterInitializationMode and ExitInitializationMode.
     InitializationMode,
+    /// Event Mode (Model Exchange, and FMI 3.0 Co-Simulation with eventModeUsed).
     EventMode,
+    /// Continuous-Time Mode (Model Exchange): between events, while the host integrates the states.
     ContinuousTimeMode,
+    /// Co-Simulation between steps: FMI 2.0's Step Complete, FMI 3.0's Step Mode.
     StepComplete,
+    /// Terminated: after fmi2Terminate or fmi3Terminate.
     Terminated,
+    /// The Error state: a computation failed; the values can still be read, and Reset, SetFMUstate or
+    /// FreeInstance lead out of it.
     Error,
+    /// The Fatal state: an internal error (a panic); every call is refused, the instance can only be freed.
     Fatal,
     /// FMI 3.0 Co-Simulation: inside the master's intermediate-update callback, at an event within a step
     /// (last, so that the numbers of the other modes in saved states stay as they were).
@@ -29,6 +38,7 @@ pub enum Mode {
 }
 
 impl Mode {
+    /// The mode's bit in the masks of `allowed`.
     pub fn bit(self) -> u32 {
         1 << (self as u32)
     }
@@ -49,6 +59,7 @@ impl Mode {
         }
     }
 
+    /// Every mode, in the order of its number (the number a saved state records).
     pub const ALL: [Mode; 9] = [
         Mode::Instantiated,
         Mode::InitializationMode,
@@ -74,35 +85,69 @@ pub mod allowed {
         }
         bits
     }
+    /// Every mode but Fatal and Intermediate Update Mode: SetDebugLogging, Reset, the FMU-state calls (get,
+    /// set, free, size, serialize, deserialize), fmi3GetNumberOfEventIndicators,
+    /// fmi3GetNumberOfContinuousStates, and the functions refused in every mode as not supported.
     pub const ANY_LIVE: u32 = m(&[Instantiated, InitializationMode, EventMode, ContinuousTimeMode, StepComplete, Terminated, Error]);
+    /// fmi2SetupExperiment: Instantiated only.
     pub const SETUP_EXPERIMENT: u32 = m(&[Instantiated]);
+    /// fmi2EnterInitializationMode and fmi3EnterInitializationMode: Instantiated only.
     pub const ENTER_INITIALIZATION: u32 = m(&[Instantiated]);
+    /// fmi2ExitInitializationMode and fmi3ExitInitializationMode: Initialization Mode only.
     pub const EXIT_INITIALIZATION: u32 = m(&[InitializationMode]);
+    /// fmi2Terminate and fmi3Terminate: Event Mode, Continuous-Time Mode and Step Complete (Step Mode).
     pub const TERMINATE: u32 = m(&[EventMode, ContinuousTimeMode, StepComplete]);
+    /// The getters of variable values (fmi2GetReal, fmi2GetInteger, fmi2GetBoolean, fmi2GetString and
+    /// the fmi3Get functions of every type): Initialization Mode, Event Mode, Continuous-Time Mode, Step
+    /// Complete, Terminated, Error and Intermediate Update Mode.
     pub const GET: u32 = m(&[InitializationMode, EventMode, ContinuousTimeMode, StepComplete, Terminated, Error, IntermediateUpdate]);
+    /// fmi2SetReal and fmi3SetFloat64: Instantiated, Initialization Mode, Event Mode, Continuous-Time Mode
+    /// and Step Complete (in Continuous-Time Mode only continuous variables, `Instance::set`).
     pub const SET_REAL: u32 = m(&[Instantiated, InitializationMode, EventMode, ContinuousTimeMode, StepComplete]);
+    /// The setters of the other types (fmi2SetInteger, fmi2SetBoolean, fmi2SetString and the other fmi3Set
+    /// functions): as `SET_REAL` but not in Continuous-Time Mode.
     pub const SET_OTHER: u32 = m(&[Instantiated, InitializationMode, EventMode, StepComplete]);
+    /// fmi2EnterEventMode: Event Mode and Continuous-Time Mode.
     pub const ENTER_EVENT_MODE: u32 = m(&[EventMode, ContinuousTimeMode]);
+    /// fmi2NewDiscreteStates and fmi3UpdateDiscreteStates: Event Mode only.
     pub const NEW_DISCRETE_STATES: u32 = m(&[EventMode]);
+    /// fmi2EnterContinuousTimeMode and fmi3EnterContinuousTimeMode: Event Mode only.
     pub const ENTER_CONTINUOUS_TIME: u32 = m(&[EventMode]);
+    /// fmi2CompletedIntegratorStep and fmi3CompletedIntegratorStep: Continuous-Time Mode only.
     pub const COMPLETED_INTEGRATOR_STEP: u32 = m(&[ContinuousTimeMode]);
+    /// fmi2SetTime and fmi3SetTime: Event Mode and Continuous-Time Mode.
     pub const SET_TIME: u32 = m(&[EventMode, ContinuousTimeMode]);
+    /// fmi2SetContinuousStates and fmi3SetContinuousStates: Continuous-Time Mode only.
     pub const SET_CONTINUOUS_STATES: u32 = m(&[ContinuousTimeMode]);
+    /// fmi2GetDerivatives, fmi2GetEventIndicators, fmi2GetContinuousStates and their fmi3 counterparts
+    /// (fmi3GetContinuousStateDerivatives, fmi3GetEventIndicators, fmi3GetContinuousStates): Initialization
+    /// Mode, Event Mode, Continuous-Time Mode, Terminated and Error.
     pub const GET_DERIVATIVES: u32 = m(&[InitializationMode, EventMode, ContinuousTimeMode, Terminated, Error]);
+    /// fmi2GetNominalsOfContinuousStates and fmi3GetNominalsOfContinuousStates: the modes of
+    /// `GET_DERIVATIVES` and Instantiated.
     pub const GET_NOMINALS: u32 = m(&[Instantiated, InitializationMode, EventMode, ContinuousTimeMode, Terminated, Error]);
+    /// fmi2DoStep and fmi3DoStep: Step Complete (Step Mode) only.
     pub const DO_STEP: u32 = m(&[StepComplete]);
+    /// fmi2SetRealInputDerivatives: Instantiated, Initialization Mode and Step Complete.
     pub const SET_INPUT_DERIVATIVES: u32 = m(&[Instantiated, InitializationMode, StepComplete]);
+    /// fmi2GetStatus, fmi2GetRealStatus, fmi2GetIntegerStatus, fmi2GetBooleanStatus and
+    /// fmi2GetStringStatus: Step Complete and Terminated.
     pub const CS_STATUS: u32 = m(&[StepComplete, Terminated]);
     /// FMI 3.0: Event Mode is entered from Continuous-Time Mode (ME) and from Step Mode (CS, eventModeUsed).
     pub const ENTER_EVENT_MODE_3: u32 = m(&[ContinuousTimeMode, StepComplete]);
+    /// fmi3EnterStepMode: Event Mode only.
     pub const ENTER_STEP_MODE: u32 = m(&[EventMode]);
+    /// fmi3DoStep's return to Step Mode after the master's intermediate-update callback: Intermediate Update
+    /// Mode only.
     pub const INTERMEDIATE_UPDATE: u32 = m(&[IntermediateUpdate]);
 }
 
 /// Which interface the instance was made for.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Kind {
+    /// Model Exchange: the host integrates the continuous states.
     ModelExchange,
+    /// Co-Simulation: the unit advances itself in steps (DoStep).
     CoSimulation,
 }
 
@@ -111,11 +156,16 @@ pub enum Kind {
 /// place in the calling sequence changed nothing, and leaves the instance as it was.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Failure {
+    /// The status the call returns.
     pub status: Status,
+    /// The message for the host's logger.
     pub message: String,
+    /// Whether the instance goes to the Error state (a failed computation) or stays as it was (a refused
+    /// call).
     pub enters_error_state: bool,
 }
 
+/// What a call on an instance returns: its result, or the failure to report.
 pub type Call<T = ()> = Result<T, Failure>;
 
 /// A refused call: Error, nothing changed.
@@ -136,10 +186,15 @@ pub type LogCallback = Option<Arc<dyn Fn(*mut c_void, &CStr, Status, &CStr, &str
 /// The host's logger and which categories are switched on.
 #[derive(Clone)]
 pub struct Logger {
+    /// The host's logging function (None: the host gave none).
     pub callback: LogCallback,
     /// The host's environment pointer (fmi2ComponentEnvironment, fmi3InstanceEnvironment).
     pub environment: *mut c_void,
+    /// Whether debug logging is on (loggingOn at instantiation; after SetDebugLogging, whether any category
+    /// is on).
     pub logging_on: bool,
+    /// One flag per entry of `LOG_CATEGORIES`, in its order: whether SetDebugLogging left the category on
+    /// (all on at first).
     pub categories: Vec<bool>,
 }
 
@@ -148,6 +203,7 @@ pub struct Logger {
 unsafe impl Send for Logger {}
 
 impl Logger {
+    /// A logger with every category on.
     pub fn new(callback: LogCallback, environment: *mut c_void, logging_on: bool) -> Logger {
         Logger { callback, environment, logging_on, categories: vec![true; LOG_CATEGORIES.len()] }
     }
@@ -164,6 +220,7 @@ impl Logger {
         }
     }
 
+    /// Passes a message to the host's logging function, if its category is enabled and the host gave one.
     pub fn log(&self, instance_name: &CString, status: Status, category: &str, message: &str) {
         if !self.enabled(category) {
             return;
@@ -175,18 +232,30 @@ impl Logger {
     }
 }
 
+/// One FMU instance: the unit, the mode in the calling sequence, the variable values, the model, the time
+/// and the host's logger.
 pub struct Instance {
     /// Which C ABI made the instance: the names in its messages.
     pub api: Api,
+    /// The instance name the host gave (NUL bytes replaced by spaces).
     pub name: CString,
+    /// The unit this is an instance of.
     pub unit: &'static UnitInfo,
+    /// The interface the instance was made for.
     pub kind: Kind,
+    /// The current mode of the calling sequence.
     pub mode: Mode,
+    /// Every variable's value, indexed by value reference.
     pub values: Vec<Value>,
+    /// The unit's model, which holds the dynamic state.
     pub model: Box<dyn Model>,
+    /// The instance's current time [s].
     pub time: f64,
+    /// The startTime the host gave (SetupExperiment, EnterInitializationMode) [s].
     pub start_time: f64,
+    /// The stopTime the host gave, if any [s].
     pub stop_time: Option<f64>,
+    /// The host's logger and the categories switched on.
     pub logger: Logger,
     /// The strings handed out by the last fmi2GetString (valid until the next call, FMI 2.0 Sec. 2.1.7).
     pub strings: Vec<CString>,
@@ -200,6 +269,8 @@ pub struct Instance {
     /// FMI 3.0 Co-Simulation: whether the master uses Event Mode and lets a step return early, and its
     /// intermediate-update callback (called at the events inside a step).
     pub event_mode_used: bool,
+    /// FMI 3.0 Co-Simulation: earlyReturnAllowed as the master gave it, kept only for a unit that
+    /// `returns_early`.
     pub early_return_allowed: bool,
     /// What the ABI's exports keep with the instance (FMI 3.0: the intermediate-update callback); this
     /// layer only holds it.
@@ -213,6 +284,8 @@ pub struct Instance {
 }
 
 impl Instance {
+    /// A new instance in Instantiated mode at time 0 [s], every variable at its start value, with a fresh
+    /// model; `resources` is the unzipped resources folder the host named, if any.
     pub fn new(api: Api, name: &str, unit: &'static UnitInfo, kind: Kind, logger: Logger, resources: Option<std::path::PathBuf>) -> Instance {
         Instance {
             api,
@@ -268,6 +341,8 @@ impl Instance {
         error(format!("{function} must not be called in {}; allowed in: {}", self.mode.name(self.api), modes.join(", ")))
     }
 
+    /// Refuses a function of the other interface (a Model Exchange function on a Co-Simulation instance, or
+    /// the reverse).
     pub fn check_kind(&self, function: &str, kind: Kind) -> Call {
         if self.kind == kind {
             return Ok(());
@@ -276,6 +351,8 @@ impl Instance {
         error(format!("{function} is a {what} function, but this instance was instantiated for the other interface"))
     }
 
+    /// Back to Instantiated (fmi2Reset, fmi3Reset): start values, a fresh model, time 0; the name, the
+    /// logger and what the host chose at instantiation stay.
     pub fn reset(&mut self) {
         self.mode = Mode::Instantiated;
         self.values = self.unit.start_values();
@@ -286,6 +363,8 @@ impl Instance {
         self.model_ready = false;
     }
 
+    /// Takes startTime and the optional stopTime [s] (fmi2SetupExperiment, fmi3EnterInitializationMode); the
+    /// instance's time starts at startTime. Refuses a start that is not finite or a stop before the start.
     pub fn setup_experiment(&mut self, start: f64, stop: Option<f64>) -> Call {
         if !start.is_finite() {
             return error(format!("{}: startTime = {start} is not finite", self.api.name("SetupExperiment")));
@@ -318,6 +397,9 @@ impl Instance {
         }
     }
 
+    /// fmi2ExitInitializationMode, fmi3ExitInitializationMode: builds the model's initial state from the
+    /// current values, then goes to Event Mode (Model Exchange, and FMI 3.0 Co-Simulation with eventModeUsed)
+    /// or to Step Complete (Step Mode).
     pub fn exit_initialization_mode(&mut self) -> Call {
         self.initialize_model(&self.api.name("ExitInitializationMode"))?;
         // FMI 3.0 Co-Simulation with Event Mode starts in Event Mode, as Model Exchange does.
@@ -372,6 +454,8 @@ impl Instance {
         Ok(())
     }
 
+    /// The values of the value references `vrs`, all of type `var_type`, with the outputs brought up to date
+    /// first (the getters of both standards); in Intermediate Update Mode only outputs can be read.
     pub fn get(&mut self, function: &str, vrs: &[u32], var_type: VarType) -> Call<Vec<Value>> {
         self.check_refs(function, vrs, var_type)?;
         if self.mode == Mode::IntermediateUpdate {
@@ -438,6 +522,7 @@ impl Instance {
         Ok(())
     }
 
+    /// Model Exchange: sets the time [s] (fmi2SetTime, fmi3SetTime); a time that is not finite is refused.
     pub fn set_time(&mut self, t: f64) -> Call {
         if !t.is_finite() {
             return error(format!("{}: time = {t} is not finite", self.api.name("SetTime")));
@@ -455,6 +540,8 @@ impl Instance {
         }
     }
 
+    /// Model Exchange: sets the continuous states (fmi2SetContinuousStates, fmi3SetContinuousStates); a wrong
+    /// count or a value that is not finite is refused.
     pub fn set_continuous_states(&mut self, x: &[f64]) -> Call {
         let f = self.api.name("SetContinuousStates");
         self.check_len(&f, "nx", x.len(), self.unit.n_states)?;
@@ -465,6 +552,8 @@ impl Instance {
         Ok(())
     }
 
+    /// Model Exchange: the continuous states, into `x`, one entry per state (fmi2GetContinuousStates,
+    /// fmi3GetContinuousStates).
     pub fn get_continuous_states(&mut self, x: &mut [f64]) -> Call {
         let f = self.api.name("GetContinuousStates");
         self.check_len(&f, "nx", x.len(), self.unit.n_states)?;
@@ -473,6 +562,8 @@ impl Instance {
         Ok(())
     }
 
+    /// Model Exchange: the derivatives of the continuous states, into `dx`, one entry per state
+    /// (fmi2GetDerivatives, fmi3GetContinuousStateDerivatives).
     pub fn get_derivatives(&mut self, dx: &mut [f64]) -> Call {
         let f = self.api.name("GetDerivatives");
         self.check_len(&f, "nx", dx.len(), self.unit.n_states)?;
@@ -481,6 +572,8 @@ impl Instance {
         Ok(())
     }
 
+    /// Model Exchange: the event indicators, into `z`, one entry per indicator (fmi2GetEventIndicators,
+    /// fmi3GetEventIndicators).
     pub fn get_event_indicators(&mut self, z: &mut [f64]) -> Call {
         let f = self.api.name("GetEventIndicators");
         self.check_len(&f, "ni", z.len(), self.unit.n_event_indicators)?;
@@ -514,6 +607,8 @@ impl Instance {
         z
     }
 
+    /// Model Exchange: the nominal values of the continuous states, into `x` (fmi2GetNominalsOfContinuousStates,
+    /// fmi3GetNominalsOfContinuousStates); 1.0 each until the model is initialized.
     pub fn get_nominals(&mut self, x: &mut [f64]) -> Call {
         self.check_len(&self.api.name("GetNominalsOfContinuousStates"), "nx", x.len(), self.unit.n_states)?;
         if self.model_ready {
@@ -545,6 +640,7 @@ impl Instance {
         restart
     }
 
+    /// Co-Simulation: one step from `t` by `h` [s] to its end (fmi2DoStep); `t` must be the instance's time.
     pub fn do_step(&mut self, t: f64, h: f64) -> Call {
         self.step(t, h, false).map(|_| ())
     }
@@ -605,6 +701,9 @@ impl Instance {
         state_format::write(self).map_err(|m| Failure { status: Status::Error, message: format!("FMU state not saved: {m}"), enters_error_state: false })
     }
 
+    /// Sets the instance to a saved state (fmi2SetFMUstate, fmi3SetFMUState): the model, the values, the mode
+    /// and the times. A state of the other interface, with an invalid mode, or that the model refuses is
+    /// refused, and nothing changes.
     pub fn restore(&mut self, bytes: &[u8]) -> Call {
         let s = state_format::read(self.unit, self.api, bytes).map_err(|m| Failure {
             status: Status::Error,
@@ -637,6 +736,7 @@ impl Instance {
         Ok(())
     }
 
+    /// Whether the model's state reflects the current parameters (a saved state records it).
     pub fn model_ready(&self) -> bool {
         self.model_ready
     }

@@ -12,17 +12,26 @@ pub(crate) mod uri;
 /// Sec. 2.2.3); fmi2Pending (5) is never returned.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Status {
+    /// The call did what was asked (fmi2OK, fmi3OK).
     Ok = 0,
+    /// The call did what was asked, but something is not right; the log says what (fmi2Warning, fmi3Warning).
     Warning = 1,
+    /// The call did not do what was asked, and the instance can go on (fmi2Discard, fmi3Discard); none of
+    /// this crate's calls returns it.
     Discard = 2,
+    /// The call was refused or failed (fmi2Error, fmi3Error); whether the instance is then in the Error state
+    /// is `instance::Failure::enters_error_state`.
     Error = 3,
+    /// The instance cannot go on (fmi2Fatal, fmi3Fatal): an internal error put it in the Fatal state.
     Fatal = 4,
 }
 
 /// Which standard's C ABI an instance was made through.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Api {
+    /// FMI 2.0: the fmi2 functions of `crate::fmi2`.
     Fmi2,
+    /// FMI 3.0: the fmi3 functions of `crate::fmi3`.
     Fmi3,
 }
 

@@ -45,16 +45,23 @@ fn call_for(c: fmi2Component, function: &'static str, kind: Option<Kind>, modes:
 // ---------------------------------------------------------------------------------------------------
 // Inquire version numbers, logging
 
+/// Returns "default": the functions use the types of the standard fmi2TypesPlatform.h. Implements
+/// fmi2GetTypesPlatform (FMI 2.0.4 Sec. 2.1.4); needs no instance.
 #[no_mangle]
 pub extern "C" fn fmi2GetTypesPlatform() -> *const c_char {
     c"default".as_ptr()
 }
 
+/// Returns "2.0", the version of the fmi2Functions.h header these functions follow. Implements fmi2GetVersion
+/// (FMI 2.0.4 Sec. 2.1.4); needs no instance.
 #[no_mangle]
 pub extern "C" fn fmi2GetVersion() -> *const c_char {
     c"2.0".as_ptr()
 }
 
+/// Switches the named log categories on or off, or all of them when `nCategories` is 0; a name that is not
+/// one of the unit's log categories refuses the whole call. fmi2SetDebugLogging (FMI 2.0.4 Sec. 2.1.5),
+/// allowed in every state but Fatal.
 #[no_mangle]
 pub unsafe extern "C" fn fmi2SetDebugLogging(
     c: fmi2Component,
@@ -95,6 +102,11 @@ pub unsafe extern "C" fn fmi2SetDebugLogging(
 // ---------------------------------------------------------------------------------------------------
 // Creation and destruction
 
+/// Makes an instance of the unit whose GUID is `fmuGUID`, for Model Exchange or Co-Simulation: fmi2Instantiate
+/// (FMI 2.0.4 Sec. 2.1.5). Returns NULL, with the reason sent to `functions->logger`, for a NULL or empty
+/// name, an unknown GUID, Model Exchange asked of a Co-Simulation-only unit, or an `fmuResourceLocation`
+/// that is not a `file:` URI of a directory (NULL is accepted: no resources); NULL `functions` gives NULL
+/// without a message. `visible` is ignored; the memory callbacks are not used.
 #[no_mangle]
 pub unsafe extern "C" fn fmi2Instantiate(
     instanceName: fmi2String,
@@ -169,6 +181,8 @@ pub unsafe extern "C" fn fmi2Instantiate(
     result.unwrap_or(std::ptr::null_mut())
 }
 
+/// Frees an instance made by fmi2Instantiate: fmi2FreeInstance (FMI 2.0.4 Sec. 2.1.5). NULL, or a pointer
+/// that is not a live instance of this library (already freed, or foreign), is ignored.
 #[no_mangle]
 pub unsafe extern "C" fn fmi2FreeInstance(c: fmi2Component) {
     if c.is_null() || !INSTANCES.unregister(c as usize) {
@@ -183,6 +197,9 @@ pub unsafe extern "C" fn fmi2FreeInstance(c: fmi2Component) {
 // ---------------------------------------------------------------------------------------------------
 // Initialization, termination, reset
 
+/// Takes the start time (the instance's time from now on) and, if defined, the stop time; the tolerance
+/// is ignored. fmi2SetupExperiment (FMI 2.0.4 Sec. 2.1.6), in Instantiated only; a start time that is not
+/// finite, or a stop time before it, is refused.
 #[no_mangle]
 pub unsafe extern "C" fn fmi2SetupExperiment(
     c: fmi2Component,
@@ -197,6 +214,8 @@ pub unsafe extern "C" fn fmi2SetupExperiment(
     })
 }
 
+/// Moves from Instantiated to Initialization Mode; nothing is computed yet. fmi2EnterInitializationMode
+/// (FMI 2.0.4 Sec. 2.1.6).
 #[no_mangle]
 pub unsafe extern "C" fn fmi2EnterInitializationMode(c: fmi2Component) -> fmi2Status {
     call(c, "fmi2EnterInitializationMode", allowed::ENTER_INITIALIZATION, |inst| {
@@ -205,11 +224,17 @@ pub unsafe extern "C" fn fmi2EnterInitializationMode(c: fmi2Component) -> fmi2St
     })
 }
 
+/// Builds the model's initial state from the values set so far and computes the outputs, then enters
+/// Event Mode (Model Exchange) or Step Complete (Co-Simulation): fmi2ExitInitializationMode (FMI 2.0.4
+/// Sec. 2.1.6), in Initialization Mode only. A model that cannot be initialized puts the instance in the
+/// Error state.
 #[no_mangle]
 pub unsafe extern "C" fn fmi2ExitInitializationMode(c: fmi2Component) -> fmi2Status {
     call(c, "fmi2ExitInitializationMode", allowed::EXIT_INITIALIZATION, |inst| inst.exit_initialization_mode())
 }
 
+/// Enters Terminated from Event Mode, Continuous-Time Mode or Step Complete; the values can still be read
+/// there. fmi2Terminate (FMI 2.0.4 Sec. 2.1.6).
 #[no_mangle]
 pub unsafe extern "C" fn fmi2Terminate(c: fmi2Component) -> fmi2Status {
     call(c, "fmi2Terminate", allowed::TERMINATE, |inst| {
@@ -218,6 +243,8 @@ pub unsafe extern "C" fn fmi2Terminate(c: fmi2Component) -> fmi2Status {
     })
 }
 
+/// Returns the instance to Instantiated: start values, a new model, time 0 and no stop time; the logging
+/// settings stay. fmi2Reset (FMI 2.0.4 Sec. 2.1.6), allowed in every state but Fatal, the Error state included.
 #[no_mangle]
 pub unsafe extern "C" fn fmi2Reset(c: fmi2Component) -> fmi2Status {
     call(c, "fmi2Reset", allowed::ANY_LIVE, |inst| {
@@ -254,24 +281,35 @@ unsafe fn get_into<T>(
     })
 }
 
+/// The values of the Real variables `vr` into `value`, with the outputs brought up to date first (in
+/// Initialization Mode the model is built from the values set so far). fmi2GetReal (FMI 2.0.4 Sec. 2.1.7),
+/// allowed from Initialization Mode on, also in Terminated and Error; an unknown or non-Real reference
+/// refuses the call.
 #[no_mangle]
 pub unsafe extern "C" fn fmi2GetReal(c: fmi2Component, vr: *const fmi2ValueReference, nvr: usize, value: *mut fmi2Real) -> fmi2Status {
     // SAFETY: the host's arguments of this FMI function, passed on as they came (FMI 2.0 Sec. 2.1).
     unsafe { get_into(c, "fmi2GetReal", vr, nvr, value, VarType::Real, |v, _| v.as_real()) }
 }
 
+/// The values of the Integer variables `vr` into `value`: fmi2GetInteger (FMI 2.0.4 Sec. 2.1.7), with the
+/// outputs, modes and checks of fmi2GetReal.
 #[no_mangle]
 pub unsafe extern "C" fn fmi2GetInteger(c: fmi2Component, vr: *const fmi2ValueReference, nvr: usize, value: *mut fmi2Integer) -> fmi2Status {
     // SAFETY: the host's arguments of this FMI function, passed on as they came (FMI 2.0 Sec. 2.1).
     unsafe { get_into(c, "fmi2GetInteger", vr, nvr, value, VarType::Integer, |v, _| if let Value::Integer(i) = v { *i } else { 0 }) }
 }
 
+/// The values of the Boolean variables `vr` into `value`, as fmi2True or fmi2False: fmi2GetBoolean (FMI 2.0.4
+/// Sec. 2.1.7), with the outputs, modes and checks of fmi2GetReal.
 #[no_mangle]
 pub unsafe extern "C" fn fmi2GetBoolean(c: fmi2Component, vr: *const fmi2ValueReference, nvr: usize, value: *mut fmi2Boolean) -> fmi2Status {
     // SAFETY: the host's arguments of this FMI function, passed on as they came (FMI 2.0 Sec. 2.1).
     unsafe { get_into(c, "fmi2GetBoolean", vr, nvr, value, VarType::Boolean, |v, _| if let Value::Boolean(true) = v { fmi2True } else { fmi2False }) }
 }
 
+/// Pointers to the values of the String variables `vr` into `value`: fmi2GetString (FMI 2.0.4 Sec. 2.1.7),
+/// with the modes and checks of fmi2GetReal. The instance holds the strings until the next fmi2GetString
+/// or fmi2FreeInstance; a NUL inside a value is passed as a space.
 #[no_mangle]
 pub unsafe extern "C" fn fmi2GetString(c: fmi2Component, vr: *const fmi2ValueReference, nvr: usize, value: *mut fmi2String) -> fmi2Status {
     call(c, "fmi2GetString", allowed::GET, |inst| {
@@ -314,24 +352,34 @@ unsafe fn set_from<T: Copy>(
     })
 }
 
+/// Sets the Real variables `vr` to `value`, all or none: fmi2SetReal (FMI 2.0.4 Sec. 2.1.7). Inputs can be
+/// set, parameters only before fmi2ExitInitializationMode, in Continuous-Time Mode only continuous inputs;
+/// a value that is not finite or lies outside the variable's min/max refuses the call.
 #[no_mangle]
 pub unsafe extern "C" fn fmi2SetReal(c: fmi2Component, vr: *const fmi2ValueReference, nvr: usize, value: *const fmi2Real) -> fmi2Status {
     // SAFETY: the host's arguments of this FMI function, passed on as they came (FMI 2.0 Sec. 2.1).
     unsafe { set_from(c, "fmi2SetReal", allowed::SET_REAL, vr, nvr, value, VarType::Real, Value::Real) }
 }
 
+/// Sets the Integer variables `vr` to `value`, all or none: fmi2SetInteger (FMI 2.0.4 Sec. 2.1.7), with the
+/// reference and causality checks of fmi2SetReal; not allowed in Continuous-Time Mode.
 #[no_mangle]
 pub unsafe extern "C" fn fmi2SetInteger(c: fmi2Component, vr: *const fmi2ValueReference, nvr: usize, value: *const fmi2Integer) -> fmi2Status {
     // SAFETY: the host's arguments of this FMI function, passed on as they came (FMI 2.0 Sec. 2.1).
     unsafe { set_from(c, "fmi2SetInteger", allowed::SET_OTHER, vr, nvr, value, VarType::Integer, Value::Integer) }
 }
 
+/// Sets the Boolean variables `vr` (any value other than fmi2False is true), all or none: fmi2SetBoolean
+/// (FMI 2.0.4 Sec. 2.1.7), with the reference and causality checks of fmi2SetReal; not allowed in
+/// Continuous-Time Mode.
 #[no_mangle]
 pub unsafe extern "C" fn fmi2SetBoolean(c: fmi2Component, vr: *const fmi2ValueReference, nvr: usize, value: *const fmi2Boolean) -> fmi2Status {
     // SAFETY: the host's arguments of this FMI function, passed on as they came (FMI 2.0 Sec. 2.1).
     unsafe { set_from(c, "fmi2SetBoolean", allowed::SET_OTHER, vr, nvr, value, VarType::Boolean, |b| Value::Boolean(b != fmi2False)) }
 }
 
+/// Sets the String variables `vr` to copies of the strings in `value`, all or none: fmi2SetString (FMI 2.0.4
+/// Sec. 2.1.7), with the checks of fmi2SetInteger; a NULL or non-UTF-8 string refuses the call.
 #[no_mangle]
 pub unsafe extern "C" fn fmi2SetString(c: fmi2Component, vr: *const fmi2ValueReference, nvr: usize, value: *const fmi2String) -> fmi2Status {
     call(c, "fmi2SetString", allowed::SET_OTHER, |inst| {
@@ -351,29 +399,41 @@ pub unsafe extern "C" fn fmi2SetString(c: fmi2Component, vr: *const fmi2ValueRef
 // ---------------------------------------------------------------------------------------------------
 // FMU state: get, set, free, serialize
 
+/// Saves the instance (values, mode, times and the model's state) into `*FMUstate`: into the state already
+/// there if it is a live state of this library, else into a new one. fmi2GetFMUstate (FMI 2.0.4 Sec. 2.1.8),
+/// allowed in every state but Fatal; a model that cannot save itself gives fmi2Error.
 #[no_mangle]
 pub unsafe extern "C" fn fmi2GetFMUstate(c: fmi2Component, FMUstate: *mut fmi2FMUstate) -> fmi2Status {
     // SAFETY: the host's output argument (`state_calls::get` checks NULL).
     call(c, "fmi2GetFMUstate", allowed::ANY_LIVE, |inst| unsafe { state_calls::get(&STATES, inst, FMUstate, "fmi2GetFMUstate", "FMUstate") })
 }
 
+/// Restores the instance from a live state of this library: fmi2SetFMUstate (FMI 2.0.4 Sec. 2.1.8), allowed
+/// in every state but Fatal, so also a way out of the Error state. A freed or foreign pointer, or a state of
+/// another unit or of the other interface, is refused and the instance left as it was.
 #[no_mangle]
 pub unsafe extern "C" fn fmi2SetFMUstate(c: fmi2Component, FMUstate: fmi2FMUstate) -> fmi2Status {
     call(c, "fmi2SetFMUstate", allowed::ANY_LIVE, |inst| state_calls::set(&STATES, inst, FMUstate, "fmi2SetFMUstate"))
 }
 
+/// Frees the state `*FMUstate` and sets `*FMUstate` to NULL; a NULL `*FMUstate` is nothing to free.
+/// fmi2FreeFMUstate (FMI 2.0.4 Sec. 2.1.8). A state passed itself instead of its address is freed too, with
+/// a warning in the log, and the call still returns fmi2OK; a `*FMUstate` that is not live is refused.
 #[no_mangle]
 pub unsafe extern "C" fn fmi2FreeFMUstate(c: fmi2Component, FMUstate: *mut fmi2FMUstate) -> fmi2Status {
     // SAFETY: the host's argument, as `state_calls::free` requires.
     call(c, "fmi2FreeFMUstate", allowed::ANY_LIVE, |inst| unsafe { state_calls::free(&STATES, inst, FMUstate, "fmi2FreeFMUstate", "FMUstate") })
 }
 
+/// The number of bytes of a live state into `*size`: fmi2SerializedFMUstateSize (FMI 2.0.4 Sec. 2.1.8).
 #[no_mangle]
 pub unsafe extern "C" fn fmi2SerializedFMUstateSize(c: fmi2Component, FMUstate: fmi2FMUstate, size: *mut usize) -> fmi2Status {
     // SAFETY: the host's output argument (NULL is refused inside).
     call(c, "fmi2SerializedFMUstateSize", allowed::ANY_LIVE, |_| unsafe { state_calls::size(&STATES, FMUstate, size, "fmi2SerializedFMUstateSize") })
 }
 
+/// Copies the bytes of a live state into `serializedState`: fmi2SerializeFMUstate (FMI 2.0.4 Sec. 2.1.8).
+/// Refused when `size` is smaller than fmi2SerializedFMUstateSize gives.
 #[no_mangle]
 pub unsafe extern "C" fn fmi2SerializeFMUstate(c: fmi2Component, FMUstate: fmi2FMUstate, serializedState: *mut fmi2Byte, size: usize) -> fmi2Status {
     const F: &str = "fmi2SerializeFMUstate";
@@ -381,6 +441,9 @@ pub unsafe extern "C" fn fmi2SerializeFMUstate(c: fmi2Component, FMUstate: fmi2F
     call(c, F, allowed::ANY_LIVE, |_| unsafe { state_calls::serialize(&STATES, FMUstate, serializedState as *mut u8, size, F, "fmi2SerializedFMUstateSize") })
 }
 
+/// Makes a new state from the `size` bytes at `serializedState` and puts it into `*FMUstate`:
+/// fmi2DeSerializeFMUstate (FMI 2.0.4 Sec. 2.1.8). Refused unless the bytes are a state of this unit saved
+/// through FMI 2.0 (format version, checksum, model identifier and GUID are checked).
 #[no_mangle]
 pub unsafe extern "C" fn fmi2DeSerializeFMUstate(
     c: fmi2Component,
@@ -393,6 +456,8 @@ pub unsafe extern "C" fn fmi2DeSerializeFMUstate(
     call(c, F, allowed::ANY_LIVE, |inst| unsafe { state_calls::deserialize(&STATES, inst, serializedState as *const u8, size, FMUstate, F, "FMUstate") })
 }
 
+/// fmi2GetDirectionalDerivative (FMI 2.0.4 Sec. 2.1.9) is not supported (providesDirectionalDerivative is
+/// false): always fmi2Error, with that reason in the log.
 #[no_mangle]
 pub unsafe extern "C" fn fmi2GetDirectionalDerivative(
     c: fmi2Component,
@@ -415,6 +480,8 @@ fn me(c: fmi2Component, function: &'static str, modes: u32, f: impl FnOnce(&mut 
     call_for(c, function, Some(Kind::ModelExchange), modes, f)
 }
 
+/// Enters Event Mode from Continuous-Time Mode (or stays in it): fmi2EnterEventMode (FMI 2.0.4 Sec. 3.2.2),
+/// Model Exchange only.
 #[no_mangle]
 pub unsafe extern "C" fn fmi2EnterEventMode(c: fmi2Component) -> fmi2Status {
     me(c, "fmi2EnterEventMode", allowed::ENTER_EVENT_MODE, |inst| {
@@ -423,6 +490,10 @@ pub unsafe extern "C" fn fmi2EnterEventMode(c: fmi2Component) -> fmi2Status {
     })
 }
 
+/// One event iteration: the model accepts the current state as that of the event, and
+/// `valuesOfContinuousStatesChanged` says whether the integrator must restart (the model's branch or states
+/// changed, or an input was set in this Event Mode); the other flags are false and no time event is
+/// announced. fmi2NewDiscreteStates (FMI 2.0.4 Sec. 3.2.2), Model Exchange, Event Mode only.
 #[no_mangle]
 pub unsafe extern "C" fn fmi2NewDiscreteStates(c: fmi2Component, fmi2eventInfo: *mut fmi2EventInfo) -> fmi2Status {
     me(c, "fmi2NewDiscreteStates", allowed::NEW_DISCRETE_STATES, |inst| {
@@ -434,6 +505,8 @@ pub unsafe extern "C" fn fmi2NewDiscreteStates(c: fmi2Component, fmi2eventInfo: 
     })
 }
 
+/// Moves from Event Mode to Continuous-Time Mode: fmi2EnterContinuousTimeMode (FMI 2.0.4 Sec. 3.2.2), Model
+/// Exchange only.
 #[no_mangle]
 pub unsafe extern "C" fn fmi2EnterContinuousTimeMode(c: fmi2Component) -> fmi2Status {
     me(c, "fmi2EnterContinuousTimeMode", allowed::ENTER_CONTINUOUS_TIME, |inst| {
@@ -442,6 +515,10 @@ pub unsafe extern "C" fn fmi2EnterContinuousTimeMode(c: fmi2Component) -> fmi2St
     })
 }
 
+/// Tells the model an integrator step is complete. `*enterEventMode` is true when an event indicator has
+/// changed sign since the last event or completed step (for example after an input set in Continuous-Time
+/// Mode); `*terminateSimulation` is always false. fmi2CompletedIntegratorStep (FMI 2.0.4 Sec. 3.2.2), Model
+/// Exchange, Continuous-Time Mode only.
 #[no_mangle]
 pub unsafe extern "C" fn fmi2CompletedIntegratorStep(
     c: fmi2Component,
@@ -463,11 +540,15 @@ pub unsafe extern "C" fn fmi2CompletedIntegratorStep(
     })
 }
 
+/// Sets the time of the instance and its model; a time that is not finite is refused. fmi2SetTime
+/// (FMI 2.0.4 Sec. 3.2.1), Model Exchange, in Event Mode or Continuous-Time Mode.
 #[no_mangle]
 pub unsafe extern "C" fn fmi2SetTime(c: fmi2Component, time: fmi2Real) -> fmi2Status {
     me(c, "fmi2SetTime", allowed::SET_TIME, |inst| inst.set_time(time))
 }
 
+/// Sets the model's continuous states to `x`; `nx` must be the unit's number of states and every value
+/// finite. fmi2SetContinuousStates (FMI 2.0.4 Sec. 3.2.1), Model Exchange, Continuous-Time Mode only.
 #[no_mangle]
 pub unsafe extern "C" fn fmi2SetContinuousStates(c: fmi2Component, x: *const fmi2Real, nx: usize) -> fmi2Status {
     me(c, "fmi2SetContinuousStates", allowed::SET_CONTINUOUS_STATES, |inst| {
@@ -477,6 +558,9 @@ pub unsafe extern "C" fn fmi2SetContinuousStates(c: fmi2Component, x: *const fmi
     })
 }
 
+/// The derivatives of the continuous states at the current time, states and inputs, into `derivatives`;
+/// `nx` must be the unit's number of states. fmi2GetDerivatives (FMI 2.0.4 Sec. 3.2.2), Model Exchange, from
+/// Initialization Mode on (also in Terminated and Error).
 #[no_mangle]
 pub unsafe extern "C" fn fmi2GetDerivatives(c: fmi2Component, derivatives: *mut fmi2Real, nx: usize) -> fmi2Status {
     me(c, "fmi2GetDerivatives", allowed::GET_DERIVATIVES, |inst| {
@@ -486,6 +570,9 @@ pub unsafe extern "C" fn fmi2GetDerivatives(c: fmi2Component, derivatives: *mut 
     })
 }
 
+/// The event indicators at the current time, states and inputs, into `eventIndicators`; `ni` must be the
+/// unit's number of event indicators. fmi2GetEventIndicators (FMI 2.0.4 Sec. 3.2.2), Model Exchange, in the
+/// modes of fmi2GetDerivatives.
 #[no_mangle]
 pub unsafe extern "C" fn fmi2GetEventIndicators(c: fmi2Component, eventIndicators: *mut fmi2Real, ni: usize) -> fmi2Status {
     me(c, "fmi2GetEventIndicators", allowed::GET_DERIVATIVES, |inst| {
@@ -495,6 +582,8 @@ pub unsafe extern "C" fn fmi2GetEventIndicators(c: fmi2Component, eventIndicator
     })
 }
 
+/// The model's continuous states into `x`; `nx` must be the unit's number of states.
+/// fmi2GetContinuousStates (FMI 2.0.4 Sec. 3.2.2), Model Exchange, in the modes of fmi2GetDerivatives.
 #[no_mangle]
 pub unsafe extern "C" fn fmi2GetContinuousStates(c: fmi2Component, x: *mut fmi2Real, nx: usize) -> fmi2Status {
     me(c, "fmi2GetContinuousStates", allowed::GET_DERIVATIVES, |inst| {
@@ -504,6 +593,9 @@ pub unsafe extern "C" fn fmi2GetContinuousStates(c: fmi2Component, x: *mut fmi2R
     })
 }
 
+/// The nominal values of the continuous states into `x_nominal`: 1.0 each until the model's initial state
+/// is built. fmi2GetNominalsOfContinuousStates (FMI 2.0.4 Sec. 3.2.2), Model Exchange, from Instantiated on
+/// (also in Terminated and Error).
 #[no_mangle]
 pub unsafe extern "C" fn fmi2GetNominalsOfContinuousStates(c: fmi2Component, x_nominal: *mut fmi2Real, nx: usize) -> fmi2Status {
     me(c, "fmi2GetNominalsOfContinuousStates", allowed::GET_NOMINALS, |inst| {
@@ -520,6 +612,10 @@ fn cs(c: fmi2Component, function: &'static str, modes: u32, f: impl FnOnce(&mut 
     call_for(c, function, Some(Kind::CoSimulation), modes, f)
 }
 
+/// Passes derivatives (order 1 or higher) of Real inputs to the model; all are checked before any is
+/// taken. fmi2SetRealInputDerivatives (FMI 2.0.4 Sec. 4.2.1), Co-Simulation, in Instantiated, Initialization
+/// Mode or Step Complete; refused by a unit with canInterpolateInputs false, and for a variable that is not
+/// an input.
 #[no_mangle]
 pub unsafe extern "C" fn fmi2SetRealInputDerivatives(
     c: fmi2Component,
@@ -538,6 +634,8 @@ pub unsafe extern "C" fn fmi2SetRealInputDerivatives(
     })
 }
 
+/// fmi2GetRealOutputDerivatives (FMI 2.0.4 Sec. 4.2.1) is not supported (maxOutputDerivativeOrder is 0):
+/// always fmi2Error on a Co-Simulation instance.
 #[no_mangle]
 pub unsafe extern "C" fn fmi2GetRealOutputDerivatives(
     c: fmi2Component,
@@ -551,6 +649,10 @@ pub unsafe extern "C" fn fmi2GetRealOutputDerivatives(
     })
 }
 
+/// Advances the model from `currentCommunicationPoint` by `communicationStepSize`, synchronously:
+/// fmi2DoStep (FMI 2.0.4 Sec. 4.2.2), Co-Simulation, Step Complete only. The step must be finite and
+/// positive and start at the instance's time; a step the model cannot complete gives fmi2Error and puts
+/// the instance in the Error state. The model's events go to the log under logEvents.
 #[no_mangle]
 pub unsafe extern "C" fn fmi2DoStep(
     c: fmi2Component,
@@ -561,6 +663,8 @@ pub unsafe extern "C" fn fmi2DoStep(
     cs(c, "fmi2DoStep", allowed::DO_STEP, |inst| inst.do_step(currentCommunicationPoint, communicationStepSize))
 }
 
+/// fmi2CancelStep (FMI 2.0.4 Sec. 4.2.2): always fmi2Error, since fmi2DoStep is synchronous and there is
+/// never a step to cancel.
 #[no_mangle]
 pub unsafe extern "C" fn fmi2CancelStep(c: fmi2Component) -> fmi2Status {
     cs(c, "fmi2CancelStep", allowed::ANY_LIVE, |_| error("fmi2CancelStep: fmi2DoStep is synchronous, there is never a step to cancel"))
@@ -570,11 +674,16 @@ fn status_kind_error(function: &str, s: fmi2StatusKind) -> Call {
     error(format!("{function}: status kind {s} is not available (fmi2DoStep never returns fmi2Pending or fmi2Discard)"))
 }
 
+/// fmi2GetStatus (FMI 2.0.4 Sec. 4.2.3): refused with fmi2Error for every status kind, since fmi2DoStep never
+/// returns fmi2Pending. Co-Simulation, in Step Complete or Terminated.
 #[no_mangle]
 pub unsafe extern "C" fn fmi2GetStatus(c: fmi2Component, s: fmi2StatusKind, _value: *mut fmi2Status) -> fmi2Status {
     cs(c, "fmi2GetStatus", allowed::CS_STATUS, |_| status_kind_error("fmi2GetStatus", s))
 }
 
+/// For fmi2LastSuccessfulTime, the instance's time (the end of the last completed step) into `*value`; any
+/// other status kind is refused. fmi2GetRealStatus (FMI 2.0.4 Sec. 4.2.3), Co-Simulation, in Step Complete
+/// or Terminated.
 #[no_mangle]
 pub unsafe extern "C" fn fmi2GetRealStatus(c: fmi2Component, s: fmi2StatusKind, value: *mut fmi2Real) -> fmi2Status {
     cs(c, "fmi2GetRealStatus", allowed::CS_STATUS, |inst| {
@@ -588,11 +697,16 @@ pub unsafe extern "C" fn fmi2GetRealStatus(c: fmi2Component, s: fmi2StatusKind, 
     })
 }
 
+/// fmi2GetIntegerStatus (FMI 2.0.4 Sec. 4.2.3): no status kind has an Integer value, so it is always
+/// refused with fmi2Error. Co-Simulation, in Step Complete or Terminated.
 #[no_mangle]
 pub unsafe extern "C" fn fmi2GetIntegerStatus(c: fmi2Component, s: fmi2StatusKind, _value: *mut fmi2Integer) -> fmi2Status {
     cs(c, "fmi2GetIntegerStatus", allowed::CS_STATUS, |_| status_kind_error("fmi2GetIntegerStatus", s))
 }
 
+/// For fmi2Terminated, fmi2False into `*value` (the unit never asks to end the simulation); any other
+/// status kind is refused. fmi2GetBooleanStatus (FMI 2.0.4 Sec. 4.2.3), Co-Simulation, in Step Complete or
+/// Terminated.
 #[no_mangle]
 pub unsafe extern "C" fn fmi2GetBooleanStatus(c: fmi2Component, s: fmi2StatusKind, value: *mut fmi2Boolean) -> fmi2Status {
     cs(c, "fmi2GetBooleanStatus", allowed::CS_STATUS, |_| {
@@ -606,6 +720,8 @@ pub unsafe extern "C" fn fmi2GetBooleanStatus(c: fmi2Component, s: fmi2StatusKin
     })
 }
 
+/// fmi2GetStringStatus (FMI 2.0.4 Sec. 4.2.3): always refused with fmi2Error, since fmi2PendingStatus needs
+/// an asynchronous step. Co-Simulation, in Step Complete or Terminated.
 #[no_mangle]
 pub unsafe extern "C" fn fmi2GetStringStatus(c: fmi2Component, s: fmi2StatusKind, _value: *mut fmi2String) -> fmi2Status {
     cs(c, "fmi2GetStringStatus", allowed::CS_STATUS, |_| status_kind_error("fmi2GetStringStatus", s))

@@ -60,11 +60,16 @@ unsafe fn put<T>(p: *mut T, value: T, function: &str, name: &str) -> Call {
 // ---------------------------------------------------------------------------------------------------
 // Inquire version numbers, logging
 
+/// Returns "3.0", the version of the fmi3Functions.h header these functions follow. Implements fmi3GetVersion
+/// (FMI 3.0 Sec. 2.2); needs no instance.
 #[no_mangle]
 pub extern "C" fn fmi3GetVersion() -> *const c_char {
     c"3.0".as_ptr()
 }
 
+/// Switches the named log categories on or off, or all of them when `nCategories` is 0; a name that is not
+/// one of the unit's log categories refuses the whole call. fmi3SetDebugLogging (FMI 3.0 Sec. 2.3.1),
+/// allowed in every state but Fatal and Intermediate Update Mode.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3SetDebugLogging(
     c: fmi3Instance,
@@ -176,6 +181,10 @@ unsafe fn instantiate(
     result.unwrap_or(std::ptr::null_mut())
 }
 
+/// Makes a Model Exchange instance of the unit whose instantiationToken is `instantiationToken`:
+/// fmi3InstantiateModelExchange (FMI 3.0 Sec. 2.3.1). Returns NULL, with the reason sent to `logMessage`,
+/// for a NULL or empty name, an unknown token (an FMI 2.0 GUID is named as such), a Co-Simulation-only
+/// unit, or a `resourcePath` that is not a directory (NULL is accepted: no resources). `visible` is ignored.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3InstantiateModelExchange(
     instanceName: fmi3String,
@@ -202,6 +211,10 @@ pub unsafe extern "C" fn fmi3InstantiateModelExchange(
     }
 }
 
+/// Makes a Co-Simulation instance, with the checks of fmi3InstantiateModelExchange:
+/// fmi3InstantiateCoSimulation (FMI 3.0 Sec. 2.3.1). `eventModeUsed`, `earlyReturnAllowed` and the
+/// intermediate-update callback are kept only for a unit with events inside a step (`returns_early`), and
+/// ignored otherwise; `visible` and the required intermediate variables are ignored.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3InstantiateCoSimulation(
     instanceName: fmi3String,
@@ -240,6 +253,8 @@ pub unsafe extern "C" fn fmi3InstantiateCoSimulation(
     }
 }
 
+/// fmi3InstantiateScheduledExecution (FMI 3.0 Sec. 2.3.1): always NULL, with a message to `logMessage`
+/// that the units offer Model Exchange and Co-Simulation only.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3InstantiateScheduledExecution(
     instanceName: fmi3String,
@@ -268,6 +283,9 @@ pub unsafe extern "C" fn fmi3InstantiateScheduledExecution(
     std::ptr::null_mut()
 }
 
+/// Frees an instance made by an fmi3Instantiate function: fmi3FreeInstance (FMI 3.0 Sec. 2.3.1). NULL, or
+/// a pointer that is not a live FMI 3.0 instance of this library (freed, foreign, or made through FMI 2.0),
+/// is ignored.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3FreeInstance(c: fmi3Instance) {
     if c.is_null() || !INSTANCES.unregister(c as usize) {
@@ -282,6 +300,9 @@ pub unsafe extern "C" fn fmi3FreeInstance(c: fmi3Instance) {
 // ---------------------------------------------------------------------------------------------------
 // Initialization, events, termination, reset
 
+/// Takes the start time (the instance's time from now on) and, if defined, the stop time, and enters
+/// Initialization Mode; the tolerance is ignored. fmi3EnterInitializationMode (FMI 3.0 Sec. 2.3.2), in
+/// Instantiated only; a start time that is not finite, or a stop time before it, is refused.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3EnterInitializationMode(
     c: fmi3Instance,
@@ -298,11 +319,18 @@ pub unsafe extern "C" fn fmi3EnterInitializationMode(
     })
 }
 
+/// Builds the model's initial state from the values set so far and computes the outputs, then enters
+/// Event Mode (Model Exchange, and Co-Simulation with Event Mode used) or Step Mode:
+/// fmi3ExitInitializationMode (FMI 3.0 Sec. 2.3.3). A model that cannot be initialized puts the instance
+/// in the Error state.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3ExitInitializationMode(c: fmi3Instance) -> fmi3Status {
     call(c, "fmi3ExitInitializationMode", allowed::EXIT_INITIALIZATION, |inst| inst.exit_initialization_mode())
 }
 
+/// Enters Event Mode from Continuous-Time Mode (Model Exchange) or Step Mode (Co-Simulation):
+/// fmi3EnterEventMode (FMI 3.0 Secs. 3.2.1 and 4.2.1). A Co-Simulation instance without Event Mode
+/// (instantiated with eventModeUsed false, or a unit with no events inside a step) is refused with the reason.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3EnterEventMode(c: fmi3Instance) -> fmi3Status {
     const F: &str = "fmi3EnterEventMode";
@@ -317,6 +345,8 @@ pub unsafe extern "C" fn fmi3EnterEventMode(c: fmi3Instance) -> fmi3Status {
     })
 }
 
+/// Enters Terminated from Event Mode, Continuous-Time Mode or Step Mode; the values can still be read
+/// there. fmi3Terminate (FMI 3.0 Sec. 2.3.4).
 #[no_mangle]
 pub unsafe extern "C" fn fmi3Terminate(c: fmi3Instance) -> fmi3Status {
     call(c, "fmi3Terminate", allowed::TERMINATE, |inst| {
@@ -325,6 +355,9 @@ pub unsafe extern "C" fn fmi3Terminate(c: fmi3Instance) -> fmi3Status {
     })
 }
 
+/// Returns the instance to Instantiated: start values, a new model, time 0 and no stop time; the logging
+/// settings and the Co-Simulation options given at instantiation stay. fmi3Reset (FMI 3.0 Sec. 2.3.1),
+/// allowed in every state but Fatal and Intermediate Update Mode, the Error state included.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3Reset(c: fmi3Instance) -> fmi3Status {
     call(c, "fmi3Reset", allowed::ANY_LIVE, |inst| {
@@ -426,6 +459,10 @@ unsafe fn other_type(
     })
 }
 
+/// The values of the Float64 variables `vr` into `values`, with the outputs brought up to date first (in
+/// Initialization Mode the model is built from the values set so far). fmi3GetFloat64 (FMI 3.0 Sec. 2.2),
+/// from Initialization Mode on, also in Terminated, Error and (outputs only) Intermediate Update Mode;
+/// `nValues` must equal `nvr`, and an unknown or non-Float64 reference refuses the call.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3GetFloat64(
     c: fmi3Instance,
@@ -438,6 +475,8 @@ pub unsafe extern "C" fn fmi3GetFloat64(
     unsafe { get_into(c, "fmi3GetFloat64", vr, nvr, values, nValues, VarType::Real, Value::as_real) }
 }
 
+/// The values of the Int32 variables `vr` into `values`: fmi3GetInt32 (FMI 3.0 Sec. 2.2), with the outputs,
+/// modes and checks of fmi3GetFloat64.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3GetInt32(
     c: fmi3Instance,
@@ -450,6 +489,8 @@ pub unsafe extern "C" fn fmi3GetInt32(
     unsafe { get_into(c, "fmi3GetInt32", vr, nvr, values, nValues, VarType::Integer, |v| if let Value::Integer(i) = v { *i } else { 0 }) }
 }
 
+/// The values of the Boolean variables `vr` into `values`: fmi3GetBoolean (FMI 3.0 Sec. 2.2), with the
+/// outputs, modes and checks of fmi3GetFloat64.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3GetBoolean(
     c: fmi3Instance,
@@ -462,6 +503,9 @@ pub unsafe extern "C" fn fmi3GetBoolean(
     unsafe { get_into(c, "fmi3GetBoolean", vr, nvr, values, nValues, VarType::Boolean, |v| matches!(v, Value::Boolean(true))) }
 }
 
+/// Pointers to the values of the String variables `vr` into `values`: fmi3GetString (FMI 3.0 Sec. 2.2), with
+/// the modes and checks of fmi3GetFloat64. The instance holds the strings until the next fmi3GetString or
+/// fmi3FreeInstance; a NUL inside a value is passed as a space.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3GetString(
     c: fmi3Instance,
@@ -486,6 +530,9 @@ pub unsafe extern "C" fn fmi3GetString(
     })
 }
 
+/// Sets the Float64 variables `vr` to `values`, all or none: fmi3SetFloat64 (FMI 3.0 Sec. 2.2). Inputs can be
+/// set, parameters only before fmi3ExitInitializationMode, in Continuous-Time Mode only continuous inputs;
+/// `nValues` must equal `nvr`, and a value that is not finite or lies outside min/max refuses the call.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3SetFloat64(
     c: fmi3Instance,
@@ -498,6 +545,8 @@ pub unsafe extern "C" fn fmi3SetFloat64(
     unsafe { set_from(c, "fmi3SetFloat64", allowed::SET_REAL, vr, nvr, values, nValues, VarType::Real, Value::Real) }
 }
 
+/// Sets the Int32 variables `vr` to `values`, all or none: fmi3SetInt32 (FMI 3.0 Sec. 2.2), with the
+/// reference, count and causality checks of fmi3SetFloat64; not allowed in Continuous-Time Mode.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3SetInt32(
     c: fmi3Instance,
@@ -510,6 +559,8 @@ pub unsafe extern "C" fn fmi3SetInt32(
     unsafe { set_from(c, "fmi3SetInt32", allowed::SET_OTHER, vr, nvr, values, nValues, VarType::Integer, Value::Integer) }
 }
 
+/// Sets the Boolean variables `vr`, all or none; each value is read as a byte, any byte but 0 being true.
+/// fmi3SetBoolean (FMI 3.0 Sec. 2.2), with the checks of fmi3SetInt32.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3SetBoolean(
     c: fmi3Instance,
@@ -524,6 +575,8 @@ pub unsafe extern "C" fn fmi3SetBoolean(
     unsafe { set_from(c, "fmi3SetBoolean", allowed::SET_OTHER, vr, nvr, values.cast::<u8>(), nValues, VarType::Boolean, |b| Value::Boolean(b != 0)) }
 }
 
+/// Sets the String variables `vr` to copies of the strings in `values`, all or none: fmi3SetString
+/// (FMI 3.0 Sec. 2.2), with the checks of fmi3SetInt32; a NULL or non-UTF-8 string refuses the call.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3SetString(
     c: fmi3Instance,
@@ -550,102 +603,153 @@ pub unsafe extern "C" fn fmi3SetString(
 // The getters and setters of the types no variable of the units has (`other_type`), written out one by
 // one so that the header check (cbindgen, which does not expand macros) sees every prototype.
 
+/// fmi3GetFloat32 (FMI 3.0 Sec. 2.2): no variable of the units is Float32, so with no value references it
+/// does nothing, and any reference is refused with the type its variable has. Allowed in the modes of
+/// fmi3GetFloat64.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3GetFloat32(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, _values: *mut fmi3Float32, _nValues: usize) -> fmi3Status {
     // SAFETY: the host's arguments of this FMI function, passed on as they came.
     unsafe { other_type(c, "fmi3GetFloat32", allowed::GET, "Float32", vr, nvr) }
 }
 
+/// fmi3SetFloat32 (FMI 3.0 Sec. 2.2): no variable of the units is Float32, so with no value references it
+/// does nothing, and any reference is refused with the type its variable has. Allowed in the modes of
+/// fmi3SetInt32.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3SetFloat32(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, _values: *const fmi3Float32, _nValues: usize) -> fmi3Status {
     // SAFETY: the host's arguments of this FMI function, passed on as they came.
     unsafe { other_type(c, "fmi3SetFloat32", allowed::SET_OTHER, "Float32", vr, nvr) }
 }
 
+/// fmi3GetInt8 (FMI 3.0 Sec. 2.2): no variable of the units is Int8, so with no value references it does
+/// nothing, and any reference is refused with the type its variable has. Allowed in the modes of
+/// fmi3GetFloat64.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3GetInt8(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, _values: *mut fmi3Int8, _nValues: usize) -> fmi3Status {
     // SAFETY: the host's arguments of this FMI function, passed on as they came.
     unsafe { other_type(c, "fmi3GetInt8", allowed::GET, "Int8", vr, nvr) }
 }
 
+/// fmi3SetInt8 (FMI 3.0 Sec. 2.2): no variable of the units is Int8, so with no value references it does
+/// nothing, and any reference is refused with the type its variable has. Allowed in the modes of
+/// fmi3SetInt32.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3SetInt8(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, _values: *const fmi3Int8, _nValues: usize) -> fmi3Status {
     // SAFETY: the host's arguments of this FMI function, passed on as they came.
     unsafe { other_type(c, "fmi3SetInt8", allowed::SET_OTHER, "Int8", vr, nvr) }
 }
 
+/// fmi3GetUInt8 (FMI 3.0 Sec. 2.2): no variable of the units is UInt8, so with no value references it does
+/// nothing, and any reference is refused with the type its variable has. Allowed in the modes of
+/// fmi3GetFloat64.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3GetUInt8(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, _values: *mut fmi3UInt8, _nValues: usize) -> fmi3Status {
     // SAFETY: the host's arguments of this FMI function, passed on as they came.
     unsafe { other_type(c, "fmi3GetUInt8", allowed::GET, "UInt8", vr, nvr) }
 }
 
+/// fmi3SetUInt8 (FMI 3.0 Sec. 2.2): no variable of the units is UInt8, so with no value references it does
+/// nothing, and any reference is refused with the type its variable has. Allowed in the modes of
+/// fmi3SetInt32.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3SetUInt8(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, _values: *const fmi3UInt8, _nValues: usize) -> fmi3Status {
     // SAFETY: the host's arguments of this FMI function, passed on as they came.
     unsafe { other_type(c, "fmi3SetUInt8", allowed::SET_OTHER, "UInt8", vr, nvr) }
 }
 
+/// fmi3GetInt16 (FMI 3.0 Sec. 2.2): no variable of the units is Int16, so with no value references it does
+/// nothing, and any reference is refused with the type its variable has. Allowed in the modes of
+/// fmi3GetFloat64.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3GetInt16(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, _values: *mut fmi3Int16, _nValues: usize) -> fmi3Status {
     // SAFETY: the host's arguments of this FMI function, passed on as they came.
     unsafe { other_type(c, "fmi3GetInt16", allowed::GET, "Int16", vr, nvr) }
 }
 
+/// fmi3SetInt16 (FMI 3.0 Sec. 2.2): no variable of the units is Int16, so with no value references it does
+/// nothing, and any reference is refused with the type its variable has. Allowed in the modes of
+/// fmi3SetInt32.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3SetInt16(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, _values: *const fmi3Int16, _nValues: usize) -> fmi3Status {
     // SAFETY: the host's arguments of this FMI function, passed on as they came.
     unsafe { other_type(c, "fmi3SetInt16", allowed::SET_OTHER, "Int16", vr, nvr) }
 }
 
+/// fmi3GetUInt16 (FMI 3.0 Sec. 2.2): no variable of the units is UInt16, so with no value references it does
+/// nothing, and any reference is refused with the type its variable has. Allowed in the modes of
+/// fmi3GetFloat64.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3GetUInt16(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, _values: *mut fmi3UInt16, _nValues: usize) -> fmi3Status {
     // SAFETY: the host's arguments of this FMI function, passed on as they came.
     unsafe { other_type(c, "fmi3GetUInt16", allowed::GET, "UInt16", vr, nvr) }
 }
 
+/// fmi3SetUInt16 (FMI 3.0 Sec. 2.2): no variable of the units is UInt16, so with no value references it does
+/// nothing, and any reference is refused with the type its variable has. Allowed in the modes of
+/// fmi3SetInt32.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3SetUInt16(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, _values: *const fmi3UInt16, _nValues: usize) -> fmi3Status {
     // SAFETY: the host's arguments of this FMI function, passed on as they came.
     unsafe { other_type(c, "fmi3SetUInt16", allowed::SET_OTHER, "UInt16", vr, nvr) }
 }
 
+/// fmi3GetUInt32 (FMI 3.0 Sec. 2.2): no variable of the units is UInt32, so with no value references it does
+/// nothing, and any reference is refused with the type its variable has. Allowed in the modes of
+/// fmi3GetFloat64.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3GetUInt32(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, _values: *mut fmi3UInt32, _nValues: usize) -> fmi3Status {
     // SAFETY: the host's arguments of this FMI function, passed on as they came.
     unsafe { other_type(c, "fmi3GetUInt32", allowed::GET, "UInt32", vr, nvr) }
 }
 
+/// fmi3SetUInt32 (FMI 3.0 Sec. 2.2): no variable of the units is UInt32, so with no value references it does
+/// nothing, and any reference is refused with the type its variable has. Allowed in the modes of
+/// fmi3SetInt32.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3SetUInt32(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, _values: *const fmi3UInt32, _nValues: usize) -> fmi3Status {
     // SAFETY: the host's arguments of this FMI function, passed on as they came.
     unsafe { other_type(c, "fmi3SetUInt32", allowed::SET_OTHER, "UInt32", vr, nvr) }
 }
 
+/// fmi3GetInt64 (FMI 3.0 Sec. 2.2): no variable of the units is Int64, so with no value references it does
+/// nothing, and any reference is refused with the type its variable has. Allowed in the modes of
+/// fmi3GetFloat64.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3GetInt64(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, _values: *mut fmi3Int64, _nValues: usize) -> fmi3Status {
     // SAFETY: the host's arguments of this FMI function, passed on as they came.
     unsafe { other_type(c, "fmi3GetInt64", allowed::GET, "Int64", vr, nvr) }
 }
 
+/// fmi3SetInt64 (FMI 3.0 Sec. 2.2): no variable of the units is Int64, so with no value references it does
+/// nothing, and any reference is refused with the type its variable has. Allowed in the modes of
+/// fmi3SetInt32.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3SetInt64(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, _values: *const fmi3Int64, _nValues: usize) -> fmi3Status {
     // SAFETY: the host's arguments of this FMI function, passed on as they came.
     unsafe { other_type(c, "fmi3SetInt64", allowed::SET_OTHER, "Int64", vr, nvr) }
 }
 
+/// fmi3GetUInt64 (FMI 3.0 Sec. 2.2): no variable of the units is UInt64, so with no value references it does
+/// nothing, and any reference is refused with the type its variable has. Allowed in the modes of
+/// fmi3GetFloat64.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3GetUInt64(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, _values: *mut fmi3UInt64, _nValues: usize) -> fmi3Status {
     // SAFETY: the host's arguments of this FMI function, passed on as they came.
     unsafe { other_type(c, "fmi3GetUInt64", allowed::GET, "UInt64", vr, nvr) }
 }
 
+/// fmi3SetUInt64 (FMI 3.0 Sec. 2.2): no variable of the units is UInt64, so with no value references it does
+/// nothing, and any reference is refused with the type its variable has. Allowed in the modes of
+/// fmi3SetInt32.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3SetUInt64(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, _values: *const fmi3UInt64, _nValues: usize) -> fmi3Status {
     // SAFETY: the host's arguments of this FMI function, passed on as they came.
     unsafe { other_type(c, "fmi3SetUInt64", allowed::SET_OTHER, "UInt64", vr, nvr) }
 }
 
+/// fmi3GetBinary (FMI 3.0 Sec. 2.2): no variable of the units is Binary, so with no value references it does
+/// nothing, and any reference is refused with the type its variable has. Allowed in the modes of
+/// fmi3GetFloat64.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3GetBinary(
     c: fmi3Instance,
@@ -659,6 +763,9 @@ pub unsafe extern "C" fn fmi3GetBinary(
     unsafe { other_type(c, "fmi3GetBinary", allowed::GET, "Binary", vr, nvr) }
 }
 
+/// fmi3SetBinary (FMI 3.0 Sec. 2.2): no variable of the units is Binary, so with no value references it does
+/// nothing, and any reference is refused with the type its variable has. Allowed in the modes of
+/// fmi3SetInt32.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3SetBinary(
     c: fmi3Instance,
@@ -672,12 +779,18 @@ pub unsafe extern "C" fn fmi3SetBinary(
     unsafe { other_type(c, "fmi3SetBinary", allowed::SET_OTHER, "Binary", vr, nvr) }
 }
 
+/// fmi3GetClock (FMI 3.0 Sec. 2.2): no variable of the units is a Clock, so with no value references it does
+/// nothing, and any reference is refused with the type its variable has. Allowed in the modes of
+/// fmi3GetFloat64.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3GetClock(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, _values: *mut fmi3Clock) -> fmi3Status {
     // SAFETY: the host's arguments of this FMI function, passed on as they came.
     unsafe { other_type(c, "fmi3GetClock", allowed::GET, "Clock", vr, nvr) }
 }
 
+/// fmi3SetClock (FMI 3.0 Sec. 2.2): no variable of the units is a Clock, so with no value references it does
+/// nothing, and any reference is refused with the type its variable has. Allowed in the modes of
+/// fmi3SetInt32.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3SetClock(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, _values: *const fmi3Clock) -> fmi3Status {
     // SAFETY: the host's arguments of this FMI function, passed on as they came.
@@ -697,6 +810,8 @@ fn unsupported_cs(c: fmi3Instance, function: &'static str, why: &'static str) ->
     cs(c, function, allowed::ANY_LIVE, |_| error(format!("{function} is not supported ({why})")))
 }
 
+/// fmi3GetNumberOfVariableDependencies (FMI 3.0 Sec. 2.2) is not supported (providesPerElementDependencies
+/// is false): always fmi3Error, with that reason in the log.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3GetNumberOfVariableDependencies(
     c: fmi3Instance,
@@ -706,6 +821,8 @@ pub unsafe extern "C" fn fmi3GetNumberOfVariableDependencies(
     unsupported(c, "fmi3GetNumberOfVariableDependencies", "providesPerElementDependencies is false; ModelStructure lists the unknowns")
 }
 
+/// fmi3GetVariableDependencies (FMI 3.0 Sec. 2.2) is not supported (providesPerElementDependencies is
+/// false): always fmi3Error, with that reason in the log.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3GetVariableDependencies(
     c: fmi3Instance,
@@ -719,6 +836,8 @@ pub unsafe extern "C" fn fmi3GetVariableDependencies(
     unsupported(c, "fmi3GetVariableDependencies", "providesPerElementDependencies is false; ModelStructure lists the unknowns")
 }
 
+/// fmi3GetDirectionalDerivative (FMI 3.0 Sec. 2.2) is not supported (providesDirectionalDerivatives is
+/// false): always fmi3Error, with that reason in the log.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3GetDirectionalDerivative(
     c: fmi3Instance,
@@ -734,6 +853,8 @@ pub unsafe extern "C" fn fmi3GetDirectionalDerivative(
     unsupported(c, "fmi3GetDirectionalDerivative", "providesDirectionalDerivatives is false")
 }
 
+/// fmi3GetAdjointDerivative (FMI 3.0 Sec. 2.2) is not supported (providesAdjointDerivatives is false):
+/// always fmi3Error, with that reason in the log.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3GetAdjointDerivative(
     c: fmi3Instance,
@@ -749,11 +870,15 @@ pub unsafe extern "C" fn fmi3GetAdjointDerivative(
     unsupported(c, "fmi3GetAdjointDerivative", "providesAdjointDerivatives is false")
 }
 
+/// fmi3EnterConfigurationMode (FMI 3.0 Sec. 2.3.2) is not supported, since the units have no structural
+/// parameters: always fmi3Error.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3EnterConfigurationMode(c: fmi3Instance) -> fmi3Status {
     unsupported(c, "fmi3EnterConfigurationMode", "the units have no structural parameters")
 }
 
+/// fmi3ExitConfigurationMode (FMI 3.0 Sec. 2.3.6) is not supported, since the units have no structural
+/// parameters: always fmi3Error.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3ExitConfigurationMode(c: fmi3Instance) -> fmi3Status {
     unsupported(c, "fmi3ExitConfigurationMode", "the units have no structural parameters")
@@ -761,6 +886,7 @@ pub unsafe extern "C" fn fmi3ExitConfigurationMode(c: fmi3Instance) -> fmi3Statu
 
 const NO_CLOCKS: &str = "the units have no clocks";
 
+/// fmi3GetIntervalDecimal (FMI 3.0 Sec. 2.2) is not supported, since the units have no clocks: always fmi3Error.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3GetIntervalDecimal(
     c: fmi3Instance,
@@ -772,6 +898,7 @@ pub unsafe extern "C" fn fmi3GetIntervalDecimal(
     unsupported(c, "fmi3GetIntervalDecimal", NO_CLOCKS)
 }
 
+/// fmi3GetIntervalFraction (FMI 3.0 Sec. 2.2) is not supported, since the units have no clocks: always fmi3Error.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3GetIntervalFraction(
     c: fmi3Instance,
@@ -784,11 +911,13 @@ pub unsafe extern "C" fn fmi3GetIntervalFraction(
     unsupported(c, "fmi3GetIntervalFraction", NO_CLOCKS)
 }
 
+/// fmi3GetShiftDecimal (FMI 3.0 Sec. 2.2) is not supported, since the units have no clocks: always fmi3Error.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3GetShiftDecimal(c: fmi3Instance, _vr: *const fmi3ValueReference, _nvr: usize, _shifts: *mut fmi3Float64) -> fmi3Status {
     unsupported(c, "fmi3GetShiftDecimal", NO_CLOCKS)
 }
 
+/// fmi3GetShiftFraction (FMI 3.0 Sec. 2.2) is not supported, since the units have no clocks: always fmi3Error.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3GetShiftFraction(
     c: fmi3Instance,
@@ -800,6 +929,7 @@ pub unsafe extern "C" fn fmi3GetShiftFraction(
     unsupported(c, "fmi3GetShiftFraction", NO_CLOCKS)
 }
 
+/// fmi3SetIntervalDecimal (FMI 3.0 Sec. 2.2) is not supported, since the units have no clocks: always fmi3Error.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3SetIntervalDecimal(
     c: fmi3Instance,
@@ -810,6 +940,7 @@ pub unsafe extern "C" fn fmi3SetIntervalDecimal(
     unsupported(c, "fmi3SetIntervalDecimal", NO_CLOCKS)
 }
 
+/// fmi3SetIntervalFraction (FMI 3.0 Sec. 2.2) is not supported, since the units have no clocks: always fmi3Error.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3SetIntervalFraction(
     c: fmi3Instance,
@@ -821,6 +952,7 @@ pub unsafe extern "C" fn fmi3SetIntervalFraction(
     unsupported(c, "fmi3SetIntervalFraction", NO_CLOCKS)
 }
 
+/// fmi3SetShiftDecimal (FMI 3.0 Sec. 2.2) is not supported, since the units have no clocks: always fmi3Error.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3SetShiftDecimal(
     c: fmi3Instance,
@@ -831,6 +963,7 @@ pub unsafe extern "C" fn fmi3SetShiftDecimal(
     unsupported(c, "fmi3SetShiftDecimal", NO_CLOCKS)
 }
 
+/// fmi3SetShiftFraction (FMI 3.0 Sec. 2.2) is not supported, since the units have no clocks: always fmi3Error.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3SetShiftFraction(
     c: fmi3Instance,
@@ -842,6 +975,8 @@ pub unsafe extern "C" fn fmi3SetShiftFraction(
     unsupported(c, "fmi3SetShiftFraction", NO_CLOCKS)
 }
 
+/// fmi3ActivateModelPartition (FMI 3.0 Sec. 5.2.1) is not supported, since the units offer no Scheduled
+/// Execution: always fmi3Error.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3ActivateModelPartition(
     c: fmi3Instance,
@@ -851,11 +986,15 @@ pub unsafe extern "C" fn fmi3ActivateModelPartition(
     unsupported(c, "fmi3ActivateModelPartition", "the units offer no Scheduled Execution")
 }
 
+/// fmi3EvaluateDiscreteStates (FMI 3.0 Sec. 2.3.5) is not supported (providesEvaluateDiscreteStates is
+/// false): always fmi3Error.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3EvaluateDiscreteStates(c: fmi3Instance) -> fmi3Status {
     unsupported(c, "fmi3EvaluateDiscreteStates", "providesEvaluateDiscreteStates is false")
 }
 
+/// fmi3GetOutputDerivatives (FMI 3.0 Sec. 4.1.2) is not supported (maxOutputDerivativeOrder is 0): always
+/// fmi3Error, and on a Model Exchange instance refused as a Co-Simulation function.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3GetOutputDerivatives(
     c: fmi3Instance,
@@ -871,6 +1010,10 @@ pub unsafe extern "C" fn fmi3GetOutputDerivatives(
 // ---------------------------------------------------------------------------------------------------
 // FMU state: get, set, free, serialize (the bytes of `crate::fmi::state_format`, tied to the FMI 3.0 token)
 
+/// Saves the instance (values, mode, times and the model's state) into `*FMUState`: into the state already
+/// there if it is a live state of this library, else into a new one. fmi3GetFMUState (FMI 3.0 Sec. 2.2),
+/// allowed in every state but Fatal and Intermediate Update Mode; a model that cannot save itself gives
+/// fmi3Error.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3GetFMUState(c: fmi3Instance, FMUState: *mut fmi3FMUState) -> fmi3Status {
     const F: &str = "fmi3GetFMUState";
@@ -878,17 +1021,24 @@ pub unsafe extern "C" fn fmi3GetFMUState(c: fmi3Instance, FMUState: *mut fmi3FMU
     call(c, F, allowed::ANY_LIVE, |inst| unsafe { state_calls::get(&STATES, inst, FMUState, F, "FMUState") })
 }
 
+/// Restores the instance from a live FMI 3.0 state of this library: fmi3SetFMUState (FMI 3.0 Sec. 2.2), also
+/// a way out of the Error state. A freed or foreign pointer (an FMI 2.0 state included), or a state of
+/// another unit or of the other interface, is refused and the instance left as it was.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3SetFMUState(c: fmi3Instance, FMUState: fmi3FMUState) -> fmi3Status {
     call(c, "fmi3SetFMUState", allowed::ANY_LIVE, |inst| state_calls::set(&STATES, inst, FMUState, "fmi3SetFMUState"))
 }
 
+/// Frees the state `*FMUState` and sets `*FMUState` to NULL; a NULL `*FMUState` is nothing to free.
+/// fmi3FreeFMUState (FMI 3.0 Sec. 2.2). A state passed itself instead of its address is freed too, with a
+/// warning in the log, and the call still returns fmi3OK; a `*FMUState` that is not live is refused.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3FreeFMUState(c: fmi3Instance, FMUState: *mut fmi3FMUState) -> fmi3Status {
     // SAFETY: the host's argument, as `state_calls::free` requires.
     call(c, "fmi3FreeFMUState", allowed::ANY_LIVE, |inst| unsafe { state_calls::free(&STATES, inst, FMUState, "fmi3FreeFMUState", "FMUState") })
 }
 
+/// The number of bytes of a live state into `*size`: fmi3SerializedFMUStateSize (FMI 3.0 Sec. 2.2).
 #[no_mangle]
 pub unsafe extern "C" fn fmi3SerializedFMUStateSize(c: fmi3Instance, FMUState: fmi3FMUState, size: *mut usize) -> fmi3Status {
     const F: &str = "fmi3SerializedFMUStateSize";
@@ -896,6 +1046,8 @@ pub unsafe extern "C" fn fmi3SerializedFMUStateSize(c: fmi3Instance, FMUState: f
     call(c, F, allowed::ANY_LIVE, |_| unsafe { state_calls::size(&STATES, FMUState, size, F) })
 }
 
+/// Copies the bytes of a live state into `serializedState`: fmi3SerializeFMUState (FMI 3.0 Sec. 2.2).
+/// Refused when `size` is smaller than fmi3SerializedFMUStateSize gives.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3SerializeFMUState(c: fmi3Instance, FMUState: fmi3FMUState, serializedState: *mut fmi3Byte, size: usize) -> fmi3Status {
     const F: &str = "fmi3SerializeFMUState";
@@ -903,6 +1055,9 @@ pub unsafe extern "C" fn fmi3SerializeFMUState(c: fmi3Instance, FMUState: fmi3FM
     call(c, F, allowed::ANY_LIVE, |_| unsafe { state_calls::serialize(&STATES, FMUState, serializedState, size, F, "fmi3SerializedFMUStateSize") })
 }
 
+/// Makes a new state from the `size` bytes at `serializedState` and puts it into `*FMUState`:
+/// fmi3DeserializeFMUState (FMI 3.0 Sec. 2.2). Refused unless the bytes are a state of this unit saved
+/// through FMI 3.0 (format version, checksum, model identifier and instantiationToken are checked).
 #[no_mangle]
 pub unsafe extern "C" fn fmi3DeserializeFMUState(
     c: fmi3Instance,
@@ -918,6 +1073,11 @@ pub unsafe extern "C" fn fmi3DeserializeFMUState(
 // ---------------------------------------------------------------------------------------------------
 // Event Mode (both interfaces)
 
+/// One event iteration, in Event Mode of either interface: fmi3UpdateDiscreteStates (FMI 3.0 Sec. 2.3.5).
+/// Model Exchange: the model accepts the current state as that of the event, and
+/// `valuesOfContinuousStatesChanged` says whether the integrator must restart. Co-Simulation: nothing is
+/// updated (the step accepted the state where it returned) and that flag is false. The other outputs are
+/// false (no time event); all six output pointers are checked before anything changes.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3UpdateDiscreteStates(
     c: fmi3Instance,
@@ -961,6 +1121,8 @@ pub unsafe extern "C" fn fmi3UpdateDiscreteStates(
 // ---------------------------------------------------------------------------------------------------
 // Model Exchange
 
+/// Moves from Event Mode to Continuous-Time Mode: fmi3EnterContinuousTimeMode (FMI 3.0 Sec. 2.3.5), Model
+/// Exchange only.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3EnterContinuousTimeMode(c: fmi3Instance) -> fmi3Status {
     me(c, "fmi3EnterContinuousTimeMode", allowed::ENTER_CONTINUOUS_TIME, |inst| {
@@ -969,6 +1131,10 @@ pub unsafe extern "C" fn fmi3EnterContinuousTimeMode(c: fmi3Instance) -> fmi3Sta
     })
 }
 
+/// Tells the model an integrator step is complete. `*enterEventMode` is true when an event indicator has
+/// changed sign since the last event or completed step (for example after an input set in Continuous-Time
+/// Mode); `*terminateSimulation` is always false. fmi3CompletedIntegratorStep (FMI 3.0 Sec. 3.2.1), Model
+/// Exchange, Continuous-Time Mode only.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3CompletedIntegratorStep(
     c: fmi3Instance,
@@ -992,11 +1158,15 @@ pub unsafe extern "C" fn fmi3CompletedIntegratorStep(
     })
 }
 
+/// Sets the time of the instance and its model; a time that is not finite is refused. fmi3SetTime
+/// (FMI 3.0 Sec. 3.2.1), Model Exchange, in Event Mode or Continuous-Time Mode.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3SetTime(c: fmi3Instance, time: fmi3Float64) -> fmi3Status {
     me(c, "fmi3SetTime", allowed::SET_TIME, |inst| inst.set_time(time))
 }
 
+/// Sets the model's continuous states; `nContinuousStates` must be the unit's number of states and every
+/// value finite. fmi3SetContinuousStates (FMI 3.0 Sec. 3.2.1), Model Exchange, Continuous-Time Mode only.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3SetContinuousStates(c: fmi3Instance, continuousStates: *const fmi3Float64, nContinuousStates: usize) -> fmi3Status {
     const F: &str = "fmi3SetContinuousStates";
@@ -1007,6 +1177,9 @@ pub unsafe extern "C" fn fmi3SetContinuousStates(c: fmi3Instance, continuousStat
     })
 }
 
+/// The derivatives of the continuous states at the current time, states and inputs, into `derivatives`;
+/// `nContinuousStates` must be the unit's number of states. fmi3GetContinuousStateDerivatives (FMI 3.0
+/// Sec. 3.2.1), Model Exchange, from Initialization Mode on (also in Terminated and Error).
 #[no_mangle]
 pub unsafe extern "C" fn fmi3GetContinuousStateDerivatives(c: fmi3Instance, derivatives: *mut fmi3Float64, nContinuousStates: usize) -> fmi3Status {
     const F: &str = "fmi3GetContinuousStateDerivatives";
@@ -1017,6 +1190,9 @@ pub unsafe extern "C" fn fmi3GetContinuousStateDerivatives(c: fmi3Instance, deri
     })
 }
 
+/// The event indicators at the current time, states and inputs, into `eventIndicators`; `nEventIndicators`
+/// must be the unit's number. fmi3GetEventIndicators (FMI 3.0 Sec. 3.2.1), Model Exchange, in the modes of
+/// fmi3GetContinuousStateDerivatives.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3GetEventIndicators(c: fmi3Instance, eventIndicators: *mut fmi3Float64, nEventIndicators: usize) -> fmi3Status {
     const F: &str = "fmi3GetEventIndicators";
@@ -1027,6 +1203,9 @@ pub unsafe extern "C" fn fmi3GetEventIndicators(c: fmi3Instance, eventIndicators
     })
 }
 
+/// The model's continuous states into `continuousStates`; `nContinuousStates` must be the unit's number of
+/// states. fmi3GetContinuousStates (FMI 3.0 Sec. 2.3.3), Model Exchange, in the modes of
+/// fmi3GetContinuousStateDerivatives.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3GetContinuousStates(c: fmi3Instance, continuousStates: *mut fmi3Float64, nContinuousStates: usize) -> fmi3Status {
     const F: &str = "fmi3GetContinuousStates";
@@ -1037,6 +1216,9 @@ pub unsafe extern "C" fn fmi3GetContinuousStates(c: fmi3Instance, continuousStat
     })
 }
 
+/// The nominal values of the continuous states into `nominals`: 1.0 each until the model's initial state is
+/// built. fmi3GetNominalsOfContinuousStates (FMI 3.0 Sec. 2.3.3), Model Exchange, from Instantiated on (also
+/// in Terminated and Error).
 #[no_mangle]
 pub unsafe extern "C" fn fmi3GetNominalsOfContinuousStates(c: fmi3Instance, nominals: *mut fmi3Float64, nContinuousStates: usize) -> fmi3Status {
     const F: &str = "fmi3GetNominalsOfContinuousStates";
@@ -1047,6 +1229,8 @@ pub unsafe extern "C" fn fmi3GetNominalsOfContinuousStates(c: fmi3Instance, nomi
     })
 }
 
+/// The unit's number of event indicators into `*nEventIndicators`: fmi3GetNumberOfEventIndicators
+/// (FMI 3.0 Sec. 2.3.2), Model Exchange, in every state but Fatal.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3GetNumberOfEventIndicators(c: fmi3Instance, nEventIndicators: *mut usize) -> fmi3Status {
     const F: &str = "fmi3GetNumberOfEventIndicators";
@@ -1054,6 +1238,8 @@ pub unsafe extern "C" fn fmi3GetNumberOfEventIndicators(c: fmi3Instance, nEventI
     me(c, F, allowed::ANY_LIVE, |inst| unsafe { put(nEventIndicators, inst.unit.n_event_indicators, F, "nEventIndicators") })
 }
 
+/// The unit's number of continuous states into `*nContinuousStates`: fmi3GetNumberOfContinuousStates
+/// (FMI 3.0 Sec. 2.3.2), Model Exchange, in every state but Fatal.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3GetNumberOfContinuousStates(c: fmi3Instance, nContinuousStates: *mut usize) -> fmi3Status {
     const F: &str = "fmi3GetNumberOfContinuousStates";
@@ -1064,6 +1250,7 @@ pub unsafe extern "C" fn fmi3GetNumberOfContinuousStates(c: fmi3Instance, nConti
 // ---------------------------------------------------------------------------------------------------
 // Co-Simulation
 
+/// Moves from Event Mode to Step Mode: fmi3EnterStepMode (FMI 3.0 Sec. 2.3.5), Co-Simulation only.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3EnterStepMode(c: fmi3Instance) -> fmi3Status {
     cs(c, "fmi3EnterStepMode", allowed::ENTER_STEP_MODE, |inst| {

@@ -32,9 +32,12 @@ const AT_MAX_OVERLAP: f64 = 2e-9;
 /// by its exact work (`Sphere::accept_crossing`). Measured with benches/me_all_laws.py (docs/models.md).
 pub const VERTICAL_END_LEAD: f64 = 1e-2;
 
+/// One contact followed in time: its law, its damping, the accepted state and the indicator scales.
 #[derive(Debug, Clone)]
 pub struct Contact {
+    /// The normal contact law.
     pub law: AnyLaw,
+    /// The normal damping model.
     pub damping: NormalDamping,
     /// Overlap scale of indicators and tolerances [m].
     pub alpha_nominal: f64,
@@ -56,8 +59,11 @@ pub struct Contact {
 /// What a contact remembers beyond its parameters: the part of a saved FMU state.
 #[derive(Debug, Clone, Copy, Serialize, Deserialize)]
 pub struct Memory {
+    /// The evaluation at the accepted state (`Contact::accepted`).
     pub accepted: Evaluation<AnyHistory>,
+    /// The overlap at which `accepted` was evaluated [m].
     pub accepted_alpha: f64,
+    /// Largest overlap reached [m] (NEG_INFINITY before any).
     pub max_overlap: f64,
 }
 
@@ -65,6 +71,7 @@ pub struct Memory {
 /// branch holds.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Line {
+    /// Constant term (dimensionless).
     pub constant: f64,
     /// [1/m]
     pub overlap: f64,
@@ -76,10 +83,12 @@ impl Line {
     /// An indicator that never changes sign.
     pub const INACTIVE: Line = Line { constant: 1.0, overlap: 0.0, rate: 0.0 };
 
+    /// The indicator's value at overlap `alpha` [m] and overlap rate `rate` [m/s].
     pub fn at(&self, alpha: f64, rate: f64) -> f64 {
         self.constant + self.overlap * alpha + self.rate * rate
     }
 
+    /// Whether the indicator depends on overlap or rate (and so can change sign).
     pub fn is_active(&self) -> bool {
         self.overlap != 0.0 || self.rate != 0.0
     }
@@ -103,16 +112,20 @@ pub struct ContactForce {
     pub law: f64,
     /// Viscous damping force [N].
     pub damping: f64,
+    /// The branch the force was evaluated on.
     pub branch: Branch,
 }
 
 impl ContactForce {
+    /// Law force plus damping force [N].
     pub fn total(&self) -> f64 {
         self.law + self.damping
     }
 }
 
 impl Contact {
+    /// A contact that has not yet accepted a state, with indicator scales `alpha_nominal` [m] and
+    /// `rate_nominal` [m/s]; the unit then accepts its initial state. The vertical-end lead is off.
     pub fn new(law: AnyLaw, damping: NormalDamping, alpha_nominal: f64, rate_nominal: f64) -> Contact {
         // A placeholder until the unit accepts its initial state.
         let accepted = Evaluation::separated(f64::INFINITY, law.initial_history());
@@ -124,6 +137,7 @@ impl Contact {
         &self.accepted.history
     }
 
+    /// What the contact remembers, for a saved FMU state (`remember` takes it back).
     pub fn memory(&self) -> Memory {
         Memory { accepted: self.accepted, accepted_alpha: self.accepted_alpha, max_overlap: self.max_overlap }
     }

@@ -24,6 +24,7 @@ pub struct State {
 }
 
 impl State {
+    /// A state of height `bottom` [m], velocity `velocity` [m/s] and work `work` [J].
     pub fn new(bottom: f64, velocity: f64, work: f64) -> State {
         State { bottom, velocity, work }
     }
@@ -33,6 +34,7 @@ impl State {
         [self.bottom, self.velocity, self.work]
     }
 
+    /// A state from [z, v, W], the order of the ME states (the first three entries; panics on fewer).
     pub fn from_slice(x: &[f64]) -> State {
         State { bottom: x[0], velocity: x[1], work: x[2] }
     }
@@ -69,12 +71,16 @@ impl std::ops::IndexMut<usize> for State {
 /// The wall's motion over one communication step.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct WallMotion {
+    /// Time at which the wall is at `position` (the start of the step) [s].
     pub t0: f64,
+    /// Wall plane w at `t0` [m].
     pub position: f64,
+    /// Wall velocity w', constant over the step [m/s].
     pub velocity: f64,
 }
 
 impl WallMotion {
+    /// Wall plane w at time `t` [s], moving linearly from `t0` [m].
     pub fn at(&self, t: f64) -> f64 {
         self.position + self.velocity * (t - self.t0)
     }
@@ -88,7 +94,10 @@ pub enum Solver {
     /// Dormand-Prince 5(4) with error control at `Sphere::tolerance`.
     Adaptive,
     /// Fixed-step velocity Verlet with this step [s].
-    Verlet { step: f64 },
+    Verlet {
+        /// Fixed step size [s].
+        step: f64,
+    },
 }
 
 impl Solver {
@@ -96,12 +105,16 @@ impl Solver {
     pub const NAMES: [&'static str; 4] = ["auto", "exact", "adaptive", "verlet"];
 }
 
+/// A sphere moving along a wall normal, with its contact, integrator and counters.
 #[derive(Debug, Clone)]
 pub struct Sphere {
+    /// Mass of the sphere [kg].
     pub mass: f64,
     /// Gravity toward the wall [m/s^2].
     pub gravity: f64,
+    /// The contact with the wall.
     pub contact: Contact,
+    /// The integrator of co-simulation steps.
     pub solver: Solver,
     /// Relative tolerance of the integrator; absolute tolerances are it times the nominal overlap and rate.
     pub tolerance: f64,
@@ -110,6 +123,7 @@ pub struct Sphere {
     /// Counters for the logs and benchmarks: integrator steps (closed-form segments for `exact`) and
     /// branch events.
     pub steps: u64,
+    /// Number of branch events.
     pub events: u64,
 }
 
@@ -118,21 +132,37 @@ pub struct Sphere {
 pub enum StepError {
     /// The state or force became non-finite.
     #[error("the sphere's state became non-finite at t = {t:e} s")]
-    NotFinite { t: f64 },
+    NotFinite {
+        /// Time at which it happened [s].
+        t: f64,
+    },
     /// The step size fell below the resolution of time.
     #[error("the integrator's step size fell below the resolution of time at t = {t:e} s")]
-    StepTooSmall { t: f64 },
+    StepTooSmall {
+        /// Time at which it happened [s].
+        t: f64,
+    },
     /// More steps than allowed in one communication step.
     #[error("more than {limit} integrator steps in one communication step (at t = {t:e} s); use shorter communication steps")]
-    TooManySteps { t: f64, limit: u64 },
+    TooManySteps {
+        /// Time at which the limit was reached [s].
+        t: f64,
+        /// The largest number of integrator steps allowed in one communication step.
+        limit: u64,
+    },
     /// The law switched branches without the state moving (branch intervals that do not meet).
     #[error("the contact switched branches repeatedly without moving at t = {t:e} s")]
-    NoProgress { t: f64 },
+    NoProgress {
+        /// Time at which it happened [s].
+        t: f64,
+    },
 }
 
 pub(super) const MAX_STEPS: u64 = 10_000_000;
 
 impl Sphere {
+    /// A sphere of mass `mass` [kg] under gravity `gravity` toward the wall [m/s^2], with the step and
+    /// event counters at 0.
     pub fn new(mass: f64, gravity: f64, contact: Contact, solver: Solver, tolerance: f64) -> Sphere {
         Sphere { mass, gravity, contact, solver, tolerance, last_step: 0.0, steps: 0, events: 0 }
     }
@@ -150,6 +180,9 @@ impl Sphere {
         self.advance_until(wall, t, t_end, y, true)
     }
 
+    /// Advances from `t` [s] toward `t_end` [s] with the chosen solver, after walking a wall jump the
+    /// master made between steps. With `stop_at_event` it stops at the first change of the contact state
+    /// and returns its time (`advance_to_event`); else it runs to `t_end` (`advance`).
     pub fn advance_until(&mut self, wall: &WallMotion, t: f64, t_end: f64, y: &mut State, stop_at_event: bool) -> Result<Option<f64>, StepError> {
         self.follow_jump(wall, t, y);
         match self.solver {

@@ -32,8 +32,11 @@ pub fn coefficient_pasha(restitution: f64, mass: f64, stiffness: f64) -> f64 {
 /// The normal damping of one contact.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct NormalDamping {
+    /// Restitution coefficient e_0 of 000 Eq. 26 (1 or more: no damping) [-].
     pub restitution: f64,
+    /// Damping factor beta of 000 Eq. 26 before yield [-].
     pub beta_elastic: f64,
+    /// Damping factor beta of 000 Eq. 26 after yield (`NormalLaw::has_yielded`) [-].
     pub beta_plastic: f64,
     /// m* [kg].
     pub mass: f64,

@@ -7,13 +7,17 @@ use super::{Branch, Evaluation, NormalLaw};
 use crate::error::ParamError;
 use crate::vocabulary::NoOptions;
 
+/// Hertz's elastic law of one contact pair (the module documentation says which equations).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Hertz {
+    /// Reduced radius R* [m].
     pub radius: f64,
+    /// Effective modulus E* (004 Eq. 3.15) [Pa].
     pub youngs_modulus: f64,
 }
 
 impl Hertz {
+    /// The law of reduced radius R* [m] and effective modulus E* [Pa].
     pub fn new(radius: f64, youngs_modulus: f64) -> Hertz {
         Hertz { radius, youngs_modulus }
     }

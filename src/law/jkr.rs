@@ -42,7 +42,9 @@ crate::scene_options! {
 pub struct JkrCurve {
     /// Radius of curvature (R*, or R_p after plastic flattening) [m].
     pub radius: f64,
+    /// Effective modulus E* [Pa].
     pub youngs_modulus: f64,
+    /// Interface energy Gamma [J/m^2].
     pub surface_energy: f64,
     /// b = sqrt(2 pi Gamma / E*) in alpha = a^2/R - b sqrt(a).
     pub(crate) b: f64,
@@ -55,6 +57,8 @@ pub struct JkrCurve {
 }
 
 impl JkrCurve {
+    /// The curve of radius of curvature R [m], effective modulus E* [Pa] and interface energy Gamma
+    /// [J/m^2], with its detachment and pull-off points computed once.
     pub fn new(radius: f64, youngs_modulus: f64, surface_energy: f64) -> JkrCurve {
         let b = (2.0 * PI * surface_energy / youngs_modulus).sqrt();
         let w_detach = cbrt(b * radius / 4.0);
@@ -220,22 +224,30 @@ impl JkrCurve {
 /// `JkrDetachment::Force` (hysteresis between the two).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Jkr {
+    /// The JKR curve of R*.
     pub curve: JkrCurve,
+    /// Where an established contact ends on unloading (`jkr_detachment`).
     pub detachment: JkrDetachment,
     /// The overlap at which an established contact ends [m].
     detach_at: f64,
 }
 
+/// What a JKR contact remembers.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct JkrHistory {
+    /// The contact has formed (at alpha >= 0) and not yet ended: it then holds at negative overlap down
+    /// to the detachment overlap.
     pub established: bool,
 }
 
 impl Jkr {
+    /// The law of reduced radius R* [m], effective modulus E* [Pa] and interface energy Gamma [J/m^2],
+    /// with displacement-controlled detachment (the default).
     pub fn new(radius: f64, youngs_modulus: f64, surface_energy: f64) -> Jkr {
         Jkr::with_detachment(radius, youngs_modulus, surface_energy, JkrDetachment::Displacement)
     }
 
+    /// `new` with the detachment reading chosen.
     pub fn with_detachment(radius: f64, youngs_modulus: f64, surface_energy: f64, detachment: JkrDetachment) -> Jkr {
         let curve = JkrCurve::new(radius, youngs_modulus, surface_energy);
         let detach_at = match detachment {

@@ -46,18 +46,25 @@ crate::scene_options! {
     }
 }
 
+/// The modified JKR law of one contact pair (the module documentation says which equations).
 #[derive(Debug, Clone, PartialEq)]
 pub struct JkrModified {
+    /// The JKR curve of R*.
     pub curve: JkrCurve,
+    /// The normal force of the Coulomb limit (`jkr_friction_limit`).
     pub friction_limit: JkrFrictionLimit,
+    /// The radius of the damping and Mindlin stiffnesses (`jkr_stiffness_radius`).
     pub stiffness_radius: JkrStiffnessRadius,
 }
 
 impl JkrModified {
+    /// The law of reduced radius R* [m], effective modulus E* [Pa] and interface energy Gamma [J/m^2],
+    /// with the `pull_off` friction limit and the `contact` stiffness radius.
     pub fn new(radius: f64, youngs_modulus: f64, surface_energy: f64) -> JkrModified {
         JkrModified::with_friction_limit(radius, youngs_modulus, surface_energy, JkrFrictionLimit::PullOff)
     }
 
+    /// `new` with the friction limit chosen; the stiffness radius is `contact`.
     pub fn with_friction_limit(radius: f64, youngs_modulus: f64, surface_energy: f64, friction_limit: JkrFrictionLimit) -> JkrModified {
         JkrModified { curve: JkrCurve::new(radius, youngs_modulus, surface_energy), friction_limit, stiffness_radius: JkrStiffnessRadius::Contact }
     }

@@ -11,7 +11,10 @@ macro_rules! define_model_kind {
         /// order.
         #[derive(Debug, Clone, Copy, PartialEq, Eq)]
         pub enum ModelKind {
-            $($variant,)*
+            $(
+            /// One row of `law_table!`; its scene name is the row's module name (`ModelKind::name`).
+            $variant,
+            )*
         }
 
         impl ModelKind {
@@ -50,6 +53,7 @@ impl ModelKind {
         ModelKind::ALL.iter().filter(|m| m.is_piecewise_linear()).map(|m| m.name()).collect::<Vec<_>>().join(", ")
     }
 
+    /// The law of a scene name (`contact_model`); an unknown name is an error that lists the names.
     pub fn parse(s: &str) -> Result<ModelKind, ParamError> {
         ModelKind::ALL.iter().copied().find(|m| m.name() == s).ok_or_else(|| unknown_choice("contact_model", s, ModelKind::NAMES))
     }

@@ -5,6 +5,7 @@ use super::{Branch, Evaluation, LawInfo, LawOptions, NormalLaw};
 use crate::error::ParamError;
 use crate::vocabulary::Range;
 
+/// The linear spring of one contact pair (the module documentation says which equations).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Linear {
     /// k_n [N/m].

@@ -36,6 +36,7 @@ crate::choice_enum! {
     }
 }
 
+/// Luding's law of one contact pair (the module documentation says which equations), in one of its two readings.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Luding {
     /// k_1 [N/m].
@@ -48,14 +49,17 @@ pub struct Luding {
     pub f0: f64,
     /// alpha* [m].
     pub alpha_star: f64,
+    /// Which reading of the law (`luding_variant`).
     pub variant: LudingVariant,
     /// The fluid overlap phi_f 2 R* = (1 - k_1/k_2_hat) alpha*, the largest delta_0 of the mercurydpm
     /// reading [m].
     pub delta0_cap: f64,
 }
 
+/// What a Luding contact remembers; reset to the initial history when the overlap falls to zero.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct LudingHistory {
+    /// In contact (alpha > 0) since the last separation; false for a new contact.
     pub established: bool,
     /// Largest overlap reached; sets k_2 (Eq. 3.74) [m].
     pub delta_peak: f64,
@@ -64,10 +68,13 @@ pub struct LudingHistory {
 }
 
 impl Luding {
+    /// The `pasha` reading from k_1, k_2 hat, k_c [N/m], f_0 [N], phi_f [-] and R* [m]; alpha* by
+    /// 004 Eq. 3.71.
     pub fn new(k1: f64, k2_hat: f64, kc: f64, f0: f64, phi_f: f64, r_star: f64) -> Luding {
         Luding::with_variant(k1, k2_hat, kc, f0, phi_f, r_star, LudingVariant::Pasha)
     }
 
+    /// `new` with the reading chosen.
     pub fn with_variant(k1: f64, k2_hat: f64, kc: f64, f0: f64, phi_f: f64, r_star: f64, variant: LudingVariant) -> Luding {
         let alpha_star = k2_hat / (k2_hat - k1) * phi_f * 2.0 * r_star; // Eq. 3.71
         Luding { k1, k2_hat, kc, f0, alpha_star, variant, delta0_cap: phi_f * 2.0 * r_star }
@@ -91,7 +98,7 @@ impl Luding {
         ((1.0 - self.k1 / self.k2(delta_peak)) * delta_peak).min(self.delta0_cap)
     }
 
-    /// The mercurydpm reading (module doc).
+    /// The mercurydpm reading (the module documentation says which equations).
     fn evaluate_mercurydpm(&self, alpha: f64, h: &LudingHistory) -> Evaluation<LudingHistory> {
         let k2 = self.k2(h.delta_peak);
         let spring = k2 * (alpha - h.delta_0);

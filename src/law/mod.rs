@@ -60,6 +60,7 @@ impl Branch {
         }
     }
 
+    /// Whether the surfaces touch: false for `Separated` and `Attraction`, true on every other branch.
     pub fn in_contact(self) -> bool {
         !matches!(self, Branch::Separated | Branch::Attraction)
     }
@@ -72,10 +73,12 @@ pub struct Evaluation<H> {
     pub force: f64,
     /// df/dalpha on this branch [N/m] (for damping, time steps and Jacobians).
     pub stiffness: f64,
+    /// The branch the contact is on at this overlap.
     pub branch: Branch,
     /// The branch holds for `lower <= alpha <= upper` with the history passed in; outside it another
     /// branch (or a history update) applies. Integrators land on these to switch exactly.
     pub lower: f64,
+    /// Upper end of the overlap interval on which this branch holds [m] (see `lower`).
     pub upper: f64,
     /// The history to keep if this state is accepted (never stored by the law itself).
     pub history: H,
@@ -195,8 +198,13 @@ macro_rules! define_any_law {
         /// law's own (`LawInfo::Options`), one field per line of the table, named by its module.
         #[derive(Debug, Clone, PartialEq)]
         pub struct LawOptions {
+            /// The stiffnesses several laws share (`elastic_stiffness`, `plastic_stiffness` and the
+            /// measured unloading line).
             pub stiffness: params::StiffnessOptions,
-            $(pub $module: <$ty as LawInfo>::Options,)*
+            $(
+            /// One law's own options (`LawInfo::Options`); the field is named by the law's module.
+            pub $module: <$ty as LawInfo>::Options,
+            )*
         }
 
         impl Options for LawOptions {
@@ -227,13 +235,19 @@ macro_rules! define_any_law {
         /// Any of the laws, chosen at run time from a scene. Dispatch is one `match`.
         #[derive(Debug, Clone, PartialEq)]
         pub enum AnyLaw {
-            $($variant($ty),)*
+            $(
+            /// The law of one row of `law_table!`, with its parameters.
+            $variant($ty),
+            )*
         }
 
         /// The history of any law.
         #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
         pub enum AnyHistory {
-            $($variant(<$ty as NormalLaw>::History),)*
+            $(
+            /// The history of the law of the same name in `AnyLaw`.
+            $variant(<$ty as NormalLaw>::History),
+            )*
         }
 
         impl AnyLaw {
@@ -245,6 +259,7 @@ macro_rules! define_any_law {
                 })
             }
 
+            /// Which law this is.
             pub fn model(&self) -> ModelKind {
                 match self {
                     $(AnyLaw::$variant(_) => ModelKind::$variant,)*

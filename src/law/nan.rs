@@ -63,8 +63,10 @@ crate::scene_options! {
     }
 }
 
+/// Nan's law of one contact pair (the module documentation says which equations).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Nan {
+    /// The law's parameters (000 Sec. 3).
     pub p: NanParams,
     /// The branch points before yield (alpha_max = alpha_y), computed once.
     before_yield: NanPoints,
@@ -84,16 +86,26 @@ pub struct NanHistory {
 /// The quantities that follow from alpha_max (000 Eqs. 11-14, 46, 59).
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct NanPoints {
+    /// Elastic un/reloading stiffness k_e: k_el before yield, 000 Eq. 46 or 47-49 after [N/m].
     pub k_e: f64,
+    /// Adhesive stiffness k_c = k_e k_cl / k_el of lines AB / EF (000 Sec. 3.2) [N/m].
     pub k_c: f64,
+    /// Zero-force overlap alpha_p of the elastic line (000 Eq. 16; alpha_0 before yield) [m].
     pub alpha_p: f64,
+    /// Maximum pull-off force f_cp (000 Table 4; f_ce before yield) [N].
     pub f_cp: f64,
+    /// Overlap alpha_c0 at which a detached contact is re-established, at -8/9 f_cp (000 Eq. 12; 0
+    /// before yield) [m].
     pub alpha_c0: f64,
+    /// Overlap alpha_cp of the pull-off point, f = -f_cp (000 Eq. 13) [m].
     pub alpha_cp: f64,
+    /// Overlap alpha_fp at which the contact detaches, at -5/9 f_cp (000 Eq. 14) [m].
     pub alpha_fp: f64,
 }
 
 impl Nan {
+    /// The law of a parameter set, with its branch points before yield set exactly to k_el, k_cl,
+    /// alpha_0, f_ce, 0, alpha_ce and alpha_fe (000 Sec. 2.1, Eqs. 8-9).
     pub fn new(p: NanParams) -> Nan {
         let mut law = Nan { p, before_yield: NanPoints { k_e: 0.0, k_c: 0.0, alpha_p: 0.0, f_cp: 0.0, alpha_c0: 0.0, alpha_cp: 0.0, alpha_fp: 0.0 } };
         law.before_yield = law.points_after_yield(p.alpha_y);

@@ -60,9 +60,13 @@ pub fn k_el_from_unloading_line(
 /// All parameters of the Nan improved linear law (000 Sec. 3) and the quantities derived from them.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct NanParams {
+    /// Reduced radius R* [m].
     pub radius: f64,
+    /// Effective modulus E* [Pa].
     pub youngs_modulus: f64,
+    /// Interface energy Gamma [J/m^2].
     pub surface_energy: f64,
+    /// Yield contact pressure p_y [Pa].
     pub yield_pressure: f64,
     /// f_ce (Eq. 5) [N].
     pub f_ce: f64,
@@ -82,7 +86,9 @@ pub struct NanParams {
     pub alpha_0: f64,
     /// W_JKR (Eq. 37) [J].
     pub w_jkr: f64,
+    /// How k_e grows after yield (`unloading_stiffness_law`).
     pub unloading_stiffness_law: UnloadingStiffnessLaw,
+    /// How f_cp grows after yield (`pull_off_law`, 000 Table 4).
     pub pull_off_law: PullOffLaw,
 }
 

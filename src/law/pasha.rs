@@ -28,6 +28,7 @@ use crate::vocabulary::Range;
 crate::choice_enum! {
     /// Constant or load-dependent unloading stiffness in the Pasha laws.
     pub enum PashaStiffnessLaw {
+        /// Constant k_e: `elastic_stiffness`, else pi R* p_y (000 Eq. 52).
         Constant = "constant",
         /// 004 Eq. 4.23.
         LoadDependent = "load_dependent",
@@ -43,9 +44,12 @@ crate::scene_options! {
 }
 use std::f64::consts::PI;
 
+/// Pasha's law of one contact pair (the module documentation says which equations).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Pasha {
+    /// Reduced radius R* [m].
     pub radius: f64,
+    /// Interface energy Gamma [J/m^2].
     pub surface_energy: f64,
     /// f_ce (Eq. 4.1) [N].
     pub f_ce: f64,
@@ -62,10 +66,13 @@ pub struct Pasha {
 /// k_e of the Pasha laws: constant, or 004 Eq. 4.23.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PashaStiffness {
+    /// Constant or load-dependent k_e (`pasha_stiffness_law`).
     pub law: PashaStiffnessLaw,
     /// Constant k_e, or k_e_max of Eq. 4.23 [N/m].
     pub k_e: f64,
+    /// Plastic stiffness k_p, the value of Eq. 4.23 at alpha_max = 0 [N/m].
     pub k_p: f64,
+    /// Reduced radius R* of Eq. 4.23 [m].
     pub radius: f64,
 }
 
@@ -114,6 +121,7 @@ impl PashaStiffness {
 /// What a Pasha contact remembers (both the full and the simplified law).
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct PashaHistory {
+    /// In contact: formed (or re-formed at max(alpha_fp, 0)) and not detached since.
     pub established: bool,
     /// Largest overlap of plastic loading [m].
     pub alpha_max: f64,
@@ -122,14 +130,23 @@ pub struct PashaHistory {
 /// The quantities that follow from alpha_max.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PashaPoints {
+    /// Unloading stiffness k_e at this alpha_max [N/m].
     pub k_e: f64,
+    /// Zero-force overlap alpha_p of the unloading line k_e (alpha - alpha_p) (Eq. 4.4) [m].
     pub alpha_p: f64,
+    /// Pull-off force f_cp: max(f_ce, Eqs. 4.6-4.11) in the full law, on the locus of Eq. 4.17 in the
+    /// simplified one [N].
     pub f_cp: f64,
+    /// Overlap alpha_cp of the pull-off point, f = -f_cp [m].
     pub alpha_cp: f64,
+    /// Overlap alpha_fp at which the contact detaches: at -5/9 f_cp in the full law, at zero force in
+    /// the simplified one [m].
     pub alpha_fp: f64,
 }
 
 impl Pasha {
+    /// The law of reduced radius R* [m], interface energy Gamma [J/m^2] and unloading stiffness: f_ce by
+    /// Eq. 4.1, k_e0 = k_e(alpha_0) solved by fixed point.
     pub fn new(radius: f64, surface_energy: f64, stiffness: PashaStiffness) -> Pasha {
         let f_ce = 1.5 * PI * surface_energy * radius;
         // Before yield the elastic line ends at alpha_0 = 8/9 f_ce / k_e0; with Eq. 4.23 k_e depends on
@@ -153,6 +170,8 @@ impl Pasha {
         (162.0 / 137.0 * k_e * w_ad).sqrt() // Eq. 4.9 with f_cp = k_e (alpha_p - alpha_cp)
     }
 
+    /// The branch points for a largest overlap alpha_max; at or below alpha_0 (before yield) they use
+    /// k_e0, alpha_p = alpha_0 and f_cp = f_ce.
     #[inline]
     pub fn points(&self, alpha_max: f64) -> PashaPoints {
         let (k_e, alpha_p, f_cp) = if alpha_max <= self.alpha_0 {

@@ -13,10 +13,14 @@ use super::{Evaluation, LawInfo, LawOptions, NormalLaw};
 use crate::error::ParamError;
 use crate::vocabulary::Range;
 
+/// Pasha's simplified law of one contact pair (the module documentation says which equations).
 #[derive(Debug, Clone, PartialEq)]
 pub struct PashaSimplified {
+    /// JKR pull-off force f_ce = 1.5 pi Gamma R* (004 Eq. 4.1) [N].
     pub f_ce: f64,
+    /// Unloading stiffness law and its constants (the `pasha` law's options).
     pub stiffness: PashaStiffness,
+    /// Plastic loading stiffness k_p [N/m].
     pub k_p: f64,
     /// k_cp of Eq. 4.17 [N/m].
     pub k_cp: f64,
@@ -27,6 +31,8 @@ pub struct PashaSimplified {
 }
 
 impl PashaSimplified {
+    /// The law from f_ce [N], the unloading stiffness, k_cp [N/m] and f_0p [N]; an error if f_0p is below
+    /// 8/9 f_ce.
     pub fn new(f_ce: f64, stiffness: PashaStiffness, k_cp: f64, f_0p: f64) -> Result<PashaSimplified, ParamError> {
         if f_0p < 8.0 / 9.0 * f_ce * (1.0 - 1e-12) {
             return Err(ParamError::OutOfRange {
@@ -38,6 +44,8 @@ impl PashaSimplified {
         Ok(PashaSimplified { f_ce, stiffness, k_p: stiffness.k_p, k_cp, f_0p, alpha_0: 8.0 / 9.0 * f_ce / stiffness.k_p })
     }
 
+    /// The branch points for a largest overlap alpha_max: the unloading line through (alpha_max, F_max),
+    /// its meeting point with the pull-off locus of Eq. 4.17, and zero-force detachment (the module documentation says which equations).
     #[inline]
     pub fn points(&self, alpha_max: f64) -> PashaPoints {
         let k_e = self.stiffness.at(alpha_max);

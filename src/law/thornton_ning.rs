@@ -24,15 +24,18 @@ use crate::vocabulary::NoOptions;
 use std::f64::consts::PI;
 use crate::numeric::cbrt;
 
+/// Thornton and Ning's law of one contact pair (the module documentation says which equations).
 #[derive(Debug, Clone, PartialEq)]
 pub struct ThorntonNing {
     /// The JKR curve of R*.
     pub curve: JkrCurve,
+    /// Yield contact pressure p_y [Pa].
     pub yield_pressure: f64,
     /// Contact radius at yield (Eq. 3.55) [m].
     pub a_y: f64,
-    /// Force and overlap at yield [N], [m].
+    /// Force at yield, on the JKR curve at a_y [N].
     pub f_y: f64,
+    /// Overlap at yield, on the JKR curve at a_y; negative under adhesion-induced yield [m].
     pub alpha_y: f64,
     /// The overlap beyond which first loading is plastic: alpha_y, or 0 when the contact yields as soon
     /// as it forms (adhesion-induced yield, alpha_y < 0) [m].
@@ -42,8 +45,10 @@ pub struct ThorntonNing {
     anchor: (f64, f64, f64),
 }
 
+/// What a Thornton-Ning contact remembers.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct TnHistory {
+    /// In contact: formed (at alpha_c0 = alpha_p) and not detached since.
     pub established: bool,
     /// Largest overlap of plastic loading (starts at the yield overlap) [m].
     pub alpha_max: f64,
@@ -55,6 +60,8 @@ pub struct TnHistory {
 }
 
 impl ThorntonNing {
+    /// The law of reduced radius R* [m], effective modulus E* [Pa], interface energy Gamma [J/m^2] and
+    /// yield contact pressure p_y [Pa]: finds a_y (Eq. 3.55) and where plastic loading starts.
     pub fn new(radius: f64, youngs_modulus: f64, surface_energy: f64, yield_pressure: f64) -> ThorntonNing {
         let curve = JkrCurve::new(radius, youngs_modulus, surface_energy);
         let a_y = yield_radius(radius, youngs_modulus, surface_energy, yield_pressure);

@@ -27,6 +27,7 @@ use crate::numeric::brent;
 use crate::vocabulary::Range;
 use std::f64::consts::PI;
 
+/// Tomas' law of one contact pair (the module documentation says which equations).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Tomas {
     /// c = 4/3 E* sqrt(R*) [N/m^1.5].
@@ -48,12 +49,17 @@ pub struct Tomas {
 /// Which lens curve the contact is on after yield.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum LensMode {
+    /// The unloading curve, ending at point A (h_min, F_A) (branch `Elastic`).
     Unloading,
+    /// The reloading curve, ending at (alpha_max, F_max) (branch `Reloading`).
     Reloading,
 }
 
+/// What a Tomas contact remembers.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct TomasHistory {
+    /// The contact has been loaded plastically: below alpha_max it is on the lens curves, not the
+    /// reversible Hertz branch.
     pub yielded: bool,
     /// Largest overlap (at least alpha_y) [m].
     pub alpha_max: f64,
@@ -61,15 +67,19 @@ pub struct TomasHistory {
     pub h_min: f64,
     /// Force at point A (negative) [N].
     pub f_a: f64,
+    /// The lens curve the contact is on.
     pub mode: LensMode,
-    /// Start of the current lens curve [m], [N].
+    /// Overlap at the start of the current lens curve [m].
     pub anchor_alpha: f64,
+    /// Force at the start of the current lens curve [N].
     pub anchor_force: f64,
     /// Overlap of the last accepted state: tells loading from unloading [m].
     pub last_alpha: f64,
 }
 
 impl Tomas {
+    /// The law from R* [m], E* [Pa] (ours, half of Tomas' E*), p_f [Pa], kappa_A and kappa_p [-], F_H0 [N]
+    /// and a_F [m]; derives c, k_1, k_A, alpha_y and kappa.
     pub fn new(r: f64, e_star: f64, p_f: f64, kappa_a: f64, kappa_p: f64, f0: f64, a_f: f64) -> Tomas {
         let c = 4.0 / 3.0 * e_star * r.sqrt();
         let k1 = PI * r * p_f * (kappa_a - kappa_p);

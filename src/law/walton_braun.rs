@@ -9,6 +9,7 @@ use super::{Branch, Evaluation, LawInfo, LawOptions, NormalLaw};
 use crate::error::ParamError;
 use crate::vocabulary::Range;
 
+/// Walton and Braun's law of one contact pair (the module documentation says which equations).
 #[derive(Debug, Clone, PartialEq)]
 pub struct WaltonBraun {
     /// k_p [N/m].
@@ -19,6 +20,7 @@ pub struct WaltonBraun {
     pub slope: f64,
 }
 
+/// What a Walton-Braun contact remembers.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct WbHistory {
     /// Largest overlap [m].

@@ -46,6 +46,10 @@ impl NormalDamping {
 }
 
 impl Effective {
+    /// The effective pair properties of a scene, after validating it: R*, m*, E* and G* against a wall
+    /// (rigid when it has no modulus) or an identical particle; Gamma; p_y, the smaller of the two
+    /// surfaces' yield pressures (given, or from a yield stress by 000 Eq. 32 or 33), times the
+    /// strain-rate factor of 000 Eq. 34 when its coefficient is positive.
     pub fn from_scene(s: &Scene) -> Result<Effective, ParamError> {
         s.validate()?;
         let (r, m) = (s.particle_radius, s.particle_mass());

@@ -27,7 +27,9 @@ macro_rules! model_names {
 crate::choice_enum! {
     /// What the particle touches.
     pub enum Partner {
+        /// A flat wall of the `wall_*` properties: R* = R, m* = m; rigid without `wall_youngs_modulus`.
         Wall = "wall",
+        /// An identical particle: R* = R/2, m* = m/2.
         Particle = "particle",
     }
 }

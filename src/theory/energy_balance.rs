@@ -15,7 +15,10 @@ use crate::numeric::{brent, tanh_sinh};
 pub enum BalanceError {
     /// The overlap grew past the limit without stopping the sphere.
     #[error("the sphere was not stopped before an overlap of {overlap:e} m")]
-    NoTurningPoint { overlap: f64 },
+    NoTurningPoint {
+        /// The trial overlap that passed the limit of 10 R* [m].
+        overlap: f64,
+    },
     /// Too many branch switches (a law that chatters between branches).
     #[error("more than 10000 branch segments on one quasi-static path")]
     TooManySegments,

@@ -13,14 +13,17 @@ use crate::law::AnyLaw;
 /// The outcome of one undamped impact at speed `impact_velocity`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ImpactOutcome {
+    /// Impact speed [m/s].
     pub impact_velocity: f64,
-    /// Largest overlap [m] and force [N].
+    /// Largest overlap [m].
     pub max_overlap: f64,
+    /// Force at the largest overlap [N].
     pub max_force: f64,
     /// Rebound speed after detachment; 0 when the sphere sticks [m/s].
     pub rebound_velocity: f64,
     /// rebound / impact velocity.
     pub restitution: f64,
+    /// Whether the sphere sticks (no kinetic energy left at detachment).
     pub sticks: bool,
 }
 

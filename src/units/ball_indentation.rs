@@ -19,6 +19,7 @@ use crate::scene::{Key, KeyDefault, KEYS};
 use serde_json::{Map, Value as Json};
 use std::path::{Path, PathBuf};
 
+/// The FMI modelIdentifier of the unit.
 pub const MODEL_IDENTIFIER: &str = "BallIndentation";
 
 /// The bed in the FMU's resources folder.
@@ -34,7 +35,9 @@ pub const SHIPPED_BED: &str = "beds/bed_004_ch6.pfbed";
 /// The quarter of the same bed's die (`die_sector` 0.25, mirror planes) that `fidelity = quarter` runs:
 /// its resource name, its scene and the repository path it is prepared to.
 pub const RESOURCE_QUARTER_BED: &str = "bed_quarter.pfbed";
+/// The scene of the quarter bed (`RESOURCE_QUARTER_BED`).
 pub const QUARTER_BED_SCENE: &str = include_str!("../../scenes/bed_004_ch6_quarter.json");
+/// The repository path the quarter bed is prepared to.
 pub const SHIPPED_QUARTER_BED: &str = "beds/bed_004_ch6_quarter.pfbed";
 
 /// The quarter beds `replicas` runs on beside the first: prepared as it is from its scene with other fill
@@ -163,6 +166,7 @@ variable_table! {
     fidelity: Variable::parameter("fidelity", Value::String("quarter".into()), "", "quarter (the FMU's quarter of the seed's die, 7250 spheres between two mirror planes, every sphere moving; with a bed_file, that bed with every sphere moving), fast (the whole bed; the spheres farther than 3 contact radii a_max from the deepest indentation are held where the bed left them until the force on one changes by 0.1 consolidation_stress x d^2) or full (the whole bed, every sphere moving); their errors are measured in docs/indentation.md"),
 }
 
+/// The unit (Co-Simulation only): its own variables, the parameters of the three contacts and time.
 pub fn info() -> UnitInfo {
     UnitInfo {
         model_identifier: MODEL_IDENTIFIER,
@@ -196,6 +200,8 @@ pub fn info() -> UnitInfo {
     }
 }
 
+/// The model of BallIndentation: the indentation test on one bed or on several replicas, stepped by the
+/// bed engine over each communication step.
 pub struct BallIndentation {
     /// The unit's variable table (the contacts' parameters are read from it by name prefix).
     variables: Vec<Variable>,

@@ -26,6 +26,7 @@ use crate::law::NormalLaw;
 use crate::numeric::tanh_sinh;
 use serde::{Deserialize, Serialize};
 
+/// The FMI modelIdentifier of the unit.
 pub const MODEL_IDENTIFIER: &str = "ContactElement";
 
 variable_table! {
@@ -59,6 +60,8 @@ const OUTPUTS: Outputs = Outputs {
     pull_off_force: REFS.pull_off_force,
 };
 
+/// The unit (Model Exchange and Co-Simulation): its own variables, the scene parameters, the event
+/// indicators and time.
 pub fn info() -> UnitInfo {
     let mut variables = own_variables();
     variables.extend(scene_params::variables());
@@ -82,6 +85,8 @@ pub fn info() -> UnitInfo {
     }
 }
 
+/// The model of ContactElement: one contact law driven by the overlap inputs, its accepted history, and
+/// the work done on the contact [J].
 pub struct ContactElement {
     variables: Vec<Variable>,
     contact: Option<Contact>,

@@ -4,6 +4,7 @@
 use crate::error::ParamError;
 use crate::impact::StepError;
 
+/// Why a unit refused or failed a call.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum UnitError {
     /// A scene parameter out of its range or inconsistent with another (named, with the allowed range).
@@ -11,7 +12,12 @@ pub enum UnitError {
     Param(#[from] ParamError),
     /// A unit's own parameter or input refused; the message names it and its allowed range.
     #[error("{why}")]
-    Variable { name: &'static str, why: String },
+    Variable {
+        /// The name of the parameter or input.
+        name: &'static str,
+        /// What is wrong with its value, and what is allowed.
+        why: String,
+    },
     /// The integrator could not complete the step (the state stays that of the step's start).
     #[error(transparent)]
     Step(#[from] StepError),

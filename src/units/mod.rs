@@ -42,10 +42,15 @@ pub trait Model: Send {
     fn compute(&mut self, values: &mut [Value], between_events: bool);
     /// ME: the solver's time.
     fn set_time(&mut self, t: f64);
+    /// ME: the continuous states, into `x` (one entry per state).
     fn get_states(&self, x: &mut [f64]);
+    /// ME: takes the continuous states the host's integrator gives.
     fn set_states(&mut self, x: &[f64]);
+    /// ME: the derivatives of the continuous states at the current time, states and inputs, into `dx`.
     fn derivatives(&mut self, values: &[Value], dx: &mut [f64]);
+    /// ME: the event indicators at the current state and inputs, into `z`.
     fn event_indicators(&mut self, values: &[Value], z: &mut [f64]);
+    /// ME: the nominal values of the continuous states, into `x`.
     fn nominals(&self, x: &mut [f64]);
     /// ME: an event (fmi2NewDiscreteStates): the contact's history accepts the current state. The only
     /// place where Model Exchange changes a branch (or, crossing a vertical branch end, the states).
@@ -76,6 +81,8 @@ pub trait Model: Send {
     fn take_events(&mut self) -> Vec<String> {
         Vec::new()
     }
+    /// Sets the model to a state `save` wrote; `values` are the variable values saved with it. A state that
+    /// cannot be read, or that does not fit the parameters, is refused.
     fn restore(&mut self, values: &[Value], bytes: &[u8]) -> Result<(), UnitError>;
 }
 
@@ -92,10 +99,15 @@ pub struct EventUpdate {
 
 /// One unit: identifier, variables, sizes and a constructor of its model.
 pub struct UnitInfo {
+    /// The FMI modelIdentifier (`by_identifier` finds the unit by it).
     pub model_identifier: &'static str,
+    /// The unit's description in its model description.
     pub description: &'static str,
+    /// The variable table; a variable's position in it is its value reference.
     pub variables: Vec<variables::Variable>,
+    /// The number of continuous states (Model Exchange).
     pub n_states: usize,
+    /// The number of event indicators (Model Exchange).
     pub n_event_indicators: usize,
     /// Whether the unit offers Model Exchange (every unit offers Co-Simulation).
     pub model_exchange: bool,
@@ -105,11 +117,13 @@ pub struct UnitInfo {
     pub returns_early: bool,
     /// DefaultExperiment of the XML [s].
     pub stop_time: f64,
+    /// DefaultExperiment stepSize of the XML [s].
     pub step_size: f64,
     /// A fresh model; the second argument is the unzipped `resources` folder, when the host gave one.
     pub new_model: fn(&UnitInfo, Option<&std::path::Path>) -> Box<dyn Model>,
     /// The GUID and the FMI 3.0 instantiation token, computed once (each hashes its model description).
     pub guid_cache: OnceLock<String>,
+    /// The FMI 3.0 instantiation token, computed once (`instantiation_token`).
     pub token_cache: OnceLock<String>,
 }
 
@@ -130,10 +144,12 @@ impl UnitInfo {
         self.token_cache.get_or_init(|| uuid_of(&model_description_fmi3::xml(self, ""))).clone()
     }
 
+    /// The FMI 2.0 modelDescription.xml of the unit, with its GUID.
     pub fn model_description(&self) -> String {
         model_description::xml(self, &self.guid())
     }
 
+    /// The FMI 3.0 modelDescription.xml of the unit, with its instantiationToken.
     pub fn model_description_fmi3(&self) -> String {
         model_description_fmi3::xml(self, &self.instantiation_token())
     }

@@ -16,6 +16,7 @@ use crate::scene::{ModelKind, Partner};
 use crate::theory::time_step;
 use serde::{Deserialize, Serialize};
 
+/// The FMI modelIdentifier of the unit.
 pub const MODEL_IDENTIFIER: &str = "ParticleWallImpact";
 
 /// The largest speed of the sphere and the wall [m/s]: far beyond any impact of powder, and a bound
@@ -88,6 +89,8 @@ const OUTPUTS: Outputs = Outputs {
     pull_off_force: REFS.pull_off_force,
 };
 
+/// The unit (Model Exchange and Co-Simulation): its own variables, the scene parameters, the event
+/// indicators and time.
 pub fn info() -> UnitInfo {
     let mut variables = own_variables();
     variables.extend(scene_params::variables());
@@ -111,6 +114,8 @@ pub fn info() -> UnitInfo {
     }
 }
 
+/// The model of ParticleWallImpact: the sphere, its state and the wall it meets; the host integrates
+/// the state in Model Exchange, `impact::Sphere` advances it in Co-Simulation.
 pub struct ParticleWallImpact {
     variables: Vec<Variable>,
     radius: f64,

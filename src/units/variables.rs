@@ -5,13 +5,18 @@
 /// The FMI 2.0 base type of a variable.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum VarType {
+    /// A real number (FMI 3.0 Float64).
     Real,
+    /// A 32-bit integer (FMI 3.0 Int32).
     Integer,
+    /// A boolean.
     Boolean,
+    /// A string.
     String,
 }
 
 impl VarType {
+    /// The type's name in the FMI 2.0 model description ("Real", "Integer", "Boolean", "String").
     pub fn xml_name(self) -> &'static str {
         match self {
             VarType::Real => "Real",
@@ -22,16 +27,23 @@ impl VarType {
     }
 }
 
+/// The FMI causality of a variable.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Causality {
+    /// A parameter: settable until the end of Initialization Mode, fixed after.
     Parameter,
+    /// An input the host sets during the simulation.
     Input,
+    /// An output the unit calculates.
     Output,
+    /// A calculated local (continuous states, their derivatives, event indicators).
     Local,
+    /// The independent variable, time.
     Independent,
 }
 
 impl Causality {
+    /// The causality as the model description writes it.
     pub fn xml_name(self) -> &'static str {
         match self {
             Causality::Parameter => "parameter",
@@ -43,14 +55,19 @@ impl Causality {
     }
 }
 
+/// The FMI variability of a variable.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Variability {
+    /// Fixed after initialization (the parameters).
     Fixed,
+    /// Changes only at events (the outputs that are not reals).
     Discrete,
+    /// May change continuously in time (real inputs, outputs and locals).
     Continuous,
 }
 
 impl Variability {
+    /// The variability as the model description writes it.
     pub fn xml_name(self) -> &'static str {
         match self {
             Variability::Fixed => "fixed",
@@ -63,13 +80,18 @@ impl Variability {
 /// A start value (also the value a fresh instance holds).
 #[derive(Debug, Clone, PartialEq)]
 pub enum Value {
+    /// A Real value.
     Real(f64),
+    /// An Integer value.
     Integer(i32),
+    /// A Boolean value.
     Boolean(bool),
+    /// A String value.
     String(String),
 }
 
 impl Value {
+    /// The type of the value.
     pub fn var_type(&self) -> VarType {
         match self {
             Value::Real(_) => VarType::Real,
@@ -97,6 +119,7 @@ impl Value {
         }
     }
 
+    /// The value as a real: an Integer converted, a Boolean as 0 or 1, a String NaN.
     pub fn as_real(&self) -> f64 {
         match self {
             Value::Real(x) => *x,
@@ -134,18 +157,27 @@ pub enum Role {
 /// One FMU variable.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Variable {
+    /// The variable's name.
     pub name: String,
+    /// Its causality.
     pub causality: Causality,
+    /// Its variability.
     pub variability: Variability,
     /// Start value for parameters, inputs and exact states; `None` means initial="calculated".
     pub start: Option<Value>,
+    /// Its type.
     pub var_type: VarType,
     /// Unit name (defined in `UNITS`), or "" for a dimensionless value.
     pub unit: &'static str,
+    /// The smallest value a set may give, in the variable's unit (the XML `min`); None: no bound.
     pub min: Option<f64>,
+    /// The largest value a set may give, in the variable's unit (the XML `max`); None: no bound.
     pub max: Option<f64>,
+    /// The nominal value, in the variable's unit (the XML `nominal`); None: none given.
     pub nominal: Option<f64>,
+    /// The description the model description and the docs give.
     pub description: String,
+    /// Whether it is a plain variable, a continuous state, a derivative, an event indicator or time.
     pub role: Role,
 }
 
@@ -215,17 +247,20 @@ impl Variable {
         Variable::new(name, Causality::Local, Variability::Continuous, VarType::Real, None, unit, description, role)
     }
 
+    /// The same variable with `min` and `max` (None: no bound).
     pub fn with_range(mut self, min: Option<f64>, max: Option<f64>) -> Variable {
         self.min = min;
         self.max = max;
         self
     }
 
+    /// The same variable with a nominal value.
     pub fn with_nominal(mut self, nominal: f64) -> Variable {
         self.nominal = Some(nominal);
         self
     }
 
+    /// The same variable with another role.
     pub fn with_role(mut self, role: Role) -> Variable {
         self.role = role;
         self
@@ -254,9 +289,13 @@ impl Variable {
 
 /// A unit of `UnitDefinitions`: name and SI base-unit exponents (kg, m, s).
 pub struct UnitDef {
+    /// The unit's name, as variables give it ("m/s").
     pub name: &'static str,
+    /// Exponent of kg.
     pub kg: i32,
+    /// Exponent of m.
     pub m: i32,
+    /// Exponent of s.
     pub s: i32,
 }
 

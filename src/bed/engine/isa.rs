@@ -45,6 +45,7 @@ impl Isa {
         }
     }
 
+    /// Its lower-case name, `baseline` or `avx2` (as `POWDERFMU_ENGINE_ISA` and reports spell it).
     pub fn name(self) -> &'static str {
         match self {
             Isa::Baseline => "baseline",

@@ -36,22 +36,29 @@ use rayon::prelude::*;
 /// The DEM engine for one normal law `L` (particle-particle and particle-wall contacts both use it,
 /// each pair of species and each species-wall pair with its own parameters).
 pub struct Engine<L: BedLaw> {
+    /// The spheres.
     pub particles: Particles,
+    /// The walls, in the order of `wall_pairs` and `wall_contacts`.
     pub walls: Vec<Wall>,
     /// Interactions of species pairs, `pairs[a * species + b]` (`pair(a, b)`).
     pub pairs: Vec<Interaction<L>>,
     /// Interactions of each wall with each species, `wall_pairs[w][s]`.
     pub wall_pairs: Vec<Vec<Interaction<L>>>,
+    /// Number of species (size classes).
     pub species: usize,
+    /// Gravitational acceleration [m/s^2].
     pub gravity: Vec3,
     /// Time step [s].
     pub dt: f64,
-    /// Simulated time [s] and steps taken.
+    /// Simulated time [s].
     pub time: f64,
+    /// Steps taken.
     pub steps: u64,
+    /// The Verlet neighbour list of particle pairs.
     pub list: NeighborList,
     /// What each list slot's contact remembers: law history, tangential spring, contact radius.
     pub memory: ContactMemory<L::History>,
+    /// Each wall's contacts: the particles within range of it and their memory.
     pub wall_contacts: Vec<WallContacts<L::History>>,
     /// Wall positions at the last rebuild.
     wall_reference: Vec<Vec3>,
@@ -153,6 +160,7 @@ impl<L: BedLaw> Engine<L> {
         Ok(e)
     }
 
+    /// Number of threads the force loop and the kick run on (1: no pool).
     pub fn threads(&self) -> usize {
         self.threads
     }
