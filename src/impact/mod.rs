@@ -1,12 +1,14 @@
 //! Dynamics of one contact in time (docs/architecture.md, "Layers", layer 4): the contact bookkeeping shared by the
 //! units (`contact`), a sphere moving along a wall normal (`sphere`) and its three integrators (`exact`,
-//! `adaptive`, `verlet`). Knows laws through `AnyLaw`, time and geometry; knows nothing of FMI.
+//! `adaptive`, `verlet`); the oblique impact's motion along the wall and spin (`oblique`). Knows laws through `AnyLaw`, time and geometry; knows nothing of FMI.
 
 mod adaptive;
 pub mod contact;
 mod exact;
+pub mod oblique;
 pub mod sphere;
 mod verlet;
 
 pub use contact::{Contact, ContactForce};
+pub use oblique::{Spin, Tangential};
 pub use sphere::{Solver, Sphere, State, StepError, WallMotion};

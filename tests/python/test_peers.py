@@ -98,6 +98,53 @@ def test_lammps_wall_modulus_is_the_one_docs_porting_names(tmp_path):
     assert version == "29 Sep 2021 - Update 2", f"docs/porting.md names the version measured; this is {version}"
 
 
+def lammps_oblique(theta_deg: float, tangential: str) -> tuple[float, float, float]:
+    """LAMMPS's rebound (v_t, v_n, omega) of Chung and Ooi's Test 4 sphere at one incident angle."""
+    speed, radius, E, nu, dt = 3.9, 2.5e-3, 3.8e11, 0.23, 1.3806e-8
+    v_n, v_t = speed * math.cos(math.radians(theta_deg)), speed * math.sin(math.radians(theta_deg))
+    # Our rigid wall's E* = E / (1 - nu^2) through LAMMPS's E / (2 (1 - nu)) (docs/porting.md); its G*
+    # = G / (2 - nu) given as LAMMPS's k_t = 8 G*.
+    wall_e = 2 * E / (1 + nu)
+    k_t = 8 * E / (2 * (1 + nu)) / (2 - nu)
+    gap = v_n * dt
+    run = subprocess.run(
+        [LMP, "-in", str(REPO / "tests/python/peers/lammps_oblique.in"), "-log", "none", "-var", "tmodel", tangential,
+         "-var", "z0", repr(radius + gap), "-var", "d", repr(2 * radius), "-var", "rho", "4000", "-var", "E", repr(wall_e),
+         "-var", "nu", repr(nu), "-var", "kt", repr(k_t), "-var", "mu", "0.092", "-var", "vt", repr(v_t), "-var", "vn", repr(v_n),
+         "-var", "dt", repr(dt), "-var", "n", str(int((gap / v_n + 2e-5) / dt))],
+        capture_output=True, text=True, timeout=300,
+    )
+    assert run.returncode == 0, run.stdout[-2000:] + run.stderr[-2000:]
+    line = next(l for l in run.stdout.splitlines() if l.startswith("RESULT"))
+    vx, vz, wy = (float(x) for x in line.split()[1:])
+    return vx, vz, wy
+
+
+@pytest.mark.skipif(LMP is None, reason="LAMMPS is not installed (apt-get install lammps); the peer comparison runs where it is")
+@pytest.mark.parametrize("theta", [10.0, 30.0, 60.0])
+def test_oblique_impacts_are_lammps_granular_mindlin_force(theta, cli):
+    """Chung and Ooi's Test 4 (alumina on a rigid plane at 3.9 m/s) at an angle in the micro-slip regime
+    (10 deg) and two of gross sliding, against LAMMPS's `tangential mindlin/force` (the incremental force
+    spring, ours): the rebound velocities and spin agree to 1e-3, the time-step error of both (ours at a
+    tenth of the step moves by up to 1.7e-4 at 10 deg), with LAMMPS's lever R (`--lever radius`). With
+    our default lever R - alpha/2 the spin differs from LAMMPS's by alpha/2R in gross sliding (4e-4 at
+    60 deg) and by 0.4 % at 10 deg, where the spin is smaller; asserted below so that a change shows."""
+    vx, vz, wy = lammps_oblique(theta, "mindlin/force")
+
+    def ours(lever: str) -> dict:
+        out = subprocess.run([str(cli.path), "oblique", str(REPO / "scenes/chung_ooi_alumina.json"), "--speed", "3.9",
+                              "--angles", repr(theta), "--lever", lever], capture_output=True, text=True, check=True).stdout
+        return next(csv.DictReader(out.splitlines()))
+
+    o = ours("radius")
+    assert float(o["tangential_velocity_out_m_per_s"]) == pytest.approx(vx, rel=1e-3)
+    assert float(o["normal_velocity_out_m_per_s"]) == pytest.approx(vz, rel=1e-5)
+    assert float(o["angular_velocity_out_rad_per_s"]) == pytest.approx(wy, rel=1e-3)
+    mid = ours("mid-overlap")
+    spin_gap = abs(float(mid["angular_velocity_out_rad_per_s"]) / wy - 1)
+    assert spin_gap < (5e-3 if theta < 28.3 else float(mid["max_overlap_m"]) / 2.5e-3), f"mid-overlap lever: spin {spin_gap:.2e} from LAMMPS's"
+
+
 YADE = shutil.which("yade")
 TURNS = [4.0e-8, 1.5e-8, 2.0e-8, 1.2e-7, -1e-9]
 
