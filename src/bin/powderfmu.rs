@@ -154,7 +154,7 @@ fn oblique_csv(scene: &Scene, speed: f64, angles: &[f64], options: &oblique::Imp
     use std::fmt::Write;
     let mut out = String::from(
         "incident_angle_deg,normal_velocity_in_m_per_s,tangential_velocity_in_m_per_s,angular_velocity_in_rad_per_s,normal_velocity_out_m_per_s,\
-tangential_velocity_out_m_per_s,angular_velocity_out_rad_per_s,tangential_restitution,rebound_angle_deg,max_overlap_m,contact_time_s,\
+tangential_velocity_out_m_per_s,angular_velocity_out_rad_per_s,tangential_restitution,rebound_angle_deg,max_overlap_m,max_force_N,contact_time_s,\
 slid_throughout,dissipated_energy_J,kinetic_energy_lost_J\n",
     );
     for &angle in angles {
@@ -162,7 +162,7 @@ slid_throughout,dissipated_energy_J,kinetic_energy_lost_J\n",
         let o = oblique::impact(scene, v_n, v_t, options).map_err(|e| format!("at {angle} deg: {e}"))?;
         let _ = writeln!(
             out,
-            "{angle},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{},{:e},{:e}",
+            "{angle},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{},{:e},{:e}",
             o.normal_velocity_in,
             o.tangential_velocity_in,
             o.angular_velocity_in,
@@ -172,6 +172,7 @@ slid_throughout,dissipated_energy_J,kinetic_energy_lost_J\n",
             o.tangential_restitution(),
             o.rebound_angle().to_degrees(),
             o.max_overlap,
+            o.max_force,
             o.contact_time,
             o.slid_throughout,
             o.dissipated_energy,

@@ -266,6 +266,8 @@ pub struct ObliqueOutcome {
     pub angular_velocity_out: f64,
     /// Largest overlap [m].
     pub max_overlap: f64,
+    /// Largest normal contact force, law and damping [N].
+    pub max_force: f64,
     /// Time in contact [s].
     pub contact_time: f64,
     /// Steps of the integrator in contact.
@@ -343,7 +345,7 @@ pub fn impact(scene: &Scene, normal_velocity: f64, tangential_velocity: f64, opt
     let inertia = tangential.inertia;
     let kinetic = |y: &State, s: &Spin| 0.5 * eff.mass * (y.velocity * y.velocity + s.velocity * s.velocity) + 0.5 * inertia * s.angular_velocity * s.angular_velocity;
     let before = kinetic(&y, &spin);
-    let (mut t, mut max_overlap, mut slid_throughout, mut contact_steps) = (0.0, 0.0f64, true, 0u64);
+    let (mut t, mut max_overlap, mut max_force, mut slid_throughout, mut contact_steps) = (0.0, 0.0f64, 0.0f64, true, 0u64);
     // A generous bound on the contact time: a hundred of Hertz's at this speed would be far beyond.
     let t_max = 1e6 * h;
     loop {
@@ -351,6 +353,7 @@ pub fn impact(scene: &Scene, normal_velocity: f64, tangential_velocity: f64, opt
         t += h;
         let alpha = -y.bottom;
         max_overlap = max_overlap.max(alpha);
+        max_force = max_force.max(sphere.contact.force(alpha, -y.velocity).total());
         if sphere.contact.accepted.branch.in_contact() {
             contact_steps += 1;
             if tangential.friction > 0.0 && tangential.spring.force.x != 0.0 {
@@ -373,6 +376,7 @@ pub fn impact(scene: &Scene, normal_velocity: f64, tangential_velocity: f64, opt
         tangential_velocity_out: spin.velocity,
         angular_velocity_out: spin.angular_velocity,
         max_overlap,
+        max_force,
         contact_time: contact_steps as f64 * h,
         steps: contact_steps,
         slid_throughout,
