@@ -82,4 +82,13 @@ fn test_3_damped_hertz_rebounds_below_the_nominal_restitution() {
             last = measured;
         }
     }
+    // The linear spring with a constant coefficient meets its nominal value (to the step).
+    let mut s = scene(2.5e-3, 4000.0, 3.8e11, 0.23);
+    s.contact_model = ModelKind::Linear;
+    s.laws.linear.linear_stiffness = Some(1e7);
+    for e0 in [0.2, 0.5, 0.8] {
+        s.restitution_coefficient = e0;
+        let measured = impact(&s, 3.9, 0.0, &ImpactOptions::default()).unwrap().normal_velocity_out / 3.9;
+        assert!((measured - e0).abs() < 1e-3, "linear e_0 = {e0}: measured {measured}");
+    }
 }
