@@ -7,7 +7,7 @@
 //! K^2 = 2/5 (28.3 deg here). Below that the micro-slip regime has no closed form: the peer comparison
 //! with LAMMPS covers it (tests/python/test_peers.py).
 
-use powderfmu::impact::oblique::{impact, ImpactOptions, Lever};
+use powderfmu::impact::oblique::{impact, ImpactOptions, Lever, ObliqueSolver};
 use powderfmu::scene::{ModelKind, Scene};
 
 const SPEED: f64 = 3.9;
@@ -115,4 +115,30 @@ fn bad_options_are_refused_by_name() {
     assert!(e.contains("normal_velocity") && e.contains("(0, inf)"), "{e}");
     let e = impact(&scene, 1.0, 0.0, &ImpactOptions { rayleigh_fraction: 2.0, ..ImpactOptions::default() }).unwrap_err().to_string();
     assert!(e.contains("rayleigh_fraction") && e.contains("(0, 1]"), "{e}");
+}
+
+#[test]
+fn the_adaptive_integrator_lands_on_the_stick_slip_switches_and_converges() {
+    // Dormand-Prince with the stick-slip switches located, against Verlet at 2e-4 of the Rayleigh step
+    // (its own error there about 3e-5, docs/benchmarks.md), over the micro-slip regime and into gross
+    // sliding; and its own convergence with the tolerance at 15 deg, where three switches follow.
+    let scene = alumina();
+    let adaptive = |theta: f64, tol: f64| {
+        let (v_n, v_t) = (SPEED * theta.to_radians().cos(), SPEED * theta.to_radians().sin());
+        impact(&scene, v_n, v_t, &ImpactOptions { solver: ObliqueSolver::Adaptive(tol), rayleigh_fraction: 0.5, ..ImpactOptions::default() }).unwrap()
+    };
+    for theta in [3.0f64, 10.0, 15.0, 20.0, 25.0, 45.0] {
+        let (v_n, v_t) = (SPEED * theta.to_radians().cos(), SPEED * theta.to_radians().sin());
+        let fine = impact(&scene, v_n, v_t, &ImpactOptions { rayleigh_fraction: 2e-4, ..ImpactOptions::default() }).unwrap();
+        let a = adaptive(theta, 1e-10);
+        assert!((a.tangential_restitution() - fine.tangential_restitution()).abs() < 1e-4, "{theta} deg: {a:?} against {fine:?}");
+        assert!((a.angular_velocity_out - fine.angular_velocity_out).abs() < 1e-4 * 632.0, "{theta} deg: spin");
+        assert!((a.dissipated_energy - a.kinetic_energy_lost).abs() < 1e-6 * a.kinetic_energy_lost, "{theta} deg: energy");
+    }
+    let reference = adaptive(15.0, 1e-12).tangential_velocity_out;
+    let errors: Vec<f64> = [1e-6, 1e-8, 1e-10].iter().map(|&tol| (adaptive(15.0, tol).tangential_velocity_out - reference).abs()).collect();
+    assert!(errors[0] < 1e-5 && errors[1] < 1e-7 && errors[2] < 1e-9, "errors at tolerances 1e-6, 1e-8, 1e-10: {errors:?}");
+    // No rolling friction in it: refused by name.
+    let e = impact(&scene, 1.0, 1.0, &ImpactOptions { solver: ObliqueSolver::Adaptive(1e-8), rolling_friction: 0.1, ..ImpactOptions::default() }).unwrap_err();
+    assert!(e.to_string().contains("rolling_friction"), "{e}");
 }

@@ -92,6 +92,14 @@ enum Command {
         /// Where the tangential force acts: mid-overlap (R - alpha/2, the bed's) or radius (R, LAMMPS's walls)
         #[arg(long, default_value = "mid-overlap", value_parser = ["mid-overlap", "radius"])]
         lever: String,
+        /// verlet (fixed step, what DEM codes do) or adaptive (Dormand-Prince 5(4) landing on the normal
+        /// law's switches and the stick-slip switches; no rolling friction; --rayleigh-fraction is then the
+        /// contact time's resolution)
+        #[arg(long, default_value = "verlet", value_parser = ["verlet", "adaptive"])]
+        solver: String,
+        /// Relative tolerance of the adaptive solver
+        #[arg(long, default_value_t = 1e-10, value_parser = options::in_range(1e-14, 1e-2, true, "-"))]
+        tolerance: f64,
     },
     /// The DEM bed: prepare, describe, look at, export, time, indent
     Bed {
@@ -129,9 +137,10 @@ fn main() -> ExitCode {
         }),
         Command::Curve { scene, path, start, points } => with_scene(&scene, |s| force_overlap_csv(s, start, &path, points as usize)).map(|csv| print!("{csv}")),
         Command::Restitution { scene, velocities } => with_scene(&scene, |s| restitution_csv(s, &velocities)).map(|csv| print!("{csv}")),
-        Command::Oblique { scene, speed, angles, angular_velocity, rolling_friction, rayleigh_fraction, lever } => {
+        Command::Oblique { scene, speed, angles, angular_velocity, rolling_friction, rayleigh_fraction, lever, solver, tolerance } => {
             let lever = if lever == "radius" { oblique::Lever::Radius } else { oblique::Lever::MidOverlap };
-            let options = oblique::ImpactOptions { angular_velocity, rolling_friction, lever, rayleigh_fraction };
+            let solver = if solver == "adaptive" { oblique::ObliqueSolver::Adaptive(tolerance) } else { oblique::ObliqueSolver::Verlet };
+            let options = oblique::ImpactOptions { angular_velocity, rolling_friction, lever, rayleigh_fraction, solver };
             with_scene(&scene, |s| oblique_csv(s, speed, &angles, &options)).map(|csv| print!("{csv}"))
         }
         Command::Bed { command } => bed_cli::run(command),

@@ -6,6 +6,7 @@ mod adaptive;
 pub mod contact;
 mod exact;
 pub mod oblique;
+mod oblique_adaptive;
 pub mod sphere;
 mod verlet;
 

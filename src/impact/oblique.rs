@@ -230,6 +230,16 @@ impl Sphere {
     }
 }
 
+/// The integrator of `impact`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ObliqueSolver {
+    /// Velocity Verlet at the step `ImpactOptions::rayleigh_fraction` of the Rayleigh step.
+    Verlet,
+    /// Dormand-Prince 5(4) at this relative tolerance, landing on the normal branch switches and the
+    /// stick-slip switches (`oblique_adaptive.rs`); no rolling friction.
+    Adaptive(f64),
+}
+
 /// How `impact` runs: the sphere's spin and rolling friction, the lever, the time step.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ImpactOptions {
@@ -239,13 +249,16 @@ pub struct ImpactOptions {
     pub rolling_friction: f64,
     /// Where the tangential force acts.
     pub lever: Lever,
-    /// The time step as a fraction of the Rayleigh time step (000 Eq. 71) [-].
+    /// The time step (Verlet), or the interval at which the outcome is watched (adaptive: the contact
+    /// time's resolution), as a fraction of the Rayleigh time step (000 Eq. 71) [-].
     pub rayleigh_fraction: f64,
+    /// The integrator.
+    pub solver: ObliqueSolver,
 }
 
 impl Default for ImpactOptions {
     fn default() -> ImpactOptions {
-        ImpactOptions { angular_velocity: 0.0, rolling_friction: 0.0, lever: Lever::MidOverlap, rayleigh_fraction: 0.01 }
+        ImpactOptions { angular_velocity: 0.0, rolling_friction: 0.0, lever: Lever::MidOverlap, rayleigh_fraction: 0.01, solver: ObliqueSolver::Verlet }
     }
 }
 
@@ -268,9 +281,9 @@ pub struct ObliqueOutcome {
     pub max_overlap: f64,
     /// Largest normal contact force, law and damping [N].
     pub max_force: f64,
-    /// Time in contact [s].
+    /// Time in contact [s], to one step of `ImpactOptions::rayleigh_fraction` of the Rayleigh step.
     pub contact_time: f64,
-    /// Steps of the integrator in contact.
+    /// Steps of `ImpactOptions::rayleigh_fraction` of the Rayleigh step in contact.
     pub steps: u64,
     /// Whether the contact slid (sat on the Coulomb limit) at every step it carried force.
     pub slid_throughout: bool,
@@ -309,7 +322,7 @@ pub enum ObliqueError {
 /// The oblique impact of the scene's sphere on its wall at normal velocity `normal_velocity` [m/s] (toward
 /// the wall) and tangential velocity `tangential_velocity` [m/s], no gravity, by velocity Verlet.
 pub fn impact(scene: &Scene, normal_velocity: f64, tangential_velocity: f64, options: &ImpactOptions) -> Result<ObliqueOutcome, ObliqueError> {
-    let ImpactOptions { angular_velocity, rolling_friction, lever, rayleigh_fraction } = *options;
+    let ImpactOptions { angular_velocity, rolling_friction, lever, rayleigh_fraction, solver } = *options;
     for (name, value, ok) in [
         ("normal_velocity", normal_velocity, normal_velocity > 0.0 && normal_velocity.is_finite()),
         ("tangential_velocity", tangential_velocity, tangential_velocity.is_finite()),
@@ -327,6 +340,18 @@ pub fn impact(scene: &Scene, normal_velocity: f64, tangential_velocity: f64, opt
             return Err(ParamError::OutOfRange { name, value, allowed: allowed.into() }.into());
         }
     }
+    if let ObliqueSolver::Adaptive(tol) = solver {
+        if !(1e-14..=1e-2).contains(&tol) {
+            return Err(ParamError::OutOfRange { name: "tolerance", value: tol, allowed: "[1e-14, 1e-2]".into() }.into());
+        }
+        if rolling_friction != 0.0 {
+            return Err(ParamError::Inconsistent {
+                name: "rolling_friction",
+                why: "the adaptive integrator has no rolling friction (a torque that switches with the spin's sign); use the verlet integrator".into(),
+            }
+            .into());
+        }
+    }
     let law = AnyLaw::from_scene(scene)?;
     let eff = Effective::from_scene(scene)?;
     let damping = NormalDamping::from_scene(scene, eff.mass);
@@ -335,7 +360,9 @@ pub fn impact(scene: &Scene, normal_velocity: f64, tangential_velocity: f64, opt
     let gap = normal_velocity * h;
     let mut contact = Contact::new(law, damping, 1e-3 * eff.radius, normal_velocity);
     contact.accept(-gap, normal_velocity);
-    let mut sphere = Sphere::new(eff.mass, 0.0, contact, Solver::Verlet { step: h }, 1e-8);
+    let tolerance = if let ObliqueSolver::Adaptive(tol) = solver { tol } else { 1e-8 };
+    let mut sphere = Sphere::new(eff.mass, 0.0, contact, Solver::Verlet { step: h }, tolerance);
+    let mut mode = super::oblique_adaptive::TangentialMode::default();
     let stiffness = TangentialStiffness::for_model(scene.contact_model.tangential_model(), eff.shear_modulus, eff.youngs_modulus, eff.radius);
     let mut tangential = Tangential::new(scene.particle_radius, eff.mass, stiffness, scene.friction_coefficient, rolling_friction);
     tangential.lever = lever;
@@ -349,7 +376,10 @@ pub fn impact(scene: &Scene, normal_velocity: f64, tangential_velocity: f64, opt
     // A generous bound on the contact time: a hundred of Hertz's at this speed would be far beyond.
     let t_max = 1e6 * h;
     loop {
-        sphere.advance_oblique_verlet(&mut tangential, h, &wall, 0.0, t, t + h, &mut y, &mut spin)?;
+        match solver {
+            ObliqueSolver::Verlet => sphere.advance_oblique_verlet(&mut tangential, h, &wall, 0.0, t, t + h, &mut y, &mut spin)?,
+            ObliqueSolver::Adaptive(_) => sphere.advance_oblique_adaptive(&mut tangential, &mut mode, &wall, 0.0, t, t + h, &mut y, &mut spin)?,
+        }
         t += h;
         let alpha = -y.bottom;
         max_overlap = max_overlap.max(alpha);
