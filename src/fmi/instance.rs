@@ -507,6 +507,9 @@ impl Instance {
                     }
                 }
             }
+            if let Err(why) = self.model.check_set(vr as usize, value, self.kind == Kind::ModelExchange) {
+                return error(format!("{function}: `{}`: {why}", v.name));
+            }
         }
         if matches!(self.mode, Mode::Instantiated | Mode::InitializationMode) {
             // The initial state depends on every parameter and input: build it again when asked.

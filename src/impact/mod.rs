@@ -12,4 +12,5 @@ mod verlet;
 
 pub use contact::{Contact, ContactForce};
 pub use oblique::{Spin, Tangential};
+pub use oblique_adaptive::{Mode as StickSlip, TangentialMode};
 pub use sphere::{Solver, Sphere, State, StepError, WallMotion};

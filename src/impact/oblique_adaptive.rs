@@ -27,7 +27,7 @@ const N: usize = 8;
 type Y = [f64; N];
 
 /// Whether the contact sticks or slides (with the sign sigma of the sliding force).
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum Mode {
     /// The spring holds: |F_s| < mu N.
     Stick,
@@ -39,7 +39,7 @@ pub enum Mode {
 const SPRING_HYSTERESIS: f64 = 1e-9;
 
 /// The tangential state the adaptive integrator carries between calls.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct TangentialMode {
     /// Stick or slide.
     pub mode: Mode,

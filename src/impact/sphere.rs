@@ -199,7 +199,7 @@ impl Sphere {
 
     /// A wall the master moved between steps: the contact walks from the accepted overlap to the new one
     /// along a straight path (the sphere cannot move in no time), adding that path's work.
-    fn follow_jump(&mut self, wall: &WallMotion, t: f64, y: &mut State) {
+    pub fn follow_jump(&mut self, wall: &WallMotion, t: f64, y: &mut State) {
         let (alpha, rate) = self.overlap(wall, t, y);
         if self.jumped(wall, t, y) {
             y.work += self.contact.follow(alpha);

@@ -74,6 +74,11 @@ pub trait Model: Send {
     fn set_input_derivatives(&mut self, _derivatives: &[(usize, i32, f64)]) -> Result<(), UnitError> {
         Err(UnitError::Unsupported("this unit takes no input derivatives (canInterpolateInputs is false)".into()))
     }
+    /// A value the host sets (after its type and range are checked): `Err` with the reason refuses it and
+    /// nothing changes. For values allowed in one interface kind only (`model_exchange`).
+    fn check_set(&self, _vr: usize, _value: &Value, _model_exchange: bool) -> Result<(), String> {
+        Ok(())
+    }
     /// The dynamic state (not the parameters) as bytes (empty: not initialized); `restore` reads it back.
     fn save(&self) -> Result<Vec<u8>, UnitError>;
     /// What happened since the last call worth telling the user (progress of a long test), for the

@@ -78,7 +78,7 @@ pub fn units_categories_experiment(unit: &UnitInfo, status_prefix: &str) -> Stri
     let mut x = String::from("  <UnitDefinitions>\n");
     for u in UNITS.iter().filter(|u| unit.variables.iter().any(|v| v.unit == u.name)) {
         let mut attrs = String::new();
-        for (name, e) in [("kg", u.kg), ("m", u.m), ("s", u.s)] {
+        for (name, e) in [("kg", u.kg), ("m", u.m), ("s", u.s), ("rad", u.rad)] {
             if e != 0 {
                 let _ = write!(attrs, " {name}=\"{e}\"");
             }

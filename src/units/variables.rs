@@ -287,7 +287,7 @@ impl Variable {
     }
 }
 
-/// A unit of `UnitDefinitions`: name and SI base-unit exponents (kg, m, s).
+/// A unit of `UnitDefinitions`: name and SI base-unit exponents (kg, m, s, rad).
 pub struct UnitDef {
     /// The unit's name, as variables give it ("m/s").
     pub name: &'static str,
@@ -297,24 +297,28 @@ pub struct UnitDef {
     pub m: i32,
     /// Exponent of s.
     pub s: i32,
+    /// Exponent of rad (angles and spins).
+    pub rad: i32,
 }
 
 /// Every unit a variable may use.
 pub const UNITS: &[UnitDef] = &[
-    UnitDef { name: "s", kg: 0, m: 0, s: 1 },
-    UnitDef { name: "m", kg: 0, m: 1, s: 0 },
-    UnitDef { name: "m2", kg: 0, m: 2, s: 0 },
-    UnitDef { name: "m/s", kg: 0, m: 1, s: -1 },
-    UnitDef { name: "m/s2", kg: 0, m: 1, s: -2 },
-    UnitDef { name: "1/s", kg: 0, m: 0, s: -1 },
-    UnitDef { name: "1/m", kg: 0, m: -1, s: 0 },
-    UnitDef { name: "kg/m3", kg: 1, m: -3, s: 0 },
-    UnitDef { name: "Pa", kg: 1, m: -1, s: -2 },
-    UnitDef { name: "N", kg: 1, m: 1, s: -2 },
-    UnitDef { name: "N/m", kg: 1, m: 0, s: -2 },
-    UnitDef { name: "J", kg: 1, m: 2, s: -2 },
-    UnitDef { name: "W", kg: 1, m: 2, s: -3 },
-    UnitDef { name: "J/m2", kg: 1, m: 0, s: -2 },
+    UnitDef { name: "s", kg: 0, m: 0, s: 1, rad: 0 },
+    UnitDef { name: "m", kg: 0, m: 1, s: 0, rad: 0 },
+    UnitDef { name: "m2", kg: 0, m: 2, s: 0, rad: 0 },
+    UnitDef { name: "m/s", kg: 0, m: 1, s: -1, rad: 0 },
+    UnitDef { name: "m/s2", kg: 0, m: 1, s: -2, rad: 0 },
+    UnitDef { name: "1/s", kg: 0, m: 0, s: -1, rad: 0 },
+    UnitDef { name: "1/m", kg: 0, m: -1, s: 0, rad: 0 },
+    UnitDef { name: "kg/m3", kg: 1, m: -3, s: 0, rad: 0 },
+    UnitDef { name: "Pa", kg: 1, m: -1, s: -2, rad: 0 },
+    UnitDef { name: "N", kg: 1, m: 1, s: -2, rad: 0 },
+    UnitDef { name: "N/m", kg: 1, m: 0, s: -2, rad: 0 },
+    UnitDef { name: "J", kg: 1, m: 2, s: -2, rad: 0 },
+    UnitDef { name: "W", kg: 1, m: 2, s: -3, rad: 0 },
+    UnitDef { name: "J/m2", kg: 1, m: 0, s: -2, rad: 0 },
+    UnitDef { name: "rad", kg: 0, m: 0, s: 0, rad: 1 },
+    UnitDef { name: "rad/s", kg: 0, m: 0, s: -1, rad: 1 },
 ];
 
 /// The FMI unit name of a scene key's unit text ("-" is dimensionless).

@@ -25,7 +25,8 @@ from powderfmu.instance import LogRecord, Messages, set_values  # noqa: F401 - L
 REPO = Path(__file__).resolve().parents[2]
 
 # Parameters of the units that are not scene keys of `powderfmu analyze`.
-OWN_PARAMETERS = frozenset({"initial_gap", "initial_velocity", "gravity", "solver", "tolerance", "rayleigh_fraction"})
+OWN_PARAMETERS = frozenset({"initial_gap", "initial_velocity", "gravity", "solver", "tolerance", "rayleigh_fraction",
+                            "initial_tangential_velocity", "initial_angular_velocity", "rolling_friction"})
 
 
 def fmu_dir() -> Path:
@@ -252,6 +253,8 @@ def read_outputs(unit: Unit, fmu) -> list[str]:
         v = unit.variables[name]
         if v.type == "Real":
             values.append(float(fmu.getReal([v.valueReference])[0]).hex())
+        elif v.type == "Boolean":
+            values.append(str(fmu.getBoolean([v.valueReference])[0]))
         else:
             values.append(str(fmu.getInteger([v.valueReference])[0]))
     return values

@@ -33,10 +33,15 @@ def test_inputs_and_outputs_of_the_brief(unit):
     by_causality = {}
     for v in unit.md.modelVariables:
         by_causality.setdefault(v.causality, set()).add(v.name)
-    assert by_causality["input"] == {"wall_displacement", "wall_velocity"}
+    inputs = {"wall_displacement", "wall_velocity"}
     outputs = {"force", "overlap", "contact_state", "max_overlap", "plastic_overlap", "pull_off_force", "dissipated_energy"}
     if unit.name == "ParticleWallImpact":
-        outputs |= {"sphere_position", "sphere_velocity"}
+        # The oblique impact (issue 33): the wall's motion along itself in, the motion along the wall,
+        # the spin and the tangential contact out.
+        inputs |= {"wall_tangential_velocity"}
+        outputs |= {"sphere_position", "sphere_velocity", "tangential_velocity", "angular_velocity", "tangential_force", "sliding", "rebound_angle"}
+        assert unit.variables["sliding"].type == "Boolean"
+    assert by_causality["input"] == inputs
     assert by_causality["output"] == outputs
     assert unit.variables["contact_state"].type == "Integer"
     assert unit.variables["contact_model"].type == "String"
