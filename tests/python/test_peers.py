@@ -98,8 +98,9 @@ def test_lammps_wall_modulus_is_the_one_docs_porting_names(tmp_path):
     assert version == "29 Sep 2021 - Update 2", f"docs/porting.md names the version measured; this is {version}"
 
 
-def lammps_oblique(theta_deg: float, tangential: str) -> tuple[float, float, float]:
-    """LAMMPS's rebound (v_t, v_n, omega) of Chung and Ooi's Test 4 sphere at one incident angle."""
+def lammps_oblique(theta_deg: float, tangential: str, spin: float = 0.0) -> tuple[float, float, float]:
+    """LAMMPS's rebound (v_t, v_n, omega) of Chung and Ooi's Test 4 sphere at one incident angle, with a
+    spin about y before [rad/s]."""
     speed, radius, E, nu, dt = 3.9, 2.5e-3, 3.8e11, 0.23, 1.3806e-8
     v_n, v_t = speed * math.cos(math.radians(theta_deg)), speed * math.sin(math.radians(theta_deg))
     # Our rigid wall's E* = E / (1 - nu^2) through LAMMPS's E / (2 (1 - nu)) (docs/porting.md); its G*
@@ -110,7 +111,7 @@ def lammps_oblique(theta_deg: float, tangential: str) -> tuple[float, float, flo
     run = subprocess.run(
         [LMP, "-in", str(REPO / "tests/python/peers/lammps_oblique.in"), "-log", "none", "-var", "tmodel", tangential,
          "-var", "z0", repr(radius + gap), "-var", "d", repr(2 * radius), "-var", "rho", "4000", "-var", "E", repr(wall_e),
-         "-var", "nu", repr(nu), "-var", "kt", repr(k_t), "-var", "mu", "0.092", "-var", "vt", repr(v_t), "-var", "vn", repr(v_n),
+         "-var", "nu", repr(nu), "-var", "kt", repr(k_t), "-var", "mu", "0.092", "-var", "vt", repr(v_t), "-var", "vn", repr(v_n), "-var", "wy", repr(spin),
          "-var", "dt", repr(dt), "-var", "n", str(int((gap / v_n + 2e-5) / dt))],
         capture_output=True, text=True, timeout=300,
     )
@@ -143,6 +144,21 @@ def test_oblique_impacts_are_lammps_granular_mindlin_force(theta, cli):
     mid = ours("mid-overlap")
     spin_gap = abs(float(mid["angular_velocity_out_rad_per_s"]) / wy - 1)
     assert spin_gap < (5e-3 if theta < 28.3 else float(mid["max_overlap_m"]) / 2.5e-3), f"mid-overlap lever: spin {spin_gap:.2e} from LAMMPS's"
+
+
+@pytest.mark.skipif(LMP is None, reason="LAMMPS is not installed (apt-get install lammps); the peer comparison runs where it is")
+@pytest.mark.parametrize("spin", [-1500.0, 400.0, 1500.0])
+def test_oblique_impacts_with_spin_are_lammps_and_share_its_sign(spin, cli):
+    """The same sphere at 30 deg with a spin before the impact, backspin and topspin (positive rolls
+    toward +x, LAMMPS's omegay with the same axes): a sign convention that differed would turn these
+    rebounds around. Rebound velocities and spin to 1e-3 with LAMMPS's lever."""
+    vx, vz, wy = lammps_oblique(30.0, "mindlin/force", spin)
+    out = subprocess.run([str(cli.path), "oblique", str(REPO / "scenes/chung_ooi_alumina.json"), "--speed", "3.9", "--angles", "30",
+                          "--angular-velocity", repr(spin), "--lever", "radius"], capture_output=True, text=True, check=True).stdout
+    o = next(csv.DictReader(out.splitlines()))
+    assert float(o["tangential_velocity_out_m_per_s"]) == pytest.approx(vx, rel=1e-3, abs=1e-4)
+    assert float(o["normal_velocity_out_m_per_s"]) == pytest.approx(vz, rel=1e-5)
+    assert float(o["angular_velocity_out_rad_per_s"]) == pytest.approx(wy, rel=1e-3, abs=0.05)
 
 
 YADE = shutil.which("yade")
