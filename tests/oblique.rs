@@ -142,3 +142,29 @@ fn the_adaptive_integrator_lands_on_the_stick_slip_switches_and_converges() {
     let e = impact(&scene, 1.0, 1.0, &ImpactOptions { solver: ObliqueSolver::Adaptive(1e-8), rolling_friction: 0.1, ..ImpactOptions::default() }).unwrap_err();
     assert!(e.to_string().contains("rolling_friction"), "{e}");
 }
+
+#[test]
+fn an_adhesive_sphere_sticks_where_its_normal_velocity_is_below_the_sticking_velocity_at_any_angle() {
+    // JKR on 000 Table 5's materials (V_s = 0.655982 m/s, the law's own sticking velocity by its energy
+    // balance, `powderfmu analyze`). In this model the normal dynamics do not depend on the tangential
+    // ones, so the normal rebound is the same at every angle for one normal velocity (to the bit, Verlet),
+    // e = (1 - V_s^2 / v_n^2)^(1/2) (the adaptive integrator, to 1e-6), and the sphere sticks where
+    // v cos(theta) < V_s.
+    let mut s = Scene::new(ModelKind::Jkr, 2.45e-6, 1350.0, 1.2e9, 0.33);
+    s.wall_youngs_modulus = Some(166e9);
+    s.wall_poisson_ratio = 0.28;
+    s.surface_energy = 0.24;
+    let v_s: f64 = 0.655_982;
+    let exact = ImpactOptions { solver: ObliqueSolver::Adaptive(1e-10), rayleigh_fraction: 0.5, ..ImpactOptions::default() };
+    let e = impact(&s, 1.0, 0.0, &exact).unwrap().normal_velocity_out;
+    assert!((e - (1.0 - v_s * v_s).sqrt()).abs() < 1e-6, "e = {e}");
+    let straight = impact(&s, 1.0, 0.0, &ImpactOptions::default()).unwrap();
+    for v_t in [0.3, 1.0] {
+        let o = impact(&s, 1.0, v_t, &ImpactOptions::default()).unwrap();
+        assert_eq!(o.normal_velocity_out, straight.normal_velocity_out, "v_t = {v_t}");
+        assert!(o.tangential_velocity_out < v_t && o.angular_velocity_out > 0.0);
+    }
+    let held = impact(&s, 0.99 * v_s, 1.0, &ImpactOptions::default()).unwrap_err();
+    assert!(matches!(held, powderfmu::impact::oblique::ObliqueError::Sticks(_)), "{held}");
+    assert!(impact(&s, 1.01 * v_s, 1.0, &ImpactOptions::default()).is_ok());
+}
