@@ -26,7 +26,7 @@
 //! takes the slip of the half-step velocities, as the bed does.
 
 use super::contact::Contact;
-use super::sphere::{Solver, Sphere, State, StepError, WallMotion, MAX_STEPS};
+use super::sphere::{Solver, Sphere, State, StepError, WallMotion};
 use crate::error::ParamError;
 use crate::law::damping::{self, NormalDamping};
 use crate::law::params::Effective;
@@ -185,21 +185,13 @@ impl Sphere {
         y: &mut State,
         spin: &mut Spin,
     ) -> Result<(), StepError> {
-        let span = t_end - t0;
-        if span <= 4.0 * f64::EPSILON * t_end.abs() {
-            return Ok(());
-        }
-        let n = (span / step).ceil().max(1.0);
-        if n > MAX_STEPS as f64 {
-            return Err(StepError::TooManySteps { t: t0, limit: MAX_STEPS });
-        }
-        let h = span / n;
+        let Some((n, h)) = super::verlet::steps(step, t0, t_end)? else { return Ok(()) };
         let (alpha, rate) = self.overlap(wall, t0, y);
         let mut f = self.contact.law_force(alpha, rate).total();
         let mut alpha = alpha;
         let mut f_t = tangential.force;
         let mut rolling = tangential.rolling_load(self, alpha);
-        for i in 0..n as u64 {
+        for i in 0..n {
             let t1 = t0 + (i + 1) as f64 * h;
             let v_half = y.velocity + 0.5 * h * (f / self.mass - self.gravity);
             let mut half = *spin;

@@ -62,7 +62,10 @@ struct Tangent {
 }
 
 impl Sphere {
-    fn tangent(&self, tg: &Tangential, mode: Mode, alpha: f64, rate: f64, y: &Y, wall_tangential_velocity: f64) -> Tangent {
+    /// The tangential contact at a state; `with_excess`: also the excess rate, which costs two more
+    /// evaluations of the law and only the indicators and the mode decisions read (not the stages).
+    #[allow(clippy::too_many_arguments)] // the state and what to evaluate
+    fn tangent(&self, tg: &Tangential, mode: Mode, alpha: f64, rate: f64, y: &Y, wall_tangential_velocity: f64, with_excess: bool) -> Tangent {
         let spin = Spin { velocity: y[3], angular_velocity: y[4], ..Spin::default() };
         let slip = tg.slip(alpha, &spin, wall_tangential_velocity);
         if tg.friction == 0.0 || !self.contact.accepted.branch.in_contact() {
@@ -81,14 +84,18 @@ impl Sphere {
         // The projected spring of the Verlet path slides while the spring, moved by the slip, would
         // outgrow the limit: -sigma k_t s > d(mu N)/dt (sigma the spring's sign, or against the slip for an
         // unloaded spring), with d(mu N)/d alpha by a central difference on the accepted branch.
-        let da = 1e-7 * self.contact.alpha_nominal.max(alpha.abs());
-        let limit_rate = (limit_at(alpha + da).0 - limit_at(alpha - da).0) / (2.0 * da) * rate;
-        let sign = match mode {
-            Mode::Slide(sigma) => sigma,
-            Mode::Stick if y[5] != 0.0 => y[5].signum(),
-            Mode::Stick => -slip.signum(),
+        let excess_rate = if with_excess {
+            let da = 1e-7 * self.contact.alpha_nominal.max(alpha.abs());
+            let limit_rate = (limit_at(alpha + da).0 - limit_at(alpha - da).0) / (2.0 * da) * rate;
+            let sign = match mode {
+                Mode::Slide(sigma) => sigma,
+                Mode::Stick if y[5] != 0.0 => y[5].signum(),
+                Mode::Stick => -slip.signum(),
+            };
+            -sign * k_t * slip - limit_rate
+        } else {
+            f64::NAN
         };
-        let excess_rate = -sign * k_t * slip - limit_rate;
         match mode {
             Mode::Slide(sigma) => Tangent { force: sigma * limit, spring_rate: 0.0, slip, limit, excess_rate },
             Mode::Stick => {
@@ -102,7 +109,7 @@ impl Sphere {
     fn oblique_rhs(&self, tg: &Tangential, mode: Mode, wall: &WallMotion, w_t: f64, t: f64, y: &Y) -> Y {
         let normal = self.derivatives(wall, t, &State::new(y[0], y[1], y[2]));
         let (alpha, rate) = (wall.at(t) - y[0], wall.velocity - y[1]);
-        let tan = self.tangent(tg, mode, alpha, rate, y, w_t);
+        let tan = self.tangent(tg, mode, alpha, rate, y, w_t, false);
         let lever = tg.lever(alpha);
         // The power the tangential force puts into the motion along the wall and the spin.
         let power = tan.force * (y[3] - lever * y[4]);
@@ -124,7 +131,7 @@ impl Sphere {
             return 1.0;
         }
         let (alpha, rate) = (wall.at(t) - y[0], wall.velocity - y[1]);
-        let tan = self.tangent(tg, mode, alpha, rate, y, w_t);
+        let tan = self.tangent(tg, mode, alpha, rate, y, w_t, matches!(mode, Mode::Slide(_)));
         match mode {
             Mode::Stick => tan.limit - y[5].abs(),
             Mode::Slide(_) => tan.excess_rate,
@@ -176,7 +183,7 @@ impl Sphere {
         if tg.friction == 0.0 {
             return;
         }
-        let tan = self.tangent(tg, mode.mode, alpha, rate, x, w_t);
+        let tan = self.tangent(tg, mode.mode, alpha, rate, x, w_t, true);
         match mode.mode {
             Mode::Stick if switched || (x[5] != 0.0 && tan.limit - x[5].abs() <= 0.0) || (formed && tan.excess_rate > 0.0) => {
                 let sigma = if x[5] != 0.0 { x[5].signum() } else { -tan.slip.signum() };
@@ -289,7 +296,7 @@ impl Sphere {
         tangential.spring.force.x = x[5];
         tangential.sliding = matches!(mode.mode, Mode::Slide(_));
         let (alpha, rate) = (wall.at(t_end) - y.bottom, wall.velocity - y.velocity);
-        tangential.force = self.tangent(tangential, mode.mode, alpha, rate, &x, w_t).force;
+        tangential.force = self.tangent(tangential, mode.mode, alpha, rate, &x, w_t, false).force;
         Ok(())
     }
 }

@@ -17,20 +17,12 @@ impl Sphere {
         y: &mut State,
         stop_at_event: bool,
     ) -> Result<Option<f64>, StepError> {
-        let span = t_end - t0;
-        if span <= 4.0 * f64::EPSILON * t_end.abs() {
-            return Ok(None);
-        }
+        let Some((n, h)) = steps(step, t0, t_end)? else { return Ok(None) };
         let start_state = self.contact_state();
-        let n = (span / step).ceil().max(1.0);
-        if n > MAX_STEPS as f64 {
-            return Err(StepError::TooManySteps { t: t0, limit: MAX_STEPS });
-        }
-        let h = span / n;
         let (alpha, rate) = self.overlap(wall, t0, y);
         let mut f = self.contact.law_force(alpha, rate).total();
         let mut alpha = alpha;
-        for i in 0..n as u64 {
+        for i in 0..n {
             let t1 = t0 + (i + 1) as f64 * h;
             let v_half = y.velocity + 0.5 * h * (f / self.mass - self.gravity);
             y.bottom += h * v_half;
@@ -47,9 +39,24 @@ impl Sphere {
             f = f1;
             alpha = alpha1;
             if stop_at_event && self.contact_state() != start_state {
-                return Ok(Some(if i + 1 == n as u64 { t_end } else { t1 }));
+                return Ok(Some(if i + 1 == n { t_end } else { t1 }));
             }
         }
         Ok(None)
     }
+}
+
+/// The communication step [t0, t_end] cut into n equal steps h no longer than `step`: None for a
+/// rounding leftover of a step (no step at all), an error beyond `MAX_STEPS`. Both Verlet paths
+/// (`advance_verlet`, `advance_oblique_verlet`) step this way.
+pub(super) fn steps(step: f64, t0: f64, t_end: f64) -> Result<Option<(u64, f64)>, StepError> {
+    let span = t_end - t0;
+    if span <= 4.0 * f64::EPSILON * t_end.abs() {
+        return Ok(None);
+    }
+    let n = (span / step).ceil().max(1.0);
+    if n > MAX_STEPS as f64 {
+        return Err(StepError::TooManySteps { t: t0, limit: MAX_STEPS });
+    }
+    Ok(Some((n as u64, span / n)))
 }
