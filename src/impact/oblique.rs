@@ -121,16 +121,13 @@ impl Tangential {
         if self.friction == 0.0 {
             return 0.0;
         }
-        let law = &sphere.contact.law;
-        let (ev, _, radius) = law.evaluate_with_radius(alpha, &sphere.contact.accepted.history);
-        if !ev.branch.in_contact() {
+        let Some(load) = self.stiffness.load(&sphere.contact.law, alpha, &sphere.contact.accepted.history) else {
             self.spring = TangentialSpring::default();
             self.sliding = false;
             return 0.0;
-        }
-        let normal = law.sliding_normal_force(ev.force, alpha, &ev.history);
-        let k_t = self.stiffness.at(alpha, ev.stiffness, normal, law.mindlin_radius(alpha, &ev.history, radius));
-        let (f, sliding) = self.spring.step(Vector3::new(slip * h, 0.0, 0.0), k_t, self.friction, normal);
+        };
+        let k_t = load.stiffness;
+        let (f, sliding) = self.spring.step(Vector3::new(slip * h, 0.0, 0.0), k_t, self.friction, load.sliding_normal_force);
         self.sliding = sliding;
         if sliding {
             f.x

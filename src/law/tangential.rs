@@ -14,6 +14,7 @@
 //! 004 Eqs. 4.27-4.28, 3.49, 3.75, 003 Eq. 10). When sliding, the force is scaled back onto the limit
 //! and no tangential damping acts (000 Sec. 2.2).
 
+use super::NormalLaw;
 use crate::numeric::cbrt;
 use nalgebra::Vector3;
 
@@ -56,6 +57,31 @@ impl TangentialStiffness {
                 4.0 * shear_modulus * r_k
             }
         }
+    }
+}
+
+/// What the tangential spring needs of the normal state: its stiffness and the normal load of its Coulomb
+/// limit.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SpringLoad {
+    /// k_t [N/m].
+    pub stiffness: f64,
+    /// The law's sliding normal load N; the limit is mu max(N, 0) [N].
+    pub sliding_normal_force: f64,
+}
+
+impl TangentialStiffness {
+    /// k_t and the Coulomb load of the law `law` at overlap `alpha` [m] from the accepted history, or None
+    /// out of contact (where the spring unloads). The one place the units' tangential contacts (the
+    /// oblique impact, ContactElement's shear) read the normal state.
+    pub fn load<L: NormalLaw>(&self, law: &L, alpha: f64, history: &L::History) -> Option<SpringLoad> {
+        let (ev, _, radius) = law.evaluate_with_radius(alpha, history);
+        if !ev.branch.in_contact() {
+            return None;
+        }
+        let normal = law.sliding_normal_force(ev.force, alpha, &ev.history);
+        let stiffness = self.at(alpha, ev.stiffness, normal, law.mindlin_radius(alpha, &ev.history, radius));
+        Some(SpringLoad { stiffness, sliding_normal_force: normal })
     }
 }
 

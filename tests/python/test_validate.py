@@ -41,6 +41,12 @@ def test_inputs_and_outputs_of_the_brief(unit):
         inputs |= {"wall_tangential_velocity"}
         outputs |= {"sphere_position", "sphere_velocity", "tangential_velocity", "angular_velocity", "tangential_force", "sliding", "rebound_angle"}
         assert unit.variables["sliding"].type == "Boolean"
+    else:
+        # ContactElement in shear (issue 33): the wall's displacement along itself and its rate in, the
+        # tangential force and the spring's state out.
+        inputs |= {"wall_tangential_displacement", "wall_tangential_velocity"}
+        outputs |= {"tangential_force", "sliding"}
+        assert unit.variables["sliding"].type == "Boolean"
     assert by_causality["input"] == inputs
     assert by_causality["output"] == outputs
     assert unit.variables["contact_state"].type == "Integer"
