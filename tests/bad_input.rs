@@ -75,7 +75,7 @@ fn every_bad_argument_is_refused_by_name_and_changes_nothing() {
         let mut state: fmi2FMUstate = null_mut();
         unsafe { f!(api, b"fmi2GetFMUstate", GetState)(helper, &mut state) };
         let state = state;
-        let real = [0.0f64; 4];
+        let real = [0.0f64; 8];
         let int = [0 as fmi2Integer; 2];
         let string: [fmi2String; 1] = [null()];
         let size = 0usize;
@@ -246,7 +246,7 @@ fn every_bad_argument_is_refused_by_name_and_changes_nothing() {
             table.push((
                 "SetContinuousStates x NULL",
                 vec!["fmi2SetContinuousStates", "x"],
-                Box::new(|| unsafe { f!(api, b"fmi2SetContinuousStates", SetVector)(c, null(), 3) }),
+                Box::new(|| unsafe { f!(api, b"fmi2SetContinuousStates", SetVector)(c, null(), 6) }),
             ));
             table.push((
                 "SetContinuousStates nx 2",
@@ -256,14 +256,14 @@ fn every_bad_argument_is_refused_by_name_and_changes_nothing() {
             table.push((
                 "SetContinuousStates NaN",
                 vec!["fmi2SetContinuousStates", "not finite"],
-                Box::new(|| unsafe { f!(api, b"fmi2SetContinuousStates", SetVector)(c, [f64::NAN, 0.0, 0.0].as_ptr(), 3) }),
+                Box::new(|| unsafe { f!(api, b"fmi2SetContinuousStates", SetVector)(c, [f64::NAN, 0.0, 0.0, 0.0, 0.0, 0.0].as_ptr(), 6) }),
             ));
             for name in ["fmi2GetDerivatives", "fmi2GetEventIndicators", "fmi2GetContinuousStates", "fmi2GetNominalsOfContinuousStates"] {
                 table.push(("a vector NULL", vec![name], Box::new(move || unsafe { f!(api, name.as_bytes(), Vector)(c, null_mut(), 3) })));
                 table.push((
-                    "a vector of length 4",
-                    vec![name, "4"],
-                    Box::new(move || unsafe { f!(api, name.as_bytes(), Vector)(c, real.as_ptr() as *mut _, 4) }),
+                    "a vector of length 7",
+                    vec![name, "7"],
+                    Box::new(move || unsafe { f!(api, name.as_bytes(), Vector)(c, real.as_ptr() as *mut _, 7) }),
                 ));
             }
             table.push((
@@ -306,8 +306,8 @@ fn every_bad_argument_is_refused_by_name_and_changes_nothing() {
         if kind == fmi2CoSimulation {
             assert_eq!(unsafe { f!(api, b"fmi2DoStep", DoStep)(c, 0.0, 1e-9, fmi2True) }, fmi2OK);
         } else {
-            let mut d = [0.0; 3];
-            assert_eq!(unsafe { f!(api, b"fmi2GetDerivatives", Vector)(c, d.as_mut_ptr(), 3) }, fmi2OK);
+            let mut d = [0.0; 6];
+            assert_eq!(unsafe { f!(api, b"fmi2GetDerivatives", Vector)(c, d.as_mut_ptr(), 6) }, fmi2OK);
         }
         drop(table);
         let mut state = state;

@@ -82,7 +82,7 @@ fn every_bad_argument_is_refused_by_name_and_changes_nothing() {
         let mut state2: fmi2FMUstate = null_mut();
         unsafe { f!(fmi2, b"fmi2GetFMUstate", unsafe extern "C" fn(Comp, *mut fmi2FMUstate) -> i32)(c2, &mut state2) };
         let state2 = state2;
-        let mut real = [0.0f64; 4];
+        let mut real = [0.0f64; 8];
         let real_p = real.as_mut_ptr();
         let bytes = serialized(api, helper);
         let fmi2_bytes = {
@@ -279,7 +279,7 @@ fn every_bad_argument_is_refused_by_name_and_changes_nothing() {
                 ["fmi3GetContinuousStateDerivatives", "fmi3GetEventIndicators", "fmi3GetContinuousStates", "fmi3GetNominalsOfContinuousStates"]
             {
                 table.push(("a vector NULL", vec![name], Box::new(move || unsafe { api.sym::<Vector>(name.as_bytes())(c, null_mut(), 3) })));
-                table.push(("a vector of length 4", vec![name, "4"], Box::new(move || unsafe { api.sym::<Vector>(name.as_bytes())(c, real_p, 4) })));
+                table.push(("a vector of length 7", vec![name, "7"], Box::new(move || unsafe { api.sym::<Vector>(name.as_bytes())(c, real_p, 7) })));
             }
             table.push((
                 "SetContinuousStates NaN",
@@ -287,8 +287,8 @@ fn every_bad_argument_is_refused_by_name_and_changes_nothing() {
                 Box::new(move || unsafe {
                     api.sym::<unsafe extern "C" fn(Comp, *const f64, usize) -> fmi3Status>(b"fmi3SetContinuousStates")(
                         c,
-                        [f64::NAN, 0.0, 0.0].as_ptr(),
-                        3,
+                        [f64::NAN, 0.0, 0.0, 0.0, 0.0, 0.0].as_ptr(),
+                        6,
                     )
                 }),
             ));
@@ -335,8 +335,8 @@ fn every_bad_argument_is_refused_by_name_and_changes_nothing() {
         }
         // After all that the instance still works.
         if me {
-            let mut d = [0.0; 3];
-            assert_eq!(unsafe { api.sym::<Vector>(b"fmi3GetContinuousStateDerivatives")(c, d.as_mut_ptr(), 3) }, fmi3OK);
+            let mut d = [0.0; 6];
+            assert_eq!(unsafe { api.sym::<Vector>(b"fmi3GetContinuousStateDerivatives")(c, d.as_mut_ptr(), 6) }, fmi3OK);
         } else {
             assert_eq!(api.do_step(c, 0.0, 1e-9).0, fmi3OK);
         }

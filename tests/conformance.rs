@@ -256,7 +256,7 @@ fn saved_state(api: &Api, kind: fmi2Type, log: &Log) -> (Comp, fmi2FMUstate) {
 fn invoke(api: &Api, name: &str, c: Comp, kind: fmi2Type, log: &Log) -> fmi2Status {
     let unit = units::by_identifier(PWI).unwrap();
     let vr = |n: &str| unit.vr(n).expect("a variable of the unit") as fmi2ValueReference;
-    let mut real = [0.0f64; 3];
+    let mut real = [0.0f64; 6];
     let mut int: fmi2Integer = 0;
     let mut boolean: fmi2Boolean = 0;
     let mut string: fmi2String = null();
@@ -388,10 +388,10 @@ fn invoke(api: &Api, name: &str, c: Comp, kind: fmi2Type, log: &Log) -> fmi2Stat
                 )
             }
             "fmi2SetTime" => f!(api, b"fmi2SetTime", Status1<fmi2Real>)(c, 0.0),
-            "fmi2SetContinuousStates" => f!(api, b"fmi2SetContinuousStates", SetVector)(c, [2.45e-9, -1.0, 0.0].as_ptr(), 3),
-            "fmi2GetDerivatives" | "fmi2GetEventIndicators" | "fmi2GetContinuousStates" | "fmi2GetNominalsOfContinuousStates" => {
-                f!(api, name.as_bytes(), Vector)(c, real.as_mut_ptr(), 3)
-            }
+            "fmi2SetContinuousStates" => f!(api, b"fmi2SetContinuousStates", SetVector)(c, [2.45e-9, -1.0, 0.0, 0.0, 0.0, 0.0].as_ptr(), 6),
+            // Six states (the normal three, the motion along the wall, the spin and the spring), four indicators.
+            "fmi2GetEventIndicators" => f!(api, name.as_bytes(), Vector)(c, real.as_mut_ptr(), 4),
+            "fmi2GetDerivatives" | "fmi2GetContinuousStates" | "fmi2GetNominalsOfContinuousStates" => f!(api, name.as_bytes(), Vector)(c, real.as_mut_ptr(), 6),
             "fmi2SetRealInputDerivatives" => f!(
                 api,
                 b"fmi2SetRealInputDerivatives",

@@ -255,7 +255,7 @@ fn snapshot(api: &Api3, c: Comp) -> Vec<u8> {
 /// Calls `name` with valid arguments on `c`.
 fn invoke(api: &Api3, name: &str, c: Comp, me: bool, log: &Log) -> fmi3Status {
     let vr = |n: &str| Api3::vr(PWI, n);
-    let mut real = [0.0f64; 3];
+    let mut real = [0.0f64; 6];
     let mut int = 0i32;
     let mut string: fmi3String = null();
     let mut size = 0usize;
@@ -353,11 +353,11 @@ fn invoke(api: &Api3, name: &str, c: Comp, me: bool, log: &Log) -> fmi3Status {
             }
             "fmi3SetTime" => api.sym::<unsafe extern "C" fn(Comp, f64) -> fmi3Status>(n)(c, 0.0),
             "fmi3SetContinuousStates" => {
-                api.sym::<unsafe extern "C" fn(Comp, *const f64, usize) -> fmi3Status>(n)(c, [2.45e-9, -1.0, 0.0].as_ptr(), 3)
+                api.sym::<unsafe extern "C" fn(Comp, *const f64, usize) -> fmi3Status>(n)(c, [2.45e-9, -1.0, 0.0, 0.0, 0.0, 0.0].as_ptr(), 6)
             }
-            "fmi3GetContinuousStateDerivatives" | "fmi3GetEventIndicators" | "fmi3GetContinuousStates" | "fmi3GetNominalsOfContinuousStates" => {
-                api.sym::<Vector>(n)(c, real.as_mut_ptr(), 3)
-            }
+            // Six states (the normal three, the motion along the wall, the spin and the spring), four indicators.
+            "fmi3GetEventIndicators" => api.sym::<Vector>(n)(c, real.as_mut_ptr(), 4),
+            "fmi3GetContinuousStateDerivatives" | "fmi3GetContinuousStates" | "fmi3GetNominalsOfContinuousStates" => api.sym::<Vector>(n)(c, real.as_mut_ptr(), 6),
             "fmi3GetNumberOfEventIndicators" | "fmi3GetNumberOfContinuousStates" => api.sym::<Count>(n)(c, &mut size),
             "fmi3GetOutputDerivatives" => api.sym::<unsafe extern "C" fn(Comp, *const u32, usize, *const i32, *mut f64, usize) -> fmi3Status>(n)(
                 c,

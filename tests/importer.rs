@@ -26,6 +26,9 @@ fn expected_rebound(v: f64) -> f64 {
 }
 
 const PWI: &str = "ParticleWallImpact";
+/// ParticleWallImpact's continuous states and event indicators (checked against the unit below).
+const NX: usize = 6;
+const NZ: usize = 4;
 
 #[test]
 fn co_simulation_run_rebounds_as_the_energy_balance_says() {
@@ -53,6 +56,8 @@ fn co_simulation_run_rebounds_as_the_energy_balance_says() {
 
 #[test]
 fn model_exchange_run_with_a_simple_importer_integrator() {
+    let unit = units::by_identifier(PWI).unwrap();
+    assert_eq!((unit.n_states, unit.n_event_indicators), (NX, NZ));
     let lib = library();
     let api = Api { lib: &lib };
     let log = Log::default();
@@ -73,38 +78,39 @@ fn model_exchange_run_with_a_simple_importer_integrator() {
     let set_time = f!(api, b"fmi2SetTime", unsafe extern "C" fn(Comp, fmi2Real) -> fmi2Status);
     let completed =
         f!(api, b"fmi2CompletedIntegratorStep", unsafe extern "C" fn(Comp, fmi2Boolean, *mut fmi2Boolean, *mut fmi2Boolean) -> fmi2Status);
-    let mut x = [0.0; 3];
-    let mut z = [0.0; 3];
-    let mut z_new = [0.0; 3];
-    unsafe { get_x(c, x.as_mut_ptr(), 3) };
-    unsafe { get_z(c, z.as_mut_ptr(), 3) };
+    // The unit's six states (the normal three, the motion along the wall, the spin, the spring) and four indicators.
+    let mut x = [0.0; NX];
+    let mut z = [0.0; NZ];
+    let mut z_new = [0.0; NZ];
+    unsafe { get_x(c, x.as_mut_ptr(), NX) };
+    unsafe { get_z(c, z.as_mut_ptr(), NZ) };
     // Classical RK4 with events at the step where an indicator changes sign.
     let dt = 2e-12;
     let mut t = 0.0;
     let mut events = 0;
-    let deriv = |t: f64, x: &[f64; 3]| -> [f64; 3] {
-        let mut dx = [0.0; 3];
+    let deriv = |t: f64, x: &[f64; NX]| -> [f64; NX] {
+        let mut dx = [0.0; NX];
         unsafe {
             set_time(c, t);
-            set_x(c, x.as_ptr(), 3);
-            get_dx(c, dx.as_mut_ptr(), 3);
+            set_x(c, x.as_ptr(), NX);
+            get_dx(c, dx.as_mut_ptr(), NX);
         }
         dx
     };
     while t < 1.5e-7 {
         let k1 = deriv(t, &x);
-        let add = |a: &[f64; 3], k: &[f64; 3], s: f64| [a[0] + s * k[0], a[1] + s * k[1], a[2] + s * k[2]];
+        let add = |a: &[f64; NX], k: &[f64; NX], s: f64| -> [f64; NX] { std::array::from_fn(|i| a[i] + s * k[i]) };
         let k2 = deriv(t + dt / 2.0, &add(&x, &k1, dt / 2.0));
         let k3 = deriv(t + dt / 2.0, &add(&x, &k2, dt / 2.0));
         let k4 = deriv(t + dt, &add(&x, &k3, dt));
-        for i in 0..3 {
+        for i in 0..NX {
             x[i] += dt / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
         }
         t += dt;
         unsafe {
             set_time(c, t);
-            assert_eq!(set_x(c, x.as_ptr(), 3), fmi2OK);
-            get_z(c, z_new.as_mut_ptr(), 3);
+            assert_eq!(set_x(c, x.as_ptr(), NX), fmi2OK);
+            get_z(c, z_new.as_mut_ptr(), NZ);
         }
         if z.iter().zip(&z_new).any(|(a, b)| (*a > 0.0) != (*b > 0.0)) {
             events += 1;
@@ -112,7 +118,7 @@ fn model_exchange_run_with_a_simple_importer_integrator() {
             assert_eq!(unsafe { new_discrete(c, &mut info) }, fmi2OK);
             assert_eq!(info.newDiscreteStatesNeeded, fmi2False);
             assert_eq!(api.call0(b"fmi2EnterContinuousTimeMode", c), fmi2OK);
-            unsafe { get_z(c, z_new.as_mut_ptr(), 3) };
+            unsafe { get_z(c, z_new.as_mut_ptr(), NZ) };
         } else {
             let (mut enter, mut term) = (fmi2True, fmi2True);
             assert_eq!(unsafe { completed(c, fmi2True, &mut enter, &mut term) }, fmi2OK);

@@ -24,7 +24,18 @@ use crate::numeric::first_outside;
 
 /// z, v, W (the normal state), v_t, omega, F_s, W_t (the tangential work, `Spin::work`), x.
 const N: usize = 8;
-type Y = [f64; N];
+/// The extended state of the adaptive integrator (`N`).
+pub(crate) type Y = [f64; N];
+
+/// Model Exchange's continuous states of the oblique impact: z, v, W (the normal and the tangential work
+/// in one), v_t, omega, F_s. The same right-hand side as the adaptive integrator's; the host's integrator
+/// takes the place of Dormand-Prince and its event indicators that of the switches located here.
+pub const ME_STATES: usize = 6;
+
+/// The adaptive integrator's state from Model Exchange's (the tangential work in W, x not carried).
+fn from_me(x: &[f64]) -> Y {
+    [x[0], x[1], x[2], x[3], x[4], x[5], 0.0, 0.0]
+}
 
 /// Whether the contact sticks or slides (with the sign sigma of the sliding force).
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -85,7 +96,10 @@ impl Sphere {
         // outgrow the limit: -sigma k_t s > d(mu N)/dt (sigma the spring's sign, or against the slip for an
         // unloaded spring), with d(mu N)/d alpha by a central difference on the accepted branch.
         let excess_rate = if with_excess {
-            let da = 1e-7 * self.contact.alpha_nominal.max(alpha.abs());
+            // A step relative to the overlap itself: at the first touch (alpha 1e-16 m) a step of the
+            // nominal's size (1e-13 m) read the limit far up the branch and said the spring would
+            // never catch it.
+            let da = 1e-7 * alpha.abs() + 1e-12 * self.contact.alpha_nominal;
             let limit_rate = (limit_at(alpha + da).0 - limit_at(alpha - da).0) / (2.0 * da) * rate;
             let sign = match mode {
                 Mode::Slide(sigma) => sigma,
@@ -125,6 +139,57 @@ impl Sphere {
         ]
     }
 
+    /// Model Exchange: the derivatives of the `ME_STATES` states `x` into `dx`; returns the tangential
+    /// part of the work's derivative (the power the tangential force takes from the motion) [W].
+    #[allow(clippy::too_many_arguments)] // the state and the wall's two motions
+    pub fn oblique_me_derivatives(&self, tg: &Tangential, mode: &TangentialMode, wall: &WallMotion, w_t: f64, t: f64, x: &[f64], dx: &mut [f64]) -> f64 {
+        let d = self.oblique_rhs(tg, mode.mode, wall, w_t, t, &from_me(x));
+        dx[..ME_STATES].copy_from_slice(&d[..ME_STATES]);
+        dx[2] += d[6];
+        d[6]
+    }
+
+    /// Model Exchange: the tangential event indicator at the states `x`, positive while the mode holds
+    /// (sticking: mu N - |F_s|; sliding: how fast the spring would outgrow the limit).
+    pub fn oblique_me_indicator(&self, tg: &Tangential, mode: &TangentialMode, wall: &WallMotion, w_t: f64, t: f64, x: &[f64]) -> f64 {
+        self.tangential_indicator(tg, mode.mode, wall, w_t, t, &from_me(x))
+    }
+
+    /// Model Exchange: the tangential force on the sphere at the states `x` [N].
+    pub fn oblique_me_force(&self, tg: &Tangential, mode: &TangentialMode, wall: &WallMotion, w_t: f64, t: f64, x: &[f64]) -> f64 {
+        let (alpha, rate) = (wall.at(t) - x[0], wall.velocity - x[1]);
+        self.tangent(tg, mode.mode, alpha, rate, &from_me(x), w_t, false).force
+    }
+
+    /// Model Exchange: at an event, after the normal history has accepted the state (`was_in_contact`
+    /// before it), the spring and the mode settled as the adaptive integrator settles them; `x[5]` may
+    /// change (a restart). `repeat` counts the switches the host has asked for in quick succession
+    /// before this one: each widens the spring's pull-in at a switch to sticking tenfold (from 1e-9 of the limit, at
+    /// most half of it), so that a host whose integration error of the spring exceeds the hysteresis
+    /// (at the first touch, where the spring and its limit are 1e-14 N and the host's absolute
+    /// tolerance is set by the impact's force scale) moves on instead of switching forever.
+    #[allow(clippy::too_many_arguments)] // the state the decision reads
+    pub fn oblique_me_event(&self, tg: &Tangential, mode: &mut TangentialMode, wall: &WallMotion, w_t: f64, t: f64, x: &mut [f64], was_in_contact: bool, repeat: u32) {
+        let mut y = from_me(x);
+        let switched = self.tangential_indicator(tg, mode.mode, wall, w_t, t, &y) <= 0.0;
+        self.settle_tangential(tg, mode, wall, w_t, t, &mut y, was_in_contact, switched);
+        // The host sees a crossing only where an indicator changes sign: a mode whose indicator is not
+        // positive where it starts would hold on unwatched. The adaptive integrator settles at every step;
+        // here the mode is settled again at once (a contact just formed whose spring outgrew its
+        // limit within rounding slides, and sticks again at the limit if it would not outgrow it).
+        for _ in 0..2 {
+            if self.tangential_indicator(tg, mode.mode, wall, w_t, t, &y) > 0.0 {
+                break;
+            }
+            self.settle_tangential(tg, mode, wall, w_t, t, &mut y, true, true);
+        }
+        if repeat > 0 && mode.mode == Mode::Stick && y[5] != 0.0 {
+            let pull = (SPRING_HYSTERESIS * 10f64.powi(repeat.min(9) as i32)).min(0.5);
+            y[5] *= (1.0 - pull) / (1.0 - SPRING_HYSTERESIS);
+        }
+        x[5] = y[5];
+    }
+
     /// The tangential indicator of a mode at a state: positive while the mode holds.
     fn tangential_indicator(&self, tg: &Tangential, mode: Mode, wall: &WallMotion, w_t: f64, t: f64, y: &Y) -> f64 {
         if tg.friction == 0.0 || !self.contact.accepted.branch.in_contact() {
@@ -133,6 +198,10 @@ impl Sphere {
         let (alpha, rate) = (wall.at(t) - y[0], wall.velocity - y[1]);
         let tan = self.tangent(tg, mode, alpha, rate, y, w_t, matches!(mode, Mode::Slide(_)));
         match mode {
+            // An unloaded spring holds whatever the limit (at N = 0 too): it can only leave sticking once
+            // it carries a force, which makes the indicator limit - |F_s| at once. So a contact that is
+            // never sheared has no tangential events (Model Exchange's normal impact).
+            Mode::Stick if y[5] == 0.0 => 1.0,
             Mode::Stick => tan.limit - y[5].abs(),
             Mode::Slide(_) => tan.excess_rate,
         }
@@ -185,7 +254,8 @@ impl Sphere {
         }
         let tan = self.tangent(tg, mode.mode, alpha, rate, x, w_t, true);
         match mode.mode {
-            Mode::Stick if switched || (x[5] != 0.0 && tan.limit - x[5].abs() <= 0.0) || (formed && tan.excess_rate > 0.0) => {
+            // (A contact formed without slip has nothing to slide with.)
+            Mode::Stick if switched || (x[5] != 0.0 && tan.limit - x[5].abs() <= 0.0) || (formed && tan.slip != 0.0 && tan.excess_rate > 0.0) => {
                 let sigma = if x[5] != 0.0 { x[5].signum() } else { -tan.slip.signum() };
                 mode.mode = Mode::Slide(sigma);
             }
@@ -195,6 +265,25 @@ impl Sphere {
             }
             _ => {}
         }
+    }
+
+    /// After the normal history has accepted the state `x` at `t` (an accepted step here, an event in Model
+    /// Exchange): the spring unloads out of contact and starts unloaded in a contact just formed; in
+    /// contact the mode that holds is settled (`settle_mode`; `switched`: the tangential indicator was
+    /// the one that crossed).
+    #[allow(clippy::too_many_arguments)] // the state the decision reads
+    pub(crate) fn settle_tangential(&self, tg: &Tangential, mode: &mut TangentialMode, wall: &WallMotion, w_t: f64, t: f64, x: &mut Y, was_in_contact: bool, switched: bool) {
+        let (alpha, rate) = (wall.at(t) - x[0], wall.velocity - x[1]);
+        if !self.contact.accepted.branch.in_contact() {
+            x[5] = 0.0;
+            mode.mode = Mode::Stick;
+            return;
+        }
+        if !was_in_contact {
+            x[5] = 0.0;
+            mode.mode = Mode::Stick;
+        }
+        self.settle_mode(tg, mode, alpha, rate, x, w_t, !was_in_contact, was_in_contact && switched);
     }
 
     /// Dormand-Prince over [t0, t_end] for the oblique impact, landing on the normal law's branch switches
@@ -271,18 +360,7 @@ impl Sphere {
             let was_in_contact = self.contact.accepted.branch.in_contact();
             let s = State::new(x[0], x[1], x[2]);
             self.accept(wall, t, &s);
-            let (alpha, rate) = (wall.at(t) - x[0], wall.velocity - x[1]);
-            if !self.contact.accepted.branch.in_contact() {
-                // Out of contact the spring unloads.
-                x[5] = 0.0;
-                mode.mode = Mode::Stick;
-            } else {
-                if !was_in_contact {
-                    x[5] = 0.0;
-                    mode.mode = Mode::Stick;
-                }
-                self.settle_mode(tangential, mode, alpha, rate, &mut x, w_t, !was_in_contact, was_in_contact && any && crossed[3]);
-            }
+            self.settle_tangential(tangential, mode, wall, w_t, t, &mut x, was_in_contact, any && crossed[3]);
             if !any && !last {
                 self.last_step = h_try;
                 h = h_try * (0.9 * e.max(1e-10).powf(-0.2)).min(5.0);

@@ -8,15 +8,16 @@
 //! Oblique impacts (Co-Simulation): with a tangential velocity, a spin or a wall moving along itself the
 //! sphere also moves along the wall and spins (`impact::oblique`, docs/models.md "Oblique impacts"): by
 //! `verlet` when that is the solver, else by the oblique adaptive integrator, which locates the
-//! stick-slip switches. Model Exchange integrates the normal motion only and refuses the tangential
-//! parameters and input when they are not 0.
+//! stick-slip switches. Model Exchange: three more states (v_t, omega and the tangential spring) and a
+//! fourth event indicator for the stick-slip switches, with the adaptive integrator's right-hand side and
+//! switches (`impact::oblique_adaptive`); no rolling friction there.
 
 use super::contact_parts::{self, Outputs};
 use super::scene_params;
 use super::variables::{Role, Value, VarType, Variable};
 use super::{EventUpdate, Model, UnitError, UnitInfo};
 use crate::impact::contact::Memory;
-use crate::impact::{Solver, Sphere, Spin, State, Tangential, TangentialMode, WallMotion};
+use crate::impact::{Solver, Sphere, Spin, State, StickSlip, Tangential, TangentialMode, WallMotion, OBLIQUE_ME_STATES};
 use crate::law::tangential::TangentialStiffness;
 use crate::law::{AnyLaw, NormalLaw};
 use crate::scene::{ModelKind, Partner};
@@ -64,7 +65,12 @@ variable_table! {
         .with_nominal(1e-9),
     der_bottom: Variable::local("der(sphere_bottom)", "m/s", "velocity of the sphere's lowest point", Role::Derivative(0)),
     der_velocity: Variable::local("der(sphere_velocity)", "m/s2", "acceleration of the sphere", Role::Derivative(1)),
-    der_energy: Variable::local("der(dissipated_energy)", "W", "power of the contact force on the overlap rate", Role::Derivative(2)),
+    der_energy: Variable::local(
+        "der(dissipated_energy)",
+        "W",
+        "power of the contact force on the overlap rate, plus the tangential force's on the contact point's slip",
+        Role::Derivative(2),
+    ),
     initial_gap: Variable::parameter("initial_gap", Value::Real(1e-8), "m", "gap between the sphere surface and the wall at the start")
         .with_range(Some(0.0), None),
     initial_velocity: Variable::parameter("initial_velocity", Value::Real(1.0), "m/s", "approach speed of the sphere at the start, positive toward the wall")
@@ -87,16 +93,17 @@ variable_table! {
     wall_tangential_velocity: Variable::input(
         "wall_tangential_velocity",
         "m/s",
-        "velocity of the wall along itself (a belt, a vibrating wall's in-plane motion), along x, the direction of positive tangential_velocity; Co-Simulation only",
+        "velocity of the wall along itself (a belt, a vibrating wall's in-plane motion), along x, the direction of positive tangential_velocity",
     )
     .with_range(Some(-MAX_SPEED), Some(MAX_SPEED)),
-    tangential_velocity: Variable::output("tangential_velocity", VarType::Real, "m/s", "velocity of the sphere centre along the wall (x)"),
+    tangential_velocity: Variable::output("tangential_velocity", VarType::Real, "m/s", "velocity of the sphere centre along the wall (x)").with_role(Role::State(3)),
     angular_velocity: Variable::output(
         "angular_velocity",
         VarType::Real,
         "rad/s",
         "spin about the axis in the wall plane normal to x (y = z x x, z away from the wall): positive rolls the sphere toward +x",
-    ),
+    )
+    .with_role(Role::State(4)),
     tangential_force: Variable::output(
         "tangential_force",
         VarType::Real,
@@ -110,37 +117,38 @@ variable_table! {
         "rad",
         "once the sphere has left the wall after a contact: the angle of its velocity relative to the wall from the wall normal, atan((v_t - w_t) / (v - w')); 0 before",
     ),
-    initial_tangential_velocity: Variable::parameter("initial_tangential_velocity", Value::Real(0.0), "m/s", "velocity of the sphere along the wall at the start (x); Co-Simulation only")
+    initial_tangential_velocity: Variable::parameter("initial_tangential_velocity", Value::Real(0.0), "m/s", "velocity of the sphere along the wall at the start (x)")
         .with_range(Some(-MAX_SPEED), Some(MAX_SPEED)),
     initial_angular_velocity: Variable::parameter(
         "initial_angular_velocity",
         Value::Real(0.0),
         "rad/s",
-        "spin at the start about y = z x x: positive rolls toward +x (rolling without slip: tangential_velocity = particle_radius times it); Co-Simulation only",
+        "spin at the start about y = z x x: positive rolls toward +x (rolling without slip: tangential_velocity = particle_radius times it)",
     )
     .with_range(Some(-MAX_SPIN), Some(MAX_SPIN)),
     rolling_friction: Variable::parameter(
         "rolling_friction",
         Value::Real(0.0),
         "",
-        "rolling friction mu_r: EDEM's constant directional torque mu_r |f_n| R against the spin (004 Table 5.3); needs solver = verlet",
+        "rolling friction mu_r: EDEM's constant directional torque mu_r |f_n| R against the spin (004 Table 5.3); needs solver = verlet (Co-Simulation)",
     )
     .with_range(Some(0.0), Some(1e3)),
+    tangential_spring: Variable::local(
+        "tangential_spring",
+        "N",
+        "force of the tangential spring on the sphere along x, before damping (ME state; while sliding, the limit mu N on its side)",
+        Role::State(5),
+    ),
+    der_tangential_velocity: Variable::local("der(tangential_velocity)", "m/s2", "acceleration of the sphere along the wall", Role::Derivative(3)),
+    der_angular_velocity: Variable::local("der(angular_velocity)", "rad/s2", "angular acceleration of the spin", Role::Derivative(4)),
+    der_tangential_spring: Variable::local("der(tangential_spring)", "N/s", "rate of the spring, -k_t times the slip while it sticks, 0 while it slides", Role::Derivative(5)),
 }
 
 /// The largest spin [rad/s]: a 1 um sphere at MAX_SPEED on its rim.
 const MAX_SPIN: f64 = 1e11;
 
-/// The settings of the tangential motion, which Model Exchange refuses unless 0.
-const TANGENTIAL_SETTINGS: [(usize, &str); 3] = [
-    (REFS.initial_tangential_velocity, "initial_tangential_velocity"),
-    (REFS.initial_angular_velocity, "initial_angular_velocity"),
-    (REFS.wall_tangential_velocity, "wall_tangential_velocity"),
-];
-
-/// Why Model Exchange refuses them.
-const ME_NORMAL_ONLY: &str =
-    "Model Exchange integrates the normal motion only; tangential motion and spin run in Co-Simulation (instantiate the unit for Co-Simulation, or leave this at 0)";
+/// Why Model Exchange refuses a rolling friction.
+const ME_NO_ROLLING: &str = "Model Exchange has no rolling friction (a torque that switches with the sign of the spin, which no event indicator watches); run it in Co-Simulation with solver = \"verlet\", or leave it at 0";
 
 /// The outputs both contact units write, at this unit's references.
 const OUTPUTS: Outputs = Outputs {
@@ -159,13 +167,19 @@ pub fn info() -> UnitInfo {
     variables.extend(scene_params::variables());
     // Last, so that the references of the table above stay as they were.
     variables.extend(Variable::contact_indicators());
+    variables.push(Variable::local(
+        "event_indicator_stick_slip",
+        "",
+        "event indicator of the tangential contact: sticking, mu N - |tangential_spring|; sliding, how fast the spring would outgrow the limit; positive while the mode holds",
+        Role::Indicator(3),
+    ));
     variables.push(Variable::time());
     UnitInfo {
         model_identifier: MODEL_IDENTIFIER,
-        description: "A sphere against a moving wall with an elasto-plastic adhesive contact law (powderfmu)",
+        description: "A sphere against a moving wall with an elasto-plastic adhesive contact law, normal and oblique (powderfmu)",
         variables,
-        n_states: 3,
-        n_event_indicators: 3,
+        n_states: OBLIQUE_ME_STATES,
+        n_event_indicators: 4,
         stop_time: 2e-7,
         step_size: 1e-9,
         model_exchange: true,
@@ -200,6 +214,9 @@ pub struct ParticleWallImpact {
     mode: TangentialMode,
     /// Whether the integrator of the tangential motion has been named in the log.
     announced: bool,
+    /// ME: the time of the last stick-slip switch and how many came in quick succession before it
+    /// (`Sphere::oblique_me_event`).
+    me_switches: (f64, u32),
 }
 
 /// Model Exchange: between two updates of its inputs the wall moves on with its velocity input, from
@@ -290,6 +307,7 @@ impl ParticleWallImpact {
             spin: Spin::default(),
             mode: TangentialMode::default(),
             announced: false,
+            me_switches: (f64::NAN, 0),
         }
     }
 
@@ -444,6 +462,13 @@ impl ParticleWallImpact {
         Ok(event)
     }
 
+    /// ME: the continuous states (`impact::OBLIQUE_ME_STATES`): the normal state, the motion along the
+    /// wall and the spin, the tangential spring.
+    fn me_states(&self) -> [f64; OBLIQUE_ME_STATES] {
+        let spring = self.tangential.as_ref().map_or(0.0, |tg| tg.spring.force.x);
+        [self.y.bottom, self.y.velocity, self.y.work, self.spin.velocity, self.spin.angular_velocity, spring]
+    }
+
     /// ME: notes inputs that changed since they were last seen, with the current time.
     fn see_inputs(&mut self, values: &[Value]) {
         if let Some(seen) = &mut self.me_wall {
@@ -496,12 +521,8 @@ fn finite(values: &[Value], vr: usize, name: &'static str, unit: &str) -> Result
 impl Model for ParticleWallImpact {
     fn initialize(&mut self, values: &[Value], t0: f64, model_exchange: bool) -> Result<(), UnitError> {
         let (mut sphere, radius, tangential) = self.build(values)?;
-        if model_exchange {
-            for (vr, name) in TANGENTIAL_SETTINGS {
-                if real(values, vr) != 0.0 {
-                    return Err(UnitError::Variable { name, why: format!("`{name}` = {:e}: {ME_NORMAL_ONLY}", real(values, vr)) });
-                }
-            }
+        if model_exchange && tangential.rolling_friction != 0.0 {
+            return Err(UnitError::Variable { name: "rolling_friction", why: format!("`rolling_friction` = {:e}: {ME_NO_ROLLING}", tangential.rolling_friction) });
         }
         let gap = finite(values, REFS.initial_gap, "initial_gap", "m")?;
         if gap < 0.0 {
@@ -527,6 +548,7 @@ impl Model for ParticleWallImpact {
         self.tangential = Some(tangential);
         self.mode = TangentialMode::default();
         self.announced = false;
+        self.me_switches = (f64::NAN, 0);
         self.events.extend(contact_parts::derived_event(&self.variables, values));
         Ok(())
     }
@@ -563,9 +585,26 @@ impl Model for ParticleWallImpact {
         let w_t = real(values, REFS.wall_tangential_velocity);
         values[REFS.tangential_velocity] = Value::Real(self.spin.velocity);
         values[REFS.angular_velocity] = Value::Real(self.spin.angular_velocity);
-        let (f_t, sliding) = self.tangential.as_ref().map_or((0.0, false), |tg| (tg.force, tg.sliding));
+        let (f_t, sliding) = match (&self.tangential, self.me_wall) {
+            // Model Exchange: the force at the host's states (CS keeps the force its step ended with).
+            (Some(tg), Some(_)) => (sphere.oblique_me_force(tg, &self.mode, &wall, w_t, self.t, &self.me_states()), matches!(self.mode.mode, StickSlip::Slide(_))),
+            (Some(tg), None) => (tg.force, tg.sliding),
+            (None, _) => (0.0, false),
+        };
         values[REFS.tangential_force] = Value::Real(f_t);
         values[REFS.sliding] = Value::Boolean(sliding);
+        let x = self.me_states();
+        values[REFS.tangential_spring] = Value::Real(x[5]);
+        if let Some(tg) = &self.tangential {
+            let mut dx = [0.0; OBLIQUE_ME_STATES];
+            let power = sphere.oblique_me_derivatives(tg, &self.mode, &wall, w_t, self.t, &x, &mut dx);
+            if power != 0.0 {
+                values[REFS.der_energy] = Value::Real(f * rate + power);
+            }
+            values[REFS.der_tangential_velocity] = Value::Real(dx[3]);
+            values[REFS.der_angular_velocity] = Value::Real(dx[4]);
+            values[REFS.der_tangential_spring] = Value::Real(dx[5]);
+        }
         // After a contact, apart and moving away: the direction it leaves in, relative to the wall.
         let away = self.y.velocity - wall.velocity;
         let left = c.max_overlap > 0.0 && !c.accepted.branch.in_contact() && alpha < 0.0 && away > 0.0;
@@ -577,24 +616,32 @@ impl Model for ParticleWallImpact {
     }
 
     fn get_states(&self, x: &mut [f64]) {
-        x.copy_from_slice(&self.y.to_array());
+        x.copy_from_slice(&self.me_states());
     }
 
     fn set_states(&mut self, x: &[f64]) {
-        self.y = State::from_slice(x);
+        self.y = State::from_slice(&x[..3]);
+        self.spin.velocity = x[3];
+        self.spin.angular_velocity = x[4];
+        if let Some(tg) = self.tangential.as_mut() {
+            tg.spring.force.x = x[5];
+        }
     }
 
     fn derivatives(&mut self, values: &[Value], dx: &mut [f64]) {
         self.see_inputs(values);
-        if let Some(sphere) = &self.sphere {
-            dx.copy_from_slice(&sphere.derivatives(&self.wall(values), self.t, &self.y).to_array());
+        if let (Some(sphere), Some(tg)) = (&self.sphere, &self.tangential) {
+            let w_t = real(values, REFS.wall_tangential_velocity);
+            let _ = sphere.oblique_me_derivatives(tg, &self.mode, &self.wall(values), w_t, self.t, &self.me_states(), dx);
         }
     }
 
     fn event_indicators(&mut self, values: &[Value], z: &mut [f64]) {
         self.see_inputs(values);
-        if let Some(sphere) = &self.sphere {
-            z.copy_from_slice(&sphere.indicators(&self.wall(values), self.t, &self.y));
+        if let (Some(sphere), Some(tg)) = (&self.sphere, &self.tangential) {
+            let wall = self.wall(values);
+            z[..3].copy_from_slice(&sphere.indicators(&wall, self.t, &self.y));
+            z[3] = sphere.oblique_me_indicator(tg, &self.mode, &wall, real(values, REFS.wall_tangential_velocity), self.t, &self.me_states());
         }
     }
 
@@ -608,7 +655,13 @@ impl Model for ParticleWallImpact {
             let fresh = c.law.initial_history();
             let force_scale = c.law.evaluate(c.alpha_nominal, &fresh).force.abs().max(c.law.pull_off_force(&fresh)).max(s.mass * s.gravity.abs());
             let energy = (0.5 * s.mass * c.rate_nominal * c.rate_nominal).max(force_scale * c.alpha_nominal);
-            x.copy_from_slice(&[c.alpha_nominal, c.rate_nominal, energy]);
+            // The motion along the wall at the approach's speed scale, the spin at that over R, the spring at
+            // the contact's force scale. (A spring nominal 1e-4 to 1e-12 of it, tried for the first touch,
+            // where the spring and its limit are 1e-14 N: CVode then ran out of steps at rtol 1e-10 on
+            // Chung and Ooi's 5 deg impact, or chattered at 1e-6; `oblique_me_event`'s widening pull-in
+            // is what settles the first touch.)
+            let radius = self.tangential.as_ref().map_or(1.0, |tg| tg.radius);
+            x.copy_from_slice(&[c.alpha_nominal, c.rate_nominal, energy, c.rate_nominal, c.rate_nominal / radius, force_scale]);
         } else {
             x.fill(1.0);
         }
@@ -625,13 +678,37 @@ impl Model for ParticleWallImpact {
         let (switched, crossed) = sphere.accept_crossing(&wall, t, &mut y);
         let after = sphere.contact.accepted;
         self.y = y;
-        let message = switched.then(|| {
+        // The tangential contact as the oblique adaptive integrator settles it at a step.
+        let mode_before = self.mode;
+        let spring_before = self.tangential.as_ref().map_or(0.0, |tg| tg.spring.force.x);
+        let mut x = [y.bottom, y.velocity, y.work, self.spin.velocity, self.spin.angular_velocity, spring_before];
+        if let Some(tg) = self.tangential.as_mut() {
+            let w_t = real(values, REFS.wall_tangential_velocity);
+            // Switches closer together than a millionth of the time the sphere takes to cross its nominal
+            // overlap are the host's integration error against the hysteresis, not the contact's physics.
+            let window = 1e-6 * sphere.contact.alpha_nominal / sphere.contact.rate_nominal;
+            let repeat = if t - self.me_switches.0 <= window { self.me_switches.1 } else { 0 };
+            sphere.oblique_me_event(tg, &mut self.mode, &wall, w_t, t, &mut x, before.branch.in_contact(), repeat);
+            tg.spring.force.x = x[5];
+            tg.sliding = matches!(self.mode.mode, StickSlip::Slide(_));
+        }
+        let tangential_changed = self.mode != mode_before || x[5] != spring_before;
+        // A switch, or a switch and back within this event (the spring pulled in at its limit).
+        if tangential_changed {
+            let window = self.sphere.as_ref().map_or(0.0, |s| 1e-6 * s.contact.alpha_nominal / s.contact.rate_nominal);
+            self.me_switches = if t - self.me_switches.0 <= window { (t, self.me_switches.1 + 1) } else { (t, 1) };
+        }
+        let mut message = switched.then(|| {
             let how = if crossed { format!(", crossed to the vertical end in Event Mode (leaves at {:e} m/s)", y.velocity) } else { String::new() };
             format!("t = {t:e} s: branch {:?} -> {:?} at overlap {alpha:e} m{how}", before.branch, after.branch)
         });
-        // The right-hand side follows the accepted branch and its history: a change of either (or of the
-        // states) is a restart for the host's integrator.
-        EventUpdate { message, restart: crossed || before.branch != after.branch || before.history != after.history }
+        if self.mode != mode_before {
+            let line = format!("t = {t:e} s: tangential contact {:?} -> {:?}", mode_before.mode, self.mode.mode);
+            message = Some(message.map_or(line.clone(), |m| format!("{m}; {line}")));
+        }
+        // The right-hand side follows the accepted branch and its history, and the tangential mode: a
+        // change of any (or of the states) is a restart for the host's integrator.
+        EventUpdate { message, restart: crossed || before.branch != after.branch || before.history != after.history || tangential_changed }
     }
 
     fn completed_step(&mut self, values: &[Value]) {
@@ -684,7 +761,7 @@ impl Model for ParticleWallImpact {
 
     fn check_set(&self, vr: usize, value: &Value, model_exchange: bool) -> Result<(), String> {
         match value {
-            Value::Real(x) if model_exchange && *x != 0.0 && TANGENTIAL_SETTINGS.iter().any(|(r, _)| *r == vr) => Err(format!("{x:e}: {ME_NORMAL_ONLY}")),
+            Value::Real(x) if model_exchange && *x != 0.0 && vr == REFS.rolling_friction => Err(format!("{x:e}: {ME_NO_ROLLING}")),
             _ => Ok(()),
         }
     }

@@ -319,6 +319,8 @@ pub const UNITS: &[UnitDef] = &[
     UnitDef { name: "J/m2", kg: 1, m: 0, s: -2, rad: 0 },
     UnitDef { name: "rad", kg: 0, m: 0, s: 0, rad: 1 },
     UnitDef { name: "rad/s", kg: 0, m: 0, s: -1, rad: 1 },
+    UnitDef { name: "rad/s2", kg: 0, m: 0, s: -2, rad: 1 },
+    UnitDef { name: "N/s", kg: 1, m: 1, s: -3, rad: 0 },
 ];
 
 /// The FMI unit name of a scene key's unit text ("-" is dimensionless).

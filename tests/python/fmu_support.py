@@ -41,6 +41,14 @@ def sphere_mass(radius: float, density: float) -> float:
     return 4.0 / 3.0 * math.pi * radius**3 * density
 
 
+# ParticleWallImpact's Model Exchange has six continuous states since its oblique impacts (issue 33): the
+# normal three and the motion along the wall, the spin and the tangential spring. In a normal impact the
+# last three carry no error, and CVode's error test is a root mean square over all six, so at the same
+# relative tolerance it holds the normal states sqrt(6/3) more loosely than with the three states before.
+# The bounds on Model Exchange's error that were 100 rtol for three states are this much wider.
+ME_NORM_DILUTION = math.sqrt(6 / 3)
+
+
 def rel(a: float, b: float) -> float:
     """Relative difference of a against the reference b."""
     return abs(a - b) / abs(b)

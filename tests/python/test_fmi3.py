@@ -89,7 +89,8 @@ def test_every_fmi3_fmu_validates_and_has_the_fmi2_variables(name):
     assert cs.canGetAndSetFMUstate and cs.canSerializeFMUstate and cs.canHandleVariableCommunicationStepSize
     if name == "ParticleWallImpact":
         assert cs.hasEventMode and cs.mightReturnEarlyFromDoStep
-        assert len(md3.eventIndicators) == 3 and len(md3.derivatives) == 3
+        # The normal motion's three and the tangential contact's (issue 33).
+        assert len(md3.eventIndicators) == 4 and len(md3.derivatives) == 6
     if name == "BallIndentation":
         assert md3.modelExchange is None
 
@@ -453,15 +454,15 @@ def test_model_exchange_by_hand_reports_its_sizes_and_events(unzipped):
     log = Log()
     fmu = FMU3Model(guid=md.guid, unzipDirectory=d, modelIdentifier="ParticleWallImpact", instanceName="me3")
     fmu.instantiate(logMessage=log.callback)
-    assert fmu.getNumberOfContinuousStates() == 3 and fmu.getNumberOfEventIndicators() == 3
+    assert fmu.getNumberOfContinuousStates() == 6 and fmu.getNumberOfEventIndicators() == 4
     fmu.enterInitializationMode()
     fmu.exitInitializationMode()
     fmu.updateDiscreteStates()
     fmu.enterContinuousTimeMode()
-    z = (ctypes.c_double * 3)()
-    fmu.getEventIndicators(z, 3)
+    z = (ctypes.c_double * 4)()
+    fmu.getEventIndicators(z, 4)
     vr = {v.name: v.valueReference for v in md.modelVariables}
-    names = ["event_indicator_lower", "event_indicator_upper", "event_indicator_rate"]
+    names = ["event_indicator_lower", "event_indicator_upper", "event_indicator_rate", "event_indicator_stick_slip"]
     assert fmu.getFloat64([vr[n] for n in names]) == list(z), "the indicators are the variables ModelStructure names"
     fmu.terminate()
     fmu.freeInstance()

@@ -1,6 +1,6 @@
 """Oblique impacts through FMI (ParticleWallImpact in Co-Simulation): the unit against the command-line
 tool's `oblique` on Chung and Ooi's Test 4 sphere, the belt's sign conventions, the outputs after the
-rebound, and Model Exchange's refusal of the tangential settings by name (docs/models.md, "Oblique
+rebound, and Model Exchange against the adaptive Co-Simulation (docs/models.md, "Oblique
 impacts")."""
 
 from __future__ import annotations
@@ -11,6 +11,7 @@ import json
 import math
 import subprocess
 
+import numpy as np
 import pytest
 from fmpy.fmi1 import FMICallException
 
@@ -86,14 +87,53 @@ def test_a_belt_drags_the_sphere_forward_and_spins_it_backward(impact):
     assert any("tangential motion and spin by the oblique adaptive integrator" in m for m in events), events
 
 
-def test_model_exchange_refuses_the_tangential_settings_by_name(impact):
+@pytest.mark.parametrize("angle", [5.0, 20.0, 45.0])
+def test_model_exchange_rebounds_as_the_adaptive_co_simulation(impact, cli, angle):
+    """fmpy's CVode in Model Exchange on Chung and Ooi's Test 4 sphere: the stick-slip switches are events
+    (event_indicator_stick_slip), so the rebound is the oblique adaptive integrator's to CVode's
+    tolerance (sticking then sliding at 5 deg, micro-slip at 20 deg, gross sliding at 45 deg)."""
+    ref = cli_oblique(cli, angle, "--solver", "adaptive", "--tolerance", "1e-12", "--rayleigh-fraction", "0.5")
+    v_n, v_t = SPEED * math.cos(math.radians(angle)), SPEED * math.sin(math.radians(angle))
+    r = impact.simulate("ModelExchange", start_values={**ALUMINA, "initial_velocity": v_n, "initial_tangential_velocity": v_t, "initial_gap": 1e-9},
+                        stop_time=2e-5, output_interval=1e-7, relative_tolerance=1e-8)
+    assert r["contact_state"].max() > 0 and r["contact_state"][-1] == 0
+    assert r["sphere_velocity"][-1] == pytest.approx(ref["normal_velocity_out_m_per_s"], rel=1e-5)
+    assert r["tangential_velocity"][-1] == pytest.approx(ref["tangential_velocity_out_m_per_s"], rel=1e-5)
+    assert r["angular_velocity"][-1] == pytest.approx(ref["angular_velocity_out_rad_per_s"], rel=1e-5)
+    # The work is a state whose absolute tolerance is rtol times the approach's kinetic energy, a
+    # thousand times the work: to 2e-4 at rtol 1e-8 (5 deg).
+    assert r["dissipated_energy"][-1] == pytest.approx(ref["kinetic_energy_lost_J"], rel=1e-3)
+    assert r["rebound_angle"][-1] == pytest.approx(math.atan2(r["tangential_velocity"][-1], r["sphere_velocity"][-1]), rel=1e-12)
+    # Where the tool says the contact slid throughout, the unit slid at every output point in contact.
+    # (At the output points: fmpy also records the rows before and after each event.)
+    on_grid = np.isclose(r["time"] / 1e-7, np.round(r["time"] / 1e-7), rtol=0, atol=1e-6)
+    in_contact = (r["contact_state"] > 0) & on_grid
+    if ref["slid_throughout"] == "true":
+        assert r["sliding"][in_contact].all()
+    else:
+        assert not r["sliding"][in_contact].all()
+
+
+def test_model_exchange_on_a_belt_gives_the_gross_sliding_closed_form(impact):
+    """The belt of the Co-Simulation test above, in Model Exchange: v_t = mu (1 + e_n) v_n."""
+    v_n = 1.0
+    signal = np.zeros(2, dtype=[("time", float), ("wall_tangential_velocity", float)])
+    signal["time"], signal["wall_tangential_velocity"] = [0.0, 2e-5], 2.0
+    r = impact.simulate("ModelExchange", start_values={**ALUMINA, "initial_velocity": v_n, "initial_gap": 1e-9},
+                        stop_time=2e-5, output_interval=1e-7, relative_tolerance=1e-8, input=signal)
+    e_n = r["sphere_velocity"][-1] / v_n
+    assert r["tangential_velocity"][-1] == pytest.approx(MU * (1 + e_n) * v_n, rel=1e-6)
+    assert -r["angular_velocity"][-1] * RADIUS / (2.5 * r["tangential_velocity"][-1]) == pytest.approx(1.0, abs=2e-3)
+
+
+def test_model_exchange_refuses_a_rolling_friction_by_name(impact):
     log = MessageLog()
     fmu = impact.model("me", log)
     with pytest.raises(FMICallException):
-        fmu.setReal([impact.vr["initial_tangential_velocity"]], [1.0])
-    assert any("`initial_tangential_velocity`" in r.message and "Co-Simulation" in r.message for r in log.records), log.records
+        fmu.setReal([impact.vr["rolling_friction"]], [0.1])
+    assert any("`rolling_friction`" in r.message and "Co-Simulation" in r.message for r in log.records), log.records
     # Zero is taken, and the normal impact runs.
-    fmu.setReal([impact.vr["initial_tangential_velocity"]], [0.0])
+    fmu.setReal([impact.vr["rolling_friction"]], [0.0])
     fmu.freeInstance()
     r = impact.simulate(fmi_type="ModelExchange", start_values={"initial_velocity": 3.0}, stop_time=2e-7, output_interval=1e-8)
     assert r["contact_state"][-1] == 0 and r["tangential_velocity"][-1] == 0.0

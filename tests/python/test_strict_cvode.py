@@ -11,7 +11,7 @@ import ctypes
 import numpy as np
 import pytest
 
-from fmu_support import StrictCVode, initialized_model, rel, sphere_mass
+from fmu_support import ME_NORM_DILUTION, StrictCVode, initialized_model, rel, sphere_mass
 
 PIECEWISE_LINEAR = ["nan", "pasha", "pasha_simplified", "luding", "linear", "walton_braun"]
 ALL_LAWS = ["nan", "pasha", "pasha_simplified", "luding", "thornton_ning", "tomas", "hertz", "jkr", "jkr_modified", "linear", "walton_braun"]
@@ -120,8 +120,8 @@ def test_model_exchange_agrees_with_exact_co_simulation(impact, law):
             me = impact.simulate("ModelExchange", start_values=start, stop_time=3e-7, output_interval=1e-9, relative_tolerance=rtol, output=outputs)
         for r in (cs, me):
             assert r["contact_state"][-1] == 0 and r["sphere_velocity"][-1] > 0, f"{law} at {v} m/s must rebound"
-        assert rel(me["sphere_velocity"][-1], cs["sphere_velocity"][-1]) < 100 * rtol, (law, v)
-        assert rel(me["max_overlap"][-1], cs["max_overlap"][-1]) < 100 * rtol, (law, v)
+        assert rel(me["sphere_velocity"][-1], cs["sphere_velocity"][-1]) < 100 * rtol * ME_NORM_DILUTION, (law, v)
+        assert rel(me["max_overlap"][-1], cs["max_overlap"][-1]) < 100 * rtol * ME_NORM_DILUTION, (law, v)
 
 
 # Tomas's van der Waals tail (004 Eq. 3.67) is about 140 k_el stiff where it starts, at h_min: after the
@@ -142,7 +142,7 @@ def test_every_law_runs_under_the_strict_cvode_and_agrees_with_co_simulation(imp
                                  output_interval=1e-9, relative_tolerance=rtol, output=IMPACT_OUTPUTS)
             steps, events = cvode.steps, cvode.root_returns
         assert me["time"][-1] == pytest.approx(IMPACT_STOP), (law, v)
-        assert model_exchange_error(me, cs, v) < 100 * rtol, (law, v, model_exchange_error(me, cs, v) / rtol)
+        assert model_exchange_error(me, cs, v) < 100 * rtol * ME_NORM_DILUTION, (law, v, model_exchange_error(me, cs, v) / rtol)
         assert events <= 20 and steps < 2000, (law, v, steps, events)
 
 
@@ -157,7 +157,7 @@ def test_tomas_tail_at_rtol_1e_8_needs_steps_below_1e_12(impact):
     for rtol, min_step in ((1e-7, 1e-12), (1e-8, 1e-13)):
         with StrictCVode(min_step):
             me = impact.simulate("ModelExchange", relative_tolerance=rtol, **kwargs)
-        assert model_exchange_error(me, cs, 3.0) < 100 * rtol, (rtol, min_step)
+        assert model_exchange_error(me, cs, 3.0) < 100 * rtol * ME_NORM_DILUTION, (rtol, min_step)
 
 
 # --- the right-hand side between events -------------------------------------------------------------
@@ -165,17 +165,19 @@ def test_tomas_tail_at_rtol_1e_8_needs_steps_below_1e_12(impact):
 
 def _probe(impact, fmu, bottom: float):
     """Derivatives, contact_state and force with the sphere's lowest point at `bottom` (wall at 0)."""
-    x = (ctypes.c_double * 3)()
-    fmu.getContinuousStates(x, 3)
+    nx, nz = impact.md.numberOfContinuousStates, impact.md.numberOfEventIndicators
+    x = (ctypes.c_double * nx)()
+    fmu.getContinuousStates(x, nx)
     x[0] = bottom
-    fmu.setContinuousStates(x, 3)
-    dx = (ctypes.c_double * 3)()
-    fmu.getDerivatives(dx, 3)
-    z = (ctypes.c_double * 3)()
-    fmu.getEventIndicators(z, 3)
+    fmu.setContinuousStates(x, nx)
+    dx = (ctypes.c_double * nx)()
+    fmu.getDerivatives(dx, nx)
+    z = (ctypes.c_double * nz)()
+    fmu.getEventIndicators(z, nz)
     state = fmu.getInteger([impact.vr["contact_state"]])[0]
     force = fmu.getReal([impact.vr["force"]])[0]
-    return list(dx), list(z), state, force
+    # The normal motion's derivatives and indicators (the tangential ones follow them).
+    return list(dx)[:3], list(z)[:3], state, force
 
 
 def test_states_past_contact_before_the_event_give_free_flight(impact):
