@@ -182,7 +182,26 @@ impl Sphere {
         y: &mut State,
         spin: &mut Spin,
     ) -> Result<(), StepError> {
-        let Some((n, h)) = super::verlet::steps(step, t0, t_end)? else { return Ok(()) };
+        self.advance_oblique_verlet_until(tangential, step, wall, wall_tangential_velocity, t0, t_end, y, spin, false).map(|_| ())
+    }
+
+    /// `advance_oblique_verlet`; with `stop_at_event` it stops at the end of the first step where the
+    /// contact state or `sliding` changed (FMI 3.0 early return) and returns that step's end.
+    #[allow(clippy::too_many_arguments)] // the normal and the tangential state, the wall's two motions
+    pub fn advance_oblique_verlet_until(
+        &mut self,
+        tangential: &mut Tangential,
+        step: f64,
+        wall: &WallMotion,
+        wall_tangential_velocity: f64,
+        t0: f64,
+        t_end: f64,
+        y: &mut State,
+        spin: &mut Spin,
+        stop_at_event: bool,
+    ) -> Result<Option<f64>, StepError> {
+        let Some((n, h)) = super::verlet::steps(step, t0, t_end)? else { return Ok(None) };
+        let (state0, sliding0) = (self.contact_state(), tangential.sliding);
         let (alpha, rate) = self.overlap(wall, t0, y);
         let mut f = self.contact.law_force(alpha, rate).total();
         let mut alpha = alpha;
@@ -212,10 +231,14 @@ impl Sphere {
             }
             self.contact.accept(alpha1, wall.velocity - y.velocity);
             self.steps += 1;
+            if stop_at_event && (self.contact_state() != state0 || tangential.sliding != sliding0) {
+                tangential.force = f_t1;
+                return Ok(Some(t1));
+            }
             (f, alpha, f_t, rolling) = (f1, alpha1, f_t1, rolling1);
         }
         tangential.force = f_t;
-        Ok(())
+        Ok(None)
     }
 }
 

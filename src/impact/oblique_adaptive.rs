@@ -301,6 +301,26 @@ impl Sphere {
         y: &mut State,
         spin: &mut Spin,
     ) -> Result<(), StepError> {
+        self.advance_oblique_adaptive_until(tangential, mode, wall, w_t, t0, t_end, y, spin, false).map(|_| ())
+    }
+
+    /// `advance_oblique_adaptive`; with `stop_at_event` it stops at the first located change of the contact
+    /// state or of sticking and sliding (FMI 3.0 early return) and returns its time.
+    #[allow(clippy::too_many_arguments)] // the normal and the tangential state, the wall's two motions
+    pub fn advance_oblique_adaptive_until(
+        &mut self,
+        tangential: &mut Tangential,
+        mode: &mut TangentialMode,
+        wall: &WallMotion,
+        w_t: f64,
+        t0: f64,
+        t_end: f64,
+        y: &mut State,
+        spin: &mut Spin,
+        stop_at_event: bool,
+    ) -> Result<Option<f64>, StepError> {
+        let (state0, sliding0) = (self.contact_state(), matches!(mode.mode, Mode::Slide(_)));
+        let mut event = None;
         let mut x: Y = [y.bottom, y.velocity, y.work, spin.velocity, spin.angular_velocity, tangential.spring.force.x, spin.work, spin.position];
         let mut t = t0;
         let mut h = if self.last_step > 0.0 { self.last_step } else { 1e-2 * self.contact.alpha_nominal / y.velocity.abs().max(self.contact.rate_nominal) };
@@ -361,6 +381,10 @@ impl Sphere {
             let s = State::new(x[0], x[1], x[2]);
             self.accept(wall, t, &s);
             self.settle_tangential(tangential, mode, wall, w_t, t, &mut x, was_in_contact, any && crossed[3]);
+            if stop_at_event && t < t_end && (self.contact_state() != state0 || matches!(mode.mode, Mode::Slide(_)) != sliding0) {
+                event = Some(t);
+                break;
+            }
             if !any && !last {
                 self.last_step = h_try;
                 h = h_try * (0.9 * e.max(1e-10).powf(-0.2)).min(5.0);
@@ -373,8 +397,9 @@ impl Sphere {
         spin.position = x[7];
         tangential.spring.force.x = x[5];
         tangential.sliding = matches!(mode.mode, Mode::Slide(_));
-        let (alpha, rate) = (wall.at(t_end) - y.bottom, wall.velocity - y.velocity);
+        let t_stop = event.unwrap_or(t_end);
+        let (alpha, rate) = (wall.at(t_stop) - y.bottom, wall.velocity - y.velocity);
         tangential.force = self.tangent(tangential, mode.mode, alpha, rate, &x, w_t, false).force;
-        Ok(())
+        Ok(event)
     }
 }

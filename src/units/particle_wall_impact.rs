@@ -425,14 +425,15 @@ impl ParticleWallImpact {
         sphere.gravity = g + a;
         let mut y = self.y;
         let result = if oblique {
-            // The oblique integrators have no early return: the step runs to its end.
+            // Early return (FMI 3.0) at a change of the contact state or of `sliding`.
             let tg = self.tangential.as_mut().ok_or(UnitError::NotInitialized)?;
             sphere.follow_jump(&wall, t, &mut y);
             match sphere.solver {
-                Solver::Verlet { step } => sphere.advance_oblique_verlet(tg, step, &wall, w_t, t, t + h, &mut y, &mut self.spin),
-                Solver::Exact | Solver::Adaptive => sphere.advance_oblique_adaptive(tg, &mut self.mode, &wall, w_t, t, t + h, &mut y, &mut self.spin),
+                Solver::Verlet { step } => sphere.advance_oblique_verlet_until(tg, step, &wall, w_t, t, t + h, &mut y, &mut self.spin, stop_at_event),
+                Solver::Exact | Solver::Adaptive => {
+                    sphere.advance_oblique_adaptive_until(tg, &mut self.mode, &wall, w_t, t, t + h, &mut y, &mut self.spin, stop_at_event)
+                }
             }
-            .map(|()| None)
         } else {
             sphere.advance_until(&wall, t, t + h, &mut y, stop_at_event)
         };

@@ -219,6 +219,27 @@ def test_every_integrator_returns_early_at_contact_and_separation(solver):
     assert list(state[t > 1e-6]) == [0] * int(np.sum(t > 1e-6)), "no event after separation"
 
 
+def test_an_oblique_step_returns_early_at_contact_stick_slip_and_separation():
+    """The oblique adaptive integrator (a tangential velocity at the start) returns early where the contact
+    state or `sliding` changes: contact and separation at the closed form's times (the normal motion does
+    not depend on the tangential), a switch between them, and the rebound that the run without early
+    return gives."""
+    values, t_contact, t_separation = _linear_impact()
+    values |= {"initial_tangential_velocity": 0.3}
+    out = ["contact_state", "sliding", "tangential_velocity", "angular_velocity", "sphere_velocity"]
+    runs = [fmpy.simulate_fmu(str(path3("ParticleWallImpact")), start_values=values, stop_time=3e-3, output_interval=1e-3,
+                              early_return_allowed=early, output=out) for early in (True, False)]
+    r = runs[0]
+    t, state, sliding = r["time"], r["contact_state"], r["sliding"]
+    assert t[np.argmax(state == 1)] == pytest.approx(t_contact, rel=1e-9)
+    assert t[np.flatnonzero(state == 1)[-1] + 1] == pytest.approx(t_separation, rel=1e-9)
+    switches = t[1:][sliding[1:] != sliding[:-1]]
+    assert len(switches) >= 1 and all(t_contact < ts < t_separation + 1e-15 for ts in switches), switches
+    for name in ("tangential_velocity", "angular_velocity", "sphere_velocity"):
+        assert r[name][-1] == pytest.approx(runs[1][name][-1], rel=1e-9)
+    assert r["angular_velocity"][-1] > 0, "the wall's friction spins the sphere forward"
+
+
 def test_an_event_at_the_step_end_asks_for_event_mode_without_an_early_return(unzipped):
     """A master whose communication point is the contact time itself: the step completes (no early
     return) and, with Event Mode, is asked to handle the event there."""
