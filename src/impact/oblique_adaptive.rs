@@ -122,6 +122,12 @@ impl Sphere {
 
     fn oblique_rhs(&self, tg: &Tangential, mode: Mode, wall: &WallMotion, w_t: f64, t: f64, y: &Y) -> Y {
         let normal = self.derivatives(wall, t, &State::new(y[0], y[1], y[2]));
+        // No motion along the wall, no spin, an unloaded sticking spring and a wall at rest along itself:
+        // no slip, so no tangential force, whatever the normal state (Model Exchange's normal impact pays
+        // nothing for the tangential states; the general path gives the same values).
+        if mode == Mode::Stick && y[3] == 0.0 && y[4] == 0.0 && y[5] == 0.0 && w_t == 0.0 {
+            return [normal.bottom, normal.velocity, normal.work, 0.0, 0.0, 0.0, 0.0, 0.0];
+        }
         let (alpha, rate) = (wall.at(t) - y[0], wall.velocity - y[1]);
         let tan = self.tangent(tg, mode, alpha, rate, y, w_t, false);
         let lever = tg.lever(alpha);
@@ -195,13 +201,15 @@ impl Sphere {
         if tg.friction == 0.0 || !self.contact.accepted.branch.in_contact() {
             return 1.0;
         }
+        // An unloaded spring holds whatever the limit (at N = 0 too): it can only leave sticking once it
+        // carries a force, which makes the indicator limit - |F_s| at once. So a contact that is never
+        // sheared has no tangential events (Model Exchange's normal impact), and costs no evaluation here.
+        if mode == Mode::Stick && y[5] == 0.0 {
+            return 1.0;
+        }
         let (alpha, rate) = (wall.at(t) - y[0], wall.velocity - y[1]);
         let tan = self.tangent(tg, mode, alpha, rate, y, w_t, matches!(mode, Mode::Slide(_)));
         match mode {
-            // An unloaded spring holds whatever the limit (at N = 0 too): it can only leave sticking once
-            // it carries a force, which makes the indicator limit - |F_s| at once. So a contact that is
-            // never sheared has no tangential events (Model Exchange's normal impact).
-            Mode::Stick if y[5] == 0.0 => 1.0,
             Mode::Stick => tan.limit - y[5].abs(),
             Mode::Slide(_) => tan.excess_rate,
         }
