@@ -168,3 +168,63 @@ fn an_adhesive_sphere_sticks_where_its_normal_velocity_is_below_the_sticking_vel
     assert!(matches!(held, powderfmu::impact::oblique::ObliqueError::Sticks(_)), "{held}");
     assert!(impact(&s, 1.01 * v_s, 1.0, &ImpactOptions::default()).is_ok());
 }
+
+/// The smallest normal velocity [m/s] at which the sphere leaves the wall at normal incidence (bisection).
+fn sticking_velocity(s: &Scene) -> f64 {
+    let (mut lo, mut hi): (f64, f64) = (1e-3, 20.0);
+    for _ in 0..40 {
+        let mid = (lo * hi).sqrt();
+        match impact(s, mid, 0.0, &ImpactOptions::default()) {
+            Ok(_) => hi = mid,
+            Err(powderfmu::impact::oblique::ObliqueError::Sticks(_)) => lo = mid,
+            Err(e) => panic!("{e}"),
+        }
+    }
+    hi
+}
+
+#[test]
+fn the_critical_sticking_speed_of_every_adhesive_law_grows_as_one_over_cos_theta_and_the_held_sphere_says_where_it_goes() {
+    // 000 Table 5's sphere on silicon (the default scene) under JKR, Nan's and Pasha's laws, mu = 0.3: the
+    // normal dynamics do not depend on the tangential ones in these laws, so a sphere sticks where
+    // v cos(theta) is below the normal sticking velocity, at any angle.
+    for model in [ModelKind::Jkr, ModelKind::Nan, ModelKind::Pasha] {
+        let mut s = Scene::from_json(include_str!("../scenes/ammonium_fluorescein_on_silicon.json")).unwrap();
+        s.contact_model = model;
+        s.friction_coefficient = 0.3;
+        let v_c = sticking_velocity(&s);
+        for theta in [30.0f64, 60.0] {
+            let v = v_c / theta.to_radians().cos();
+            let (v_n, v_t) = (0.99 * v * theta.to_radians().cos(), 0.99 * v * theta.to_radians().sin());
+            match impact(&s, v_n, v_t, &ImpactOptions::default()) {
+                Err(powderfmu::impact::oblique::ObliqueError::Sticks(held)) => {
+                    // Held, it moves along the wall (rolling on a sticking contact or sliding), never back.
+                    assert!(held.tangential_velocity > 0.0 && held.tangential_velocity < v_t, "{model:?} {theta}: {held:?}");
+                    assert!(held.mechanism().contains("along the wall"), "{}", held.mechanism());
+                }
+                other => panic!("{model:?} at {theta} deg, 0.99 of the critical speed: {other:?}"),
+            }
+            let (v_n, v_t) = (1.01 * v * theta.to_radians().cos(), 1.01 * v * theta.to_radians().sin());
+            assert!(impact(&s, v_n, v_t, &ImpactOptions::default()).is_ok(), "{model:?} at {theta} deg, 1.01 of the critical speed");
+        }
+    }
+}
+
+#[test]
+fn a_contact_without_adhesion_breaks_sliding_and_an_adhesive_one_can_break_sticking() {
+    // The Coulomb limit mu N falls to 0 with the contact, so a sheared Hertz contact always breaks
+    // sliding; JKR's mu (N + 2 f_c) stays finite and holds the contact point as it breaks (at 1 m/s and
+    // 10-45 deg on 000 Table 5's sphere).
+    let alumina = alumina();
+    for theta in [5.0f64, 10.0, 60.0] {
+        let o = impact(&alumina, SPEED * theta.to_radians().cos(), SPEED * theta.to_radians().sin(), &ImpactOptions::default()).unwrap();
+        assert!(o.sliding_at_separation, "alumina at {theta} deg");
+    }
+    let mut s = Scene::from_json(include_str!("../scenes/ammonium_fluorescein_on_silicon.json")).unwrap();
+    s.contact_model = ModelKind::Jkr;
+    s.friction_coefficient = 0.3;
+    for theta in [10.0f64, 30.0, 45.0] {
+        let o = impact(&s, theta.to_radians().cos(), theta.to_radians().sin(), &ImpactOptions::default()).unwrap();
+        assert!(!o.sliding_at_separation, "JKR at {theta} deg: {o:?}");
+    }
+}

@@ -71,7 +71,10 @@ enum Command {
     /// proportional to k_n for the linear ones, Tomas's for tomas) with the scene's friction_coefficient.
     /// Positive spin rolls the sphere toward its tangential motion. Chung and Ooi's Test 4: --speed 3.9
     /// --angles 5,10,...,85 on aluminium oxide (scenes/chung_ooi_alumina.json). A sphere the adhesion
-    /// holds (still on the wall after a thousand Rayleigh steps) gets a row with sticks = true.
+    /// holds (still on the wall after a thousand Rayleigh steps) gets a row with sticks = true and its
+    /// velocity and spin then. `mechanism` names how the contact broke (sliding detachment: on the
+    /// Coulomb limit at its last step; sticking detachment: the contact point held while it broke) or
+    /// where a held sphere goes (held sliding, rolling or at rest along the wall).
     Oblique {
         /// The scene file (JSON object of scene keys, SI units)
         scene: PathBuf,
@@ -165,22 +168,29 @@ fn oblique_csv(scene: &Scene, speed: f64, angles: &[f64], options: &oblique::Imp
     let mut out = String::from(
         "incident_angle_deg,normal_velocity_in_m_per_s,tangential_velocity_in_m_per_s,angular_velocity_in_rad_per_s,normal_velocity_out_m_per_s,\
 tangential_velocity_out_m_per_s,angular_velocity_out_rad_per_s,tangential_restitution,rebound_angle_deg,max_overlap_m,max_force_N,contact_time_s,\
-slid_throughout,dissipated_energy_J,kinetic_energy_lost_J,sticks\n",
+slid_throughout,dissipated_energy_J,kinetic_energy_lost_J,sticks,mechanism\n",
     );
     for &angle in angles {
         let (v_n, v_t) = (speed * angle.to_radians().cos(), speed * angle.to_radians().sin());
         let o = match oblique::impact(scene, v_n, v_t, options) {
             Ok(o) => o,
-            // Held by adhesion: the row says so, with nothing after the impact.
-            Err(oblique::ObliqueError::Sticks(_)) => {
-                let _ = writeln!(out, "{angle},{v_n:e},{v_t:e},{:e},NaN,NaN,NaN,NaN,NaN,NaN,NaN,NaN,,NaN,NaN,true", options.angular_velocity);
+            // Held by adhesion: the row says so, with where the sphere goes along the wall.
+            Err(oblique::ObliqueError::Sticks(held)) => {
+                let _ = writeln!(
+                    out,
+                    "{angle},{v_n:e},{v_t:e},{:e},NaN,{:e},{:e},NaN,NaN,NaN,NaN,NaN,,NaN,NaN,true,held {}",
+                    options.angular_velocity,
+                    held.tangential_velocity,
+                    held.angular_velocity,
+                    held.mechanism()
+                );
                 continue;
             }
             Err(e) => return Err(format!("at {angle} deg: {e}")),
         };
         let _ = writeln!(
             out,
-            "{angle},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{},{:e},{:e},false",
+            "{angle},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{},{:e},{:e},false,{} detachment",
             o.normal_velocity_in,
             o.tangential_velocity_in,
             o.angular_velocity_in,
@@ -194,7 +204,8 @@ slid_throughout,dissipated_energy_J,kinetic_energy_lost_J,sticks\n",
             o.contact_time,
             o.slid_throughout,
             o.dissipated_energy,
-            o.kinetic_energy_lost
+            o.kinetic_energy_lost,
+            if o.sliding_at_separation { "sliding" } else { "sticking" }
         );
     }
     Ok(out)

@@ -299,6 +299,10 @@ pub struct ObliqueOutcome {
     pub steps: u64,
     /// Whether the contact slid (sat on the Coulomb limit) at every step it carried force.
     pub slid_throughout: bool,
+    /// How the contact broke: sliding (on the Coulomb limit at its last step in contact) or sticking (the
+    /// contact point held to the wall while it broke). Without adhesion the limit mu N falls to 0 as
+    /// the contact ends, so a sheared contact breaks sliding; an adhesive limit mu (N + 2 f_c) need not.
+    pub sliding_at_separation: bool,
     /// Energy dissipated: normal and tangential contact work [J].
     pub dissipated_energy: f64,
     /// Kinetic energy lost, translation and spin [J] (equal to `dissipated_energy` to the scheme's error).
@@ -326,9 +330,35 @@ pub enum ObliqueError {
     /// The integrator.
     #[error(transparent)]
     Step(#[from] StepError),
-    /// The sphere had not left the wall after this long (an adhesive law that holds it).
-    #[error("the sphere has not left the wall after {0:e} s: it sticks")]
-    Sticks(f64),
+    /// The sphere had not left the wall (an adhesive law holds it): where it is then.
+    #[error("the sphere has not left the wall after {:e} s: it sticks, {}", .0.time, .0.mechanism())]
+    Sticks(Held),
+}
+
+/// A sphere the adhesion holds on the wall, when the impact gives up watching it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Held {
+    /// Time since the start [s].
+    pub time: f64,
+    /// Tangential velocity of the centre [m/s].
+    pub tangential_velocity: f64,
+    /// Spin [rad/s].
+    pub angular_velocity: f64,
+    /// The contact on its Coulomb limit: the sphere slides along the wall; otherwise it rolls (or rests).
+    pub sliding: bool,
+}
+
+impl Held {
+    /// "sliding along the wall", "rolling along the wall" or "at rest on the wall".
+    pub fn mechanism(&self) -> &'static str {
+        if self.sliding {
+            "sliding along the wall"
+        } else if self.tangential_velocity != 0.0 || self.angular_velocity != 0.0 {
+            "rolling along the wall"
+        } else {
+            "at rest on the wall"
+        }
+    }
 }
 
 /// The oblique impact of the scene's sphere on its wall at normal velocity `normal_velocity` [m/s] (toward
@@ -385,6 +415,7 @@ pub fn impact(scene: &Scene, normal_velocity: f64, tangential_velocity: f64, opt
     let kinetic = |y: &State, s: &Spin| 0.5 * eff.mass * (y.velocity * y.velocity + s.velocity * s.velocity) + 0.5 * inertia * s.angular_velocity * s.angular_velocity;
     let before = kinetic(&y, &spin);
     let (mut t, mut max_overlap, mut max_force, mut slid_throughout, mut contact_steps) = (0.0, 0.0f64, 0.0f64, true, 0u64);
+    let mut sliding_at_separation = false;
     // A generous bound on the contact time: a thousand Rayleigh steps (Hertz's contact time is 4-15 of
     // them from 4 m/s down to 1 cm/s); a sphere still held then has stuck.
     let t_max = 1e3 * h / rayleigh_fraction;
@@ -399,6 +430,7 @@ pub fn impact(scene: &Scene, normal_velocity: f64, tangential_velocity: f64, opt
         max_force = max_force.max(sphere.contact.force(alpha, -y.velocity).total());
         if sphere.contact.accepted.branch.in_contact() {
             contact_steps += 1;
+            sliding_at_separation = tangential.sliding;
             if tangential.friction > 0.0 && tangential.spring.force.x != 0.0 {
                 slid_throughout &= tangential.sliding;
             }
@@ -407,7 +439,12 @@ pub fn impact(scene: &Scene, normal_velocity: f64, tangential_velocity: f64, opt
             break;
         }
         if t > t_max {
-            return Err(ObliqueError::Sticks(t));
+            return Err(ObliqueError::Sticks(Held {
+                time: t,
+                tangential_velocity: spin.velocity,
+                angular_velocity: spin.angular_velocity,
+                sliding: tangential.sliding,
+            }));
         }
     }
     let after = kinetic(&y, &spin);
@@ -423,6 +460,7 @@ pub fn impact(scene: &Scene, normal_velocity: f64, tangential_velocity: f64, opt
         contact_time: contact_steps as f64 * h,
         steps: contact_steps,
         slid_throughout,
+        sliding_at_separation,
         dissipated_energy: y.work + spin.work,
         kinetic_energy_lost: before - after,
     })

@@ -26,7 +26,7 @@ SPEED, MU, RADIUS = 3.9, 0.092, 2.5e-3
 def cli_oblique(cli, angle: float, *extra: str) -> dict:
     out = subprocess.run([str(cli.path), "oblique", str(REPO / "scenes/chung_ooi_alumina.json"), "--speed", str(SPEED),
                           "--angles", repr(angle), *extra], capture_output=True, text=True, check=True).stdout
-    return {k: v if k in ("slid_throughout", "sticks") else float(v) for k, v in next(csv.DictReader(io.StringIO(out))).items()}
+    return {k: v if k in ("slid_throughout", "sticks", "mechanism") else float(v) for k, v in next(csv.DictReader(io.StringIO(out))).items()}
 
 
 def unit_oblique(impact, angle: float, **start) -> dict:
