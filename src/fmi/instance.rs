@@ -173,6 +173,12 @@ pub fn error<T>(message: impl Into<String>) -> Call<T> {
     Err(Failure { status: Status::Error, message: message.into(), enters_error_state: false })
 }
 
+/// A call that could not do what was asked and changed nothing, the instance going on as it was: Discard
+/// (FMI 2.0.4 Sec. 4.2.3: a status kind that is not available).
+pub fn discard<T>(message: impl Into<String>) -> Call<T> {
+    Err(Failure { status: Status::Discard, message: message.into(), enters_error_state: false })
+}
+
 /// A computation that failed: Error, and the instance is in the Error state.
 pub fn failed<T>(message: impl Into<String>) -> Call<T> {
     Err(Failure { status: Status::Error, message: message.into(), enters_error_state: true })

@@ -16,8 +16,8 @@ pub enum Status {
     Ok = 0,
     /// The call did what was asked, but something is not right; the log says what (fmi2Warning, fmi3Warning).
     Warning = 1,
-    /// The call did not do what was asked, and the instance can go on (fmi2Discard, fmi3Discard); none of
-    /// this crate's calls returns it.
+    /// The call did not do what was asked, and the instance can go on (fmi2Discard, fmi3Discard): the
+    /// fmi2Get*Status functions for a status kind that is not available.
     Discard = 2,
     /// The call was refused or failed (fmi2Error, fmi3Error); whether the instance is then in the Error state
     /// is `instance::Failure::enters_error_state`.

@@ -7,7 +7,7 @@
 
 use super::types::*;
 use crate::fmi::ffi::{self, c_str, out, slice, slice_mut, Registry};
-use crate::fmi::instance::{allowed, error, Call, Instance, Kind, LogCallback, Logger, Mode};
+use crate::fmi::instance::{allowed, discard, error, Call, Instance, Kind, LogCallback, Logger, Mode};
 use crate::fmi::uri::file_uri_to_path;
 use crate::fmi::{state_calls, Api, Status};
 use crate::units::variables::{Value, VarType};
@@ -670,12 +670,14 @@ pub unsafe extern "C" fn fmi2CancelStep(c: fmi2Component) -> fmi2Status {
     cs(c, "fmi2CancelStep", allowed::ANY_LIVE, |_| error("fmi2CancelStep: fmi2DoStep is synchronous, there is never a step to cancel"))
 }
 
+/// A status kind the unit does not have: fmi2Discard, as FMI 2.0.4 Sec. 4.2.3 says for a status that is not
+/// available; the instance goes on.
 fn status_kind_error(function: &str, s: fmi2StatusKind) -> Call {
-    error(format!("{function}: status kind {s} is not available (fmi2DoStep never returns fmi2Pending or fmi2Discard)"))
+    discard(format!("{function}: status kind {s} is not available (fmi2DoStep never returns fmi2Pending or fmi2Discard)"))
 }
 
-/// fmi2GetStatus (FMI 2.0.4 Sec. 4.2.3): refused with fmi2Error for every status kind, since fmi2DoStep never
-/// returns fmi2Pending. Co-Simulation, in Step Complete or Terminated.
+/// fmi2GetStatus (FMI 2.0.4 Sec. 4.2.3): fmi2Discard for every status kind, since fmi2DoStep never returns
+/// fmi2Pending. Co-Simulation, in Step Complete or Terminated.
 #[no_mangle]
 pub unsafe extern "C" fn fmi2GetStatus(c: fmi2Component, s: fmi2StatusKind, _value: *mut fmi2Status) -> fmi2Status {
     cs(c, "fmi2GetStatus", allowed::CS_STATUS, |_| status_kind_error("fmi2GetStatus", s))
@@ -698,7 +700,7 @@ pub unsafe extern "C" fn fmi2GetRealStatus(c: fmi2Component, s: fmi2StatusKind, 
 }
 
 /// fmi2GetIntegerStatus (FMI 2.0.4 Sec. 4.2.3): no status kind has an Integer value, so it is always
-/// refused with fmi2Error. Co-Simulation, in Step Complete or Terminated.
+/// fmi2Discard. Co-Simulation, in Step Complete or Terminated.
 #[no_mangle]
 pub unsafe extern "C" fn fmi2GetIntegerStatus(c: fmi2Component, s: fmi2StatusKind, _value: *mut fmi2Integer) -> fmi2Status {
     cs(c, "fmi2GetIntegerStatus", allowed::CS_STATUS, |_| status_kind_error("fmi2GetIntegerStatus", s))
@@ -720,8 +722,8 @@ pub unsafe extern "C" fn fmi2GetBooleanStatus(c: fmi2Component, s: fmi2StatusKin
     })
 }
 
-/// fmi2GetStringStatus (FMI 2.0.4 Sec. 4.2.3): always refused with fmi2Error, since fmi2PendingStatus needs
-/// an asynchronous step. Co-Simulation, in Step Complete or Terminated.
+/// fmi2GetStringStatus (FMI 2.0.4 Sec. 4.2.3): always fmi2Discard, since fmi2PendingStatus needs an
+/// asynchronous step. Co-Simulation, in Step Complete or Terminated.
 #[no_mangle]
 pub unsafe extern "C" fn fmi2GetStringStatus(c: fmi2Component, s: fmi2StatusKind, _value: *mut fmi2String) -> fmi2Status {
     cs(c, "fmi2GetStringStatus", allowed::CS_STATUS, |_| status_kind_error("fmi2GetStringStatus", s))
