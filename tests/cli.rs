@@ -284,6 +284,7 @@ fn every_subcommand_has_help_and_errors_name_the_option() {
         &["bed", "export-lammps", "--help"],
         &["bed", "indent", "--help"],
         &["bed", "bench", "--help"],
+        &["bed", "compress", "--help"],
     ] {
         let (code, out, err) = run(args);
         assert_eq!(code, 0, "{args:?}: {err}");
@@ -292,6 +293,9 @@ fn every_subcommand_has_help_and_errors_name_the_option() {
     let (code, _, err) = run(&["curve", "x.json", "--path", "1e-6", "--points", "1"]);
     assert_eq!(code, 2);
     assert!(err.contains("--points") && err.contains("2..=1000000"), "{err}");
+    let (code, _, err) = run(&["bed", "compress", "x.bed", "--strain-rate", "0"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("--strain-rate"), "{err}");
     let (code, _, err) = run(&["bed", "render", "x.bed", "y.png", "--width", "wide"]);
     assert_eq!(code, 2);
     assert!(err.contains("--width"), "{err}");

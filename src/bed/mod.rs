@@ -16,12 +16,14 @@
 //! - `prepare`: fill, settle, consolidate, unload, relax (`004` Sec. 5.1.3);
 //! - `stress`: Bagi's stress tensor (`004` Eqs. 5.1-5.3) in a cylinder or a box;
 //! - `indentation`: the ball indentation test on a prepared bed (`004` Sec. 2.3.5, Chs. 5-7);
+//! - `compression`: the unconfined compression test on a prepared bed (`004` Sec. 2.1): sigma_c and ff_c;
 //! - `series`: the mean of an autocorrelated series with its standard error;
 //! - `file`: the versioned bed file; `export`: VTK/CSV output; `render`: the PNG cross-section;
 //! - `lammps`: the LAMMPS data file export for the side-by-side benchmark.
 
 #[macro_use]
 mod any;
+pub mod compression;
 mod engine;
 pub mod export;
 pub mod file;

@@ -78,6 +78,9 @@ pub enum BedCommand {
     Indent(IndentArgs),
     /// Particle-steps per second of the force loop on a bed under a chosen law
     Bench(BenchArgs),
+    /// Unconfined compression (`004` Sec. 2.1): the die removed, the platen down at a strain rate until the
+    /// specimen fails; stress-strain CSV, sigma_c and ff_c = sigma_1 / sigma_c
+    Compress(crate::bed_compress::CompressArgs),
 }
 
 #[derive(clap::Args)]
@@ -197,19 +200,20 @@ pub fn run(command: BedCommand) -> Result<(), String> {
         BedCommand::ExportLammps { bed, out } => export_cmd(&bed, &out),
         BedCommand::Bench(a) => bench_cmd(a),
         BedCommand::Indent(a) => indent_cmd(a),
+        BedCommand::Compress(a) => crate::bed_compress::compress_cmd(a),
     }
 }
 
 /// The progress of a preparation or an indentation: an indicatif bar on a terminal (with the time left),
 /// or a plain line per 5 % elsewhere (logs, CI), which a reader of a log can follow.
-struct Bar {
+pub(crate) struct Bar {
     start: Instant,
     bar: Option<ProgressBar>,
     last_line: f64,
 }
 
 impl Bar {
-    fn new() -> Bar {
+    pub(crate) fn new() -> Bar {
         let bar = std::io::stderr().is_terminal().then(|| {
             let b = ProgressBar::new(1000);
             b.set_style(
@@ -227,7 +231,7 @@ impl Bar {
     }
 
     /// `fraction` of the whole job done, in [0, 1]; `time` the simulated time [s].
-    fn show_phase(&mut self, phase: &str, fraction: f64, time: f64, detail: &str) {
+    pub(crate) fn show_phase(&mut self, phase: &str, fraction: f64, time: f64, detail: &str) {
         let what = format!("{phase:<11} t = {time:.4e} s  {detail}");
         match &self.bar {
             Some(b) => {
@@ -244,7 +248,7 @@ impl Bar {
         }
     }
 
-    fn finish(&self) {
+    pub(crate) fn finish(&self) {
         if let Some(b) = &self.bar {
             b.finish();
         }
@@ -341,7 +345,7 @@ fn prepare_cmd(
     Ok(())
 }
 
-fn load(path: &Path, threads: Option<usize>) -> Result<(AnyEngine, BedScene), String> {
+pub(crate) fn load(path: &Path, threads: Option<usize>) -> Result<(AnyEngine, BedScene), String> {
     file::load(path, threads).map_err(|e| format!("{}: {e}", path.display()))
 }
 

@@ -10,6 +10,7 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 mod bed_cli;
+mod bed_compress;
 mod options;
 
 #[derive(Parser)]

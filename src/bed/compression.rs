@@ -1,0 +1,288 @@
+//! The unconfined (uniaxial) compression test (`004` Sec. 2.1, Fig. 2.1) on a prepared bed: the bulk
+//! consolidated in the die to sigma_1 (the bed's preparation, `consolidation_stress`), the die removed,
+//! the specimen loaded axially by the top platen at a constant strain rate until it fails. Its peak
+//! stress is the unconfined yield strength sigma_c, and sigma_1 / sigma_c the flowability ff_c (Eq. 2.1).
+//!
+//! - The die is removed by taking its cylinder's radius to infinity (no sphere can touch it); the floor
+//!   stays, frictionless unless the scene's particle-wall pair says otherwise, as the seed's tester's
+//!   low-friction base. Gravity stays: the specimen carries its own weight (`Start::self_weight_stress`),
+//!   which matters where sigma_c is small (a specimen weaker than its weight slumps before it is loaded).
+//! - The platen is the preparation's piston, put 0.02 mean diameters above the bed and moved down at
+//!   strain_rate x H_0 (H_0 the specimen's height when the die is removed). Strain is
+//!   (z_touch - z) / z_touch from the platen's height at its first contact; stress the platen's force
+//!   over the die's cross-section (the whole die's for a sector bed), averaged over each `CHECK_EVERY`
+//!   steps.
+//! - sigma_c is the largest mean stress over a window of `Setup::window` strain, with the standard error
+//!   of that window's samples (`series`): not the largest sample, which a force fluctuating by tens of
+//!   per cent would bias high. The window maximum of a noisy curve is still biased upward by about one
+//!   standard error; the reading says how many samples it holds.
+//! - The specimen has failed when the window mean has fallen below `SOFTENING` of its peak, at least one
+//!   window past the peak; the test then stops. A test that reaches max_strain without that reports the
+//!   largest window mean as a lower bound (`Reading::failed` false).
+
+use super::any::AnyEngine;
+use super::prepare::{bed_height, piston_stress, DIE, FLOOR, PISTON};
+use super::scene::BedScene;
+use super::series::{self, MeanEstimate};
+use super::walls::Shape;
+use super::Vec3;
+use crate::error::ParamError;
+
+/// Engine steps per sample.
+pub const CHECK_EVERY: u64 = 100;
+/// The fraction of the peak the window mean falls to when the specimen has failed.
+pub const SOFTENING: f64 = 0.8;
+
+/// The test's settings.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Setup {
+    /// Axial strain rate of the platen, relative to the specimen's height H_0 [1/s].
+    pub strain_rate: f64,
+    /// The test ends here if the specimen has not failed before [-].
+    pub max_strain: f64,
+    /// Time the specimen stands free between the die's removal and the platen's start [s].
+    pub free_time: f64,
+    /// Width of the strain window over which the stress is averaged for the peak [-].
+    pub window: f64,
+}
+
+impl Default for Setup {
+    /// 1/s, the seed's consolidation rate (004 Sec. 6.1); to 10 % strain; loaded at once; a window of
+    /// 0.5 % strain.
+    fn default() -> Setup {
+        Setup { strain_rate: 1.0, max_strain: 0.1, free_time: 0.0, window: 0.005 }
+    }
+}
+
+impl Setup {
+    /// Every value in its range, or the first that is not, by name.
+    pub fn check(&self) -> Result<(), ParamError> {
+        let out = |name: &'static str, value: f64, allowed: &str| ParamError::OutOfRange { name, value, allowed: allowed.into() };
+        if !(self.strain_rate > 0.0 && self.strain_rate <= 1e3) {
+            return Err(out("strain_rate", self.strain_rate, "(0, 1e3] 1/s"));
+        }
+        if !(self.max_strain > 0.0 && self.max_strain <= 0.9) {
+            return Err(out("max_strain", self.max_strain, "(0, 0.9]"));
+        }
+        if !(self.free_time >= 0.0 && self.free_time <= 10.0) {
+            return Err(out("free_time", self.free_time, "[0, 10] s"));
+        }
+        if !(self.window > 0.0 && self.window < self.max_strain) {
+            return Err(out("window", self.window, "(0, max_strain)"));
+        }
+        Ok(())
+    }
+}
+
+/// The specimen when the die was removed.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Start {
+    /// Height H_0 [m].
+    pub height: f64,
+    /// Solid fraction: sphere volume over the die's cross-section times H_0 [-].
+    pub solid_fraction: f64,
+    /// The floor's stress after the free time, the specimen's weight over the die's cross-section [Pa].
+    pub self_weight_stress: f64,
+    /// The consolidation stress of the bed's preparation, sigma_1 [Pa].
+    pub consolidation_stress: f64,
+}
+
+/// One sample of the stress-strain curve.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Sample {
+    /// Time [s].
+    pub time: f64,
+    /// Axial strain [-] (0 until the platen touches).
+    pub strain: f64,
+    /// Platen stress, mean over the sample's steps [Pa].
+    pub stress: f64,
+}
+
+/// What the test reads.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Reading {
+    /// sigma_c: the largest window mean of the stress, with its standard error [Pa].
+    pub unconfined_yield_strength: MeanEstimate,
+    /// The strain at the middle of that window [-].
+    pub strain_at_failure: f64,
+    /// Whether the specimen failed (the stress fell to `SOFTENING` of its peak); if not, sigma_c is a lower
+    /// bound.
+    pub failed: bool,
+    /// ff_c = sigma_1 / sigma_c (004 Eq. 2.1) [-]; infinite for sigma_c <= 0.
+    pub flow_function: f64,
+}
+
+/// The test on a prepared bed.
+pub struct Compression {
+    /// The settings.
+    pub setup: Setup,
+    /// The specimen at the start.
+    pub start: Start,
+    /// The curve, one sample per `CHECK_EVERY` steps from the platen's start.
+    pub samples: Vec<Sample>,
+    /// The platen's height at its first contact [m].
+    touch: Option<f64>,
+    /// Sum of the stress over the current sample's steps, and their count.
+    sum: (f64, u64),
+    /// Whether the test has ended (failure or max_strain).
+    pub done: bool,
+}
+
+impl Compression {
+    /// Removes the die of a prepared bed, lets the specimen stand `free_time`, and starts the platen.
+    pub fn new(e: &mut AnyEngine, scene: &BedScene, setup: Setup) -> Result<Compression, ParamError> {
+        setup.check()?;
+        if !matches!(e.walls().get(DIE).map(|w| w.shape), Some(Shape::Cylinder { .. })) || e.walls().len() <= PISTON {
+            return Err(ParamError::Inconsistent { name: "bed", why: "not a prepared bed in a die (floor, die, piston)".into() });
+        }
+        let area = scene.sector_area();
+        let p = e.particles();
+        let height = bed_height(p);
+        let volume: f64 = p.radius.iter().map(|r| 4.0 / 3.0 * std::f64::consts::PI * r.powi(3)).sum();
+        let solid_fraction = volume / (area * height);
+        e.walls_mut()[DIE].shape = Shape::Cylinder { radius: f64::INFINITY };
+        e.rebuild();
+        let free_steps = (setup.free_time / e.dt()).ceil() as u64;
+        e.run(free_steps);
+        let self_weight_stress = e.walls()[FLOOR].force[2].abs() / area;
+        let top = bed_height(e.particles());
+        let platen = &mut e.walls_mut()[PISTON];
+        platen.position[2] = top + 0.02 * scene.size_distribution.mean_diameter();
+        platen.velocity = Vec3::new(0.0, 0.0, -setup.strain_rate * height);
+        e.rebuild();
+        let start = Start { height, solid_fraction, self_weight_stress, consolidation_stress: scene.consolidation_stress };
+        Ok(Compression { setup, start, samples: Vec::new(), touch: None, sum: (0.0, 0), done: false })
+    }
+
+    /// Runs `steps` engine steps (or fewer, if the test ends), sampling every `CHECK_EVERY`.
+    pub fn advance(&mut self, e: &mut AnyEngine, scene: &BedScene, steps: u64) {
+        for _ in 0..steps {
+            if self.done {
+                return;
+            }
+            e.step();
+            let stress = piston_stress(e, scene);
+            let z = e.walls()[PISTON].position[2];
+            if self.touch.is_none() && stress > 0.0 {
+                self.touch = Some(z);
+            }
+            self.sum = (self.sum.0 + stress, self.sum.1 + 1);
+            if self.sum.1 == CHECK_EVERY {
+                let strain = self.touch.map_or(0.0, |t| (t - z) / t);
+                self.samples.push(Sample { time: e.time(), strain, stress: self.sum.0 / CHECK_EVERY as f64 });
+                self.sum = (0.0, 0);
+                self.done = strain >= self.setup.max_strain || self.has_failed();
+            }
+        }
+    }
+
+    /// Samples per window.
+    fn window_samples(&self, dt: f64) -> usize {
+        ((self.setup.window / (self.setup.strain_rate * dt * CHECK_EVERY as f64)).round() as usize).max(1)
+    }
+
+    /// The loaded part of the curve: from the first sample after the platen's touch.
+    fn loaded(&self) -> &[Sample] {
+        let first = self.samples.iter().position(|s| s.strain > 0.0).unwrap_or(self.samples.len());
+        &self.samples[first..]
+    }
+
+    /// The largest window mean: (first sample index in `loaded`, mean).
+    fn peak(&self, w: usize) -> Option<(usize, f64)> {
+        let s = self.loaded();
+        if s.len() < w {
+            return None;
+        }
+        let mut sum: f64 = s[..w].iter().map(|x| x.stress).sum();
+        let mut best = (0, sum / w as f64);
+        for i in 1..=s.len() - w {
+            sum += s[i + w - 1].stress - s[i - 1].stress;
+            if sum / w as f64 > best.1 {
+                best = (i, sum / w as f64);
+            }
+        }
+        Some(best)
+    }
+
+    fn has_failed(&self) -> bool {
+        let s = self.loaded();
+        let w = self.window_samples(self.sample_dt());
+        let Some((i, peak)) = self.peak(w) else { return false };
+        if peak <= 0.0 || s.len() < i + 2 * w {
+            return false;
+        }
+        let last: f64 = s[s.len() - w..].iter().map(|x| x.stress).sum::<f64>() / w as f64;
+        last < SOFTENING * peak
+    }
+
+    /// The engine's time step as the samples' spacing shows it [s] (CHECK_EVERY steps per sample).
+    fn sample_dt(&self) -> f64 {
+        match self.samples.len() {
+            0 | 1 => 0.0,
+            n => (self.samples[n - 1].time - self.samples[0].time) / ((n - 1) as f64 * CHECK_EVERY as f64),
+        }
+    }
+
+    /// sigma_c, the strain at failure, whether it failed, ff_c (module docs). None before a window of
+    /// loaded samples.
+    pub fn reading(&self) -> Option<Reading> {
+        let w = self.window_samples(self.sample_dt());
+        let (i, _) = self.peak(w)?;
+        let window: Vec<f64> = self.loaded()[i..i + w].iter().map(|x| x.stress).collect();
+        let estimate = series::mean_with_error(&window);
+        let sigma_c = estimate.mean;
+        Some(Reading {
+            unconfined_yield_strength: estimate,
+            strain_at_failure: self.loaded()[i + w / 2].strain,
+            failed: self.has_failed(),
+            flow_function: if sigma_c > 0.0 { self.start.consolidation_stress / sigma_c } else { f64::INFINITY },
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn test_with(stresses: &[f64]) -> Compression {
+        let start = Start { height: 1.0, solid_fraction: 0.5, self_weight_stress: 0.0, consolidation_stress: 1e4 };
+        let setup = Setup { strain_rate: 1.0, max_strain: 0.5, free_time: 0.0, window: 0.005 };
+        let dt = 1e-5; // 100 steps of 1e-5 s at 1/s: 1e-3 strain per sample, a window of 5 samples
+        let samples = stresses.iter().enumerate().map(|(k, &s)| Sample { time: (k + 1) as f64 * 100.0 * dt, strain: k as f64 * 1e-3, stress: s }).collect();
+        Compression { setup, start, samples, touch: Some(1.0), sum: (0.0, 0), done: false }
+    }
+
+    #[test]
+    fn the_peak_is_the_largest_window_mean_not_the_largest_sample() {
+        // A rise to 100, one spike of 300 and a fall: the spike moves the window mean by 40, not to 300.
+        let mut s: Vec<f64> = (0..20).map(|k| 5.0 * k as f64).collect();
+        s.extend([100.0, 100.0, 300.0, 100.0, 100.0]);
+        s.extend((0..30).map(|k| 100.0 - 3.0 * k as f64));
+        let t = test_with(&s);
+        let r = t.reading().unwrap();
+        assert!((r.unconfined_yield_strength.mean - 140.0).abs() < 1e-9, "{r:?}");
+        assert!(r.failed, "fell to {} of the peak", s.last().unwrap() / 140.0);
+        assert!((r.flow_function - 1e4 / 140.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn a_curve_still_rising_has_not_failed_and_its_strength_is_a_lower_bound() {
+        let s: Vec<f64> = (1..40).map(|k| k as f64).collect();
+        let r = test_with(&s).reading().unwrap();
+        assert!(!r.failed);
+        assert!((r.unconfined_yield_strength.mean - 37.0).abs() < 1e-9, "{r:?}");
+    }
+
+    #[test]
+    fn bad_settings_are_refused_by_name() {
+        for (setup, name) in [
+            (Setup { strain_rate: 0.0, ..Setup::default() }, "strain_rate"),
+            (Setup { max_strain: 1.5, ..Setup::default() }, "max_strain"),
+            (Setup { free_time: -1.0, ..Setup::default() }, "free_time"),
+            (Setup { window: 0.2, ..Setup::default() }, "window"),
+        ] {
+            let e = setup.check().unwrap_err();
+            assert!(e.to_string().contains(name), "{e}");
+        }
+    }
+}

@@ -1,0 +1,82 @@
+//! The unconfined compression test (`004` Sec. 2.1) on small prepared beds: the die is gone, a cohesive
+//! specimen has a strength and fails, a cohesionless one has none within its fluctuation, and bad input
+//! is refused by name.
+
+use powderfmu::bed::compression::{Compression, Setup};
+use powderfmu::bed::file::{self, BedFile};
+use powderfmu::bed::prepare::{self, DIE};
+use powderfmu::bed::walls::Shape;
+use powderfmu::bed::{AnyEngine, BedScene};
+use std::sync::OnceLock;
+
+/// 800 soft spheres (E = 55 MPa) in a 7 mm die consolidated to 10 kPa, with interface energy `gamma`
+/// [J/m^2]: the suite's quick bed (tests/indentation.rs), prepared once per energy.
+fn prepared(gamma: f64) -> (BedFile, BedScene) {
+    let scene = BedScene::from_json(&format!(
+        r#"{{"particle_particle": {{"particle_youngs_modulus": 55e6, "surface_energy": {gamma}, "jkr_friction_limit": "pull_off"}}, "indenter_material": "wall", "particle_count": 800, "die_diameter": 0.007}}"#
+    ))
+    .unwrap();
+    let (engine, _) = prepare::prepare(&scene, &mut |_| {}).unwrap();
+    (file::decode(&file::encode(&engine.to_file(&scene).unwrap()).unwrap()).unwrap(), scene)
+}
+
+fn cohesive() -> &'static (BedFile, BedScene) {
+    static BED: OnceLock<(BedFile, BedScene)> = OnceLock::new();
+    BED.get_or_init(|| prepared(0.5))
+}
+
+fn cohesionless() -> &'static (BedFile, BedScene) {
+    static BED: OnceLock<(BedFile, BedScene)> = OnceLock::new();
+    BED.get_or_init(|| prepared(0.0))
+}
+
+/// Runs the test to its end (failure or max_strain) with the default settings.
+fn run(bed: &(BedFile, BedScene)) -> (AnyEngine, Compression) {
+    let (mut e, scene) = AnyEngine::from_file(&bed.0, None).unwrap();
+    let mut test = Compression::new(&mut e, &scene, Setup::default()).unwrap();
+    let bound = (0.2 / e.dt()) as u64;
+    let mut steps = 0;
+    while !test.done && steps < bound {
+        test.advance(&mut e, &scene, 5000);
+        steps += 5000;
+    }
+    assert!(test.done, "the test ends by failure or max_strain");
+    (e, test)
+}
+
+#[test]
+fn a_cohesive_specimen_stands_free_has_a_strength_and_fails() {
+    let (e, test) = run(cohesive());
+    // The die is gone: no sphere touches it.
+    assert_eq!(e.wall_touching(DIE), 0);
+    let r = test.reading().expect("a loaded window");
+    let u = r.unconfined_yield_strength;
+    assert!(r.failed, "the stress fell to 0.8 of its peak: {r:?}");
+    assert!(u.mean > 50.0 && u.mean > 5.0 * u.standard_error, "sigma_c {} +- {} Pa", u.mean, u.standard_error);
+    // Far below the consolidation stress (ff_c > 1), and read as ff_c = sigma_1 / sigma_c.
+    assert!(u.mean < 0.2 * test.start.consolidation_stress);
+    assert!((r.flow_function - test.start.consolidation_stress / u.mean).abs() < 1e-12 * r.flow_function);
+    assert!(r.strain_at_failure > 0.0 && r.strain_at_failure < Setup::default().max_strain);
+    // The specimen as the die left it.
+    assert!(test.start.solid_fraction > 0.45 && test.start.solid_fraction < 0.6, "{:?}", test.start);
+    assert!(test.start.self_weight_stress > 0.0);
+}
+
+#[test]
+fn a_cohesionless_specimen_has_no_strength_within_its_fluctuation() {
+    let (_, dry) = run(cohesionless());
+    let (_, wet) = run(cohesive());
+    let (d, w) = (dry.reading().unwrap().unconfined_yield_strength, wet.reading().unwrap().unconfined_yield_strength);
+    assert!(d.mean < 3.0 * d.standard_error + 1e-3 * w.mean, "dry sigma_c {} +- {} Pa", d.mean, d.standard_error);
+    assert!(d.mean < 0.05 * w.mean, "dry {} Pa against cohesive {} Pa", d.mean, w.mean);
+}
+
+#[test]
+fn a_bed_without_its_die_and_bad_settings_are_refused_by_name() {
+    let (mut e, scene) = AnyEngine::from_file(&cohesive().0, None).unwrap();
+    let Err(err) = Compression::new(&mut e, &scene, Setup { strain_rate: -1.0, ..Setup::default() }) else { panic!("a negative rate") };
+    assert!(err.to_string().contains("strain_rate"), "{err}");
+    e.walls_mut()[DIE].shape = Shape::Plane { normal: powderfmu::bed::Vec3::new(1.0, 0.0, 0.0) };
+    let Err(err) = Compression::new(&mut e, &scene, Setup::default()) else { panic!("no die") };
+    assert!(err.to_string().contains("bed") && err.to_string().contains("die"), "{err}");
+}
