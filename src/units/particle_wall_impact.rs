@@ -261,6 +261,27 @@ struct Snapshot {
     sliding: bool,
     mode: TangentialMode,
     announced: bool,
+    /// ME: the last stick-slip switch's time and the run of quick switches before it (the chatter guard),
+    /// so that a restored run widens its pull-in as the original did.
+    me_switches: (f64, u32),
+}
+
+/// A state saved before the chatter guard's counter was kept (2026-12-04): it loads with no recent switch.
+#[derive(Serialize, Deserialize)]
+struct SnapshotWithoutSwitches {
+    y: State,
+    t: f64,
+    contact: Memory,
+    last_step: f64,
+    cs_wall: Option<CsWall>,
+    me_wall: Option<SeenWall>,
+    derivatives: InputDerivatives,
+    spin: Spin,
+    spring: f64,
+    tangential_force: f64,
+    sliding: bool,
+    mode: TangentialMode,
+    announced: bool,
 }
 
 /// Co-Simulation: the wall inputs a step started from and the wall's position and velocity at its end.
@@ -683,12 +704,12 @@ impl Model for ParticleWallImpact {
         let mode_before = self.mode;
         let spring_before = self.tangential.as_ref().map_or(0.0, |tg| tg.spring.force.x);
         let mut x = [y.bottom, y.velocity, y.work, self.spin.velocity, self.spin.angular_velocity, spring_before];
+        // Switches closer together than a millionth of the time the sphere takes to cross its nominal
+        // overlap are the host's integration error against the hysteresis, not the contact's physics.
+        let chatter_window = 1e-6 * sphere.contact.alpha_nominal / sphere.contact.rate_nominal;
         if let Some(tg) = self.tangential.as_mut() {
             let w_t = real(values, REFS.wall_tangential_velocity);
-            // Switches closer together than a millionth of the time the sphere takes to cross its nominal
-            // overlap are the host's integration error against the hysteresis, not the contact's physics.
-            let window = 1e-6 * sphere.contact.alpha_nominal / sphere.contact.rate_nominal;
-            let repeat = if t - self.me_switches.0 <= window { self.me_switches.1 } else { 0 };
+            let repeat = if t - self.me_switches.0 <= chatter_window { self.me_switches.1 } else { 0 };
             sphere.oblique_me_event(tg, &mut self.mode, &wall, w_t, t, &mut x, before.branch.in_contact(), repeat);
             tg.spring.force.x = x[5];
             tg.sliding = matches!(self.mode.mode, StickSlip::Slide(_));
@@ -696,8 +717,7 @@ impl Model for ParticleWallImpact {
         let tangential_changed = self.mode != mode_before || x[5] != spring_before;
         // A switch, or a switch and back within this event (the spring pulled in at its limit).
         if tangential_changed {
-            let window = self.sphere.as_ref().map_or(0.0, |s| 1e-6 * s.contact.alpha_nominal / s.contact.rate_nominal);
-            self.me_switches = if t - self.me_switches.0 <= window { (t, self.me_switches.1 + 1) } else { (t, 1) };
+            self.me_switches = if t - self.me_switches.0 <= chatter_window { (t, self.me_switches.1 + 1) } else { (t, 1) };
         }
         let mut message = switched.then(|| {
             let how = if crossed { format!(", crossed to the vertical end in Event Mode (leaves at {:e} m/s)", y.velocity) } else { String::new() };
@@ -783,6 +803,7 @@ impl Model for ParticleWallImpact {
             sliding: self.tangential.as_ref().is_some_and(|tg| tg.sliding),
             mode: self.mode,
             announced: self.announced,
+            me_switches: self.me_switches,
         };
         contact_parts::encode(&snap)
     }
@@ -792,7 +813,28 @@ impl Model for ParticleWallImpact {
             self.sphere = None;
             return Ok(());
         }
-        let snap: Snapshot = super::decode(bytes)?;
+        let snap: Snapshot = match super::decode(bytes) {
+            Ok(snap) => snap,
+            Err(e) => match super::decode::<SnapshotWithoutSwitches>(bytes) {
+                Ok(o) => Snapshot {
+                    y: o.y,
+                    t: o.t,
+                    contact: o.contact,
+                    last_step: o.last_step,
+                    cs_wall: o.cs_wall,
+                    me_wall: o.me_wall,
+                    derivatives: o.derivatives,
+                    spin: o.spin,
+                    spring: o.spring,
+                    tangential_force: o.tangential_force,
+                    sliding: o.sliding,
+                    mode: o.mode,
+                    announced: o.announced,
+                    me_switches: (f64::NAN, 0),
+                },
+                Err(_) => return Err(e),
+            },
+        };
         let (mut sphere, radius, mut tangential) = self.build(values)?;
         // Finite, and a speed no impact of powder reaches (a corrupted state that passed the checksum).
         let spin_ok = [snap.spin.position, snap.spin.work, snap.spring, snap.tangential_force].iter().all(|x| x.is_finite())
@@ -825,6 +867,7 @@ impl Model for ParticleWallImpact {
         self.spin = snap.spin;
         self.mode = snap.mode;
         self.announced = snap.announced;
+        self.me_switches = if snap.me_switches.0.is_infinite() { (f64::NAN, 0) } else { snap.me_switches };
         Ok(())
     }
 }
@@ -974,6 +1017,37 @@ mod derivative_state_tests {
     fn wall_after_step(m: &mut ParticleWallImpact, values: &mut [Value], h: f64) -> f64 {
         m.do_step(values, m.t, h).unwrap();
         m.cs_wall.unwrap().position_end
+    }
+
+    #[test]
+    fn the_chatter_guards_switch_count_is_saved_and_an_older_state_loads_without_it() {
+        let (mut m, _) = model();
+        m.me_switches = (1.5e-6, 7);
+        let saved = m.save().unwrap();
+        let (mut fresh, fresh_values) = model();
+        fresh.restore(&fresh_values, &saved).unwrap();
+        assert_eq!(fresh.me_switches, (1.5e-6, 7));
+        // The same state in the layout saved before the counter was kept.
+        let s = m.sphere.as_ref().unwrap();
+        let old = contact_parts::encode(&SnapshotWithoutSwitches {
+            y: m.y,
+            t: m.t,
+            contact: s.contact.memory(),
+            last_step: s.last_step,
+            cs_wall: m.cs_wall,
+            me_wall: m.me_wall,
+            derivatives: m.derivatives,
+            spin: m.spin,
+            spring: 0.0,
+            tangential_force: 0.0,
+            sliding: false,
+            mode: m.mode,
+            announced: m.announced,
+        })
+        .unwrap();
+        fresh.restore(&fresh_values, &old).unwrap();
+        assert!(fresh.me_switches.0.is_nan() && fresh.me_switches.1 == 0);
+        assert_eq!(fresh.y, m.y);
     }
 
     #[test]
