@@ -40,7 +40,7 @@ pub fn compress_cmd(a: CompressArgs) -> Result<(), String> {
     let s = test.start;
     let aspect = s.height / (scene.die_diameter);
     eprintln!(
-        "unconfined compression: specimen {:.4e} m high (H/D {aspect:.2}), solid fraction {:.4}, consolidated to sigma_1 = {:.4e} Pa; die removed, its own weight {:.3e} Pa on the floor after {} s free; platen at {} 1/s",
+        "unconfined compression: specimen {:.4e} m high (H/D {aspect:.2}), solid fraction {:.4}, consolidated to sigma_1 = {:.4e} Pa, its own weight {:.3e} Pa on its base; die removed, {} s free; platen at {} 1/s",
         s.height, s.solid_fraction, s.consolidation_stress, s.self_weight_stress, setup.free_time, setup.strain_rate
     );
     // The platen's travel until the strain ends the test, with a margin for the approach: a bound on the steps.
