@@ -53,12 +53,9 @@ def ours(scene_file: str, v_n: float, v_t: float, spin: float, solver: str) -> d
 
 
 def lammps(s: dict, v_n: float, v_t: float, spin: float) -> dict:
-    from test_peers import lammps_sphere_on_plane  # noqa: E402 (the peer test's input and mapping)
+    from test_peers import lammps_for_scene  # noqa: E402 (the peer test's input, mapping and step)
 
-    nu, E, rho, R = s["particle_poisson_ratio"], s["particle_youngs_modulus"], s["particle_density"], s["particle_radius"]
-    rayleigh = math.pi * R * math.sqrt(rho / (E / (2 * (1 + nu)))) / (0.1631 * nu + 0.8766)
-    vx, vz, wy = lammps_sphere_on_plane(radius=R, density=rho, youngs_modulus=E, poisson_ratio=nu, friction=s["friction_coefficient"],
-                                        v_n=v_n, v_t=v_t, spin=spin, dt=1e-3 * rayleigh)
+    vx, vz, wy = lammps_for_scene(s, v_n, v_t, spin)
     return {"v_t": vx, "v_n": vz, "omega": wy, "slid": None}
 
 

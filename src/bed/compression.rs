@@ -126,6 +126,8 @@ pub struct Compression {
     sum: (f64, u64),
     /// Whether the test has ended (failure or max_strain).
     pub done: bool,
+    /// The engine's time step [s]: a sample spans `CHECK_EVERY` of them.
+    dt: f64,
 }
 
 impl Compression {
@@ -153,7 +155,7 @@ impl Compression {
         platen.velocity = Vec3::new(0.0, 0.0, -setup.strain_rate * height);
         e.rebuild();
         let start = Start { height, solid_fraction, self_weight_stress, consolidation_stress: scene.consolidation_stress };
-        Ok(Compression { setup, start, samples: Vec::new(), touch: None, sum: (0.0, 0), done: false })
+        Ok(Compression { setup, start, samples: Vec::new(), touch: None, sum: (0.0, 0), done: false, dt: e.dt() })
     }
 
     /// Runs `steps` engine steps (or fewer, if the test ends), sampling every `CHECK_EVERY`.
@@ -179,8 +181,8 @@ impl Compression {
     }
 
     /// Samples per window.
-    fn window_samples(&self, dt: f64) -> usize {
-        ((self.setup.window / (self.setup.strain_rate * dt * CHECK_EVERY as f64)).round() as usize).max(1)
+    fn window_samples(&self) -> usize {
+        ((self.setup.window / (self.setup.strain_rate * self.dt * CHECK_EVERY as f64)).round() as usize).max(1)
     }
 
     /// The loaded part of the curve: from the first sample after the platen's touch.
@@ -208,7 +210,7 @@ impl Compression {
 
     fn has_failed(&self) -> bool {
         let s = self.loaded();
-        let w = self.window_samples(self.sample_dt());
+        let w = self.window_samples();
         let Some((i, peak)) = self.peak(w) else { return false };
         if peak <= 0.0 || s.len() < i + 2 * w {
             return false;
@@ -217,18 +219,10 @@ impl Compression {
         last < SOFTENING * peak
     }
 
-    /// The engine's time step as the samples' spacing shows it [s] (CHECK_EVERY steps per sample).
-    fn sample_dt(&self) -> f64 {
-        match self.samples.len() {
-            0 | 1 => 0.0,
-            n => (self.samples[n - 1].time - self.samples[0].time) / ((n - 1) as f64 * CHECK_EVERY as f64),
-        }
-    }
-
     /// sigma_c, the strain at failure, whether it failed, ff_c (module docs). None before a window of
     /// loaded samples.
     pub fn reading(&self) -> Option<Reading> {
-        let w = self.window_samples(self.sample_dt());
+        let w = self.window_samples();
         let (i, _) = self.peak(w)?;
         let window: Vec<f64> = self.loaded()[i..i + w].iter().map(|x| x.stress).collect();
         let estimate = series::mean_with_error(&window);
@@ -251,7 +245,7 @@ mod tests {
         let setup = Setup { strain_rate: 1.0, max_strain: 0.5, free_time: 0.0, window: 0.005 };
         let dt = 1e-5; // 100 steps of 1e-5 s at 1/s: 1e-3 strain per sample, a window of 5 samples
         let samples = stresses.iter().enumerate().map(|(k, &s)| Sample { time: (k + 1) as f64 * 100.0 * dt, strain: k as f64 * 1e-3, stress: s }).collect();
-        Compression { setup, start, samples, touch: Some(1.0), sum: (0.0, 0), done: false }
+        Compression { setup, start, samples, touch: Some(1.0), sum: (0.0, 0), done: false, dt }
     }
 
     #[test]

@@ -169,26 +169,10 @@ impl Sphere {
     /// Velocity Verlet over [t0, t_end] for the oblique impact: the normal motion exactly as
     /// `advance_verlet`, the tangential motion and spin of `spin` under `tangential`, the wall moving as
     /// `wall` and along itself at `wall_tangential_velocity` [m/s]. The communication step is cut into equal
-    /// steps no longer than `step`.
-    #[allow(clippy::too_many_arguments)] // the normal and the tangential state, the wall's two motions
-    pub fn advance_oblique_verlet(
-        &mut self,
-        tangential: &mut Tangential,
-        step: f64,
-        wall: &WallMotion,
-        wall_tangential_velocity: f64,
-        t0: f64,
-        t_end: f64,
-        y: &mut State,
-        spin: &mut Spin,
-    ) -> Result<(), StepError> {
-        self.advance_oblique_verlet_until(tangential, step, wall, wall_tangential_velocity, t0, t_end, y, spin, false).map(|_| ())
-    }
-
-    /// `advance_oblique_verlet`; with `stop_at_event` it stops at the end of the first step where the
+    /// steps no longer than `step`. With `stop_at_event` it stops at the end of the first step where the
     /// contact state or `sliding` changed (FMI 3.0 early return) and returns that step's end.
     #[allow(clippy::too_many_arguments)] // the normal and the tangential state, the wall's two motions
-    pub fn advance_oblique_verlet_until(
+    pub fn advance_oblique_verlet(
         &mut self,
         tangential: &mut Tangential,
         step: f64,
@@ -421,8 +405,8 @@ pub fn impact(scene: &Scene, normal_velocity: f64, tangential_velocity: f64, opt
     let t_max = 1e3 * h / rayleigh_fraction;
     loop {
         match solver {
-            ObliqueSolver::Verlet => sphere.advance_oblique_verlet(&mut tangential, h, &wall, 0.0, t, t + h, &mut y, &mut spin)?,
-            ObliqueSolver::Adaptive(_) => sphere.advance_oblique_adaptive(&mut tangential, &mut mode, &wall, 0.0, t, t + h, &mut y, &mut spin)?,
+            ObliqueSolver::Verlet => sphere.advance_oblique_verlet(&mut tangential, h, &wall, 0.0, t, t + h, &mut y, &mut spin, false).map(|_| ())?,
+            ObliqueSolver::Adaptive(_) => sphere.advance_oblique_adaptive(&mut tangential, &mut mode, &wall, 0.0, t, t + h, &mut y, &mut spin, false).map(|_| ())?,
         }
         t += h;
         let alpha = -y.bottom;
@@ -498,7 +482,7 @@ mod tests {
         let mut time = 0.0;
         let mut touched = false;
         while time < t_max {
-            s.advance_oblique_verlet(t, h, &wall, 0.0, time, time + dt_comm, y, spin).unwrap();
+            s.advance_oblique_verlet(t, h, &wall, 0.0, time, time + dt_comm, y, spin, false).unwrap();
             time += dt_comm;
             touched |= y.bottom < 0.0;
             if touched && y.bottom > 0.0 && y.velocity > 0.0 {

@@ -296,26 +296,11 @@ impl Sphere {
 
     /// Dormand-Prince over [t0, t_end] for the oblique impact, landing on the normal law's branch switches
     /// and the stick-slip switches; the tangential state in `spin`, the spring in `tangential.spring`, the
-    /// mode in `mode`. No rolling friction (module docs).
+    /// mode in `mode`. No rolling friction (module docs). With `stop_at_event` it stops at the first
+    /// located change of the contact state or of sticking and sliding (FMI 3.0 early return) and returns
+    /// its time.
     #[allow(clippy::too_many_arguments)] // the normal and the tangential state, the wall's two motions
     pub fn advance_oblique_adaptive(
-        &mut self,
-        tangential: &mut Tangential,
-        mode: &mut TangentialMode,
-        wall: &WallMotion,
-        w_t: f64,
-        t0: f64,
-        t_end: f64,
-        y: &mut State,
-        spin: &mut Spin,
-    ) -> Result<(), StepError> {
-        self.advance_oblique_adaptive_until(tangential, mode, wall, w_t, t0, t_end, y, spin, false).map(|_| ())
-    }
-
-    /// `advance_oblique_adaptive`; with `stop_at_event` it stops at the first located change of the contact
-    /// state or of sticking and sliding (FMI 3.0 early return) and returns its time.
-    #[allow(clippy::too_many_arguments)] // the normal and the tangential state, the wall's two motions
-    pub fn advance_oblique_adaptive_until(
         &mut self,
         tangential: &mut Tangential,
         mode: &mut TangentialMode,

@@ -242,9 +242,21 @@ struct InputDerivatives {
     acceleration: f64,
 }
 
-/// The dynamic state, for fmi2GetFMUstate and serialization.
+/// The dynamic state, for fmi2GetFMUstate and serialization: the state a save held before the chatter
+/// guard's counter was kept (2026-12-04), then the counter. postcard writes a nested struct as its fields
+/// in order, so an older save is the same bytes without the counter and loads as `SnapshotCore` alone,
+/// with no recent switch.
 #[derive(Serialize, Deserialize)]
 struct Snapshot {
+    core: SnapshotCore,
+    /// ME: the last stick-slip switch's time and the run of quick switches before it (the chatter guard),
+    /// so that a restored run widens its pull-in as the original did.
+    me_switches: (f64, u32),
+}
+
+/// Everything but the chatter guard's counter.
+#[derive(Serialize, Deserialize)]
+struct SnapshotCore {
     y: State,
     t: f64,
     contact: Memory,
@@ -255,27 +267,6 @@ struct Snapshot {
     /// The motion along the wall and the spin; the tangential spring's force along x, the tangential
     /// force and whether it slides; stick or slide for the adaptive integrator; whether the integrator
     /// was named in the log.
-    spin: Spin,
-    spring: f64,
-    tangential_force: f64,
-    sliding: bool,
-    mode: TangentialMode,
-    announced: bool,
-    /// ME: the last stick-slip switch's time and the run of quick switches before it (the chatter guard),
-    /// so that a restored run widens its pull-in as the original did.
-    me_switches: (f64, u32),
-}
-
-/// A state saved before the chatter guard's counter was kept (2026-12-04): it loads with no recent switch.
-#[derive(Serialize, Deserialize)]
-struct SnapshotWithoutSwitches {
-    y: State,
-    t: f64,
-    contact: Memory,
-    last_step: f64,
-    cs_wall: Option<CsWall>,
-    me_wall: Option<SeenWall>,
-    derivatives: InputDerivatives,
     spin: Spin,
     spring: f64,
     tangential_force: f64,
@@ -450,9 +441,9 @@ impl ParticleWallImpact {
             let tg = self.tangential.as_mut().ok_or(UnitError::NotInitialized)?;
             sphere.follow_jump(&wall, t, &mut y);
             match sphere.solver {
-                Solver::Verlet { step } => sphere.advance_oblique_verlet_until(tg, step, &wall, w_t, t, t + h, &mut y, &mut self.spin, stop_at_event),
+                Solver::Verlet { step } => sphere.advance_oblique_verlet(tg, step, &wall, w_t, t, t + h, &mut y, &mut self.spin, stop_at_event),
                 Solver::Exact | Solver::Adaptive => {
-                    sphere.advance_oblique_adaptive_until(tg, &mut self.mode, &wall, w_t, t, t + h, &mut y, &mut self.spin, stop_at_event)
+                    sphere.advance_oblique_adaptive(tg, &mut self.mode, &wall, w_t, t, t + h, &mut y, &mut self.spin, stop_at_event)
                 }
             }
         } else {
@@ -789,7 +780,7 @@ impl Model for ParticleWallImpact {
 
     fn save(&self) -> Result<Vec<u8>, UnitError> {
         let Some(s) = &self.sphere else { return Ok(Vec::new()) };
-        let snap = Snapshot {
+        let core = SnapshotCore {
             y: self.y,
             t: self.t,
             contact: s.contact.memory(),
@@ -803,9 +794,8 @@ impl Model for ParticleWallImpact {
             sliding: self.tangential.as_ref().is_some_and(|tg| tg.sliding),
             mode: self.mode,
             announced: self.announced,
-            me_switches: self.me_switches,
         };
-        contact_parts::encode(&snap)
+        contact_parts::encode(&Snapshot { core, me_switches: self.me_switches })
     }
 
     fn restore(&mut self, values: &[Value], bytes: &[u8]) -> Result<(), UnitError> {
@@ -813,25 +803,10 @@ impl Model for ParticleWallImpact {
             self.sphere = None;
             return Ok(());
         }
-        let snap: Snapshot = match super::decode(bytes) {
-            Ok(snap) => snap,
-            Err(e) => match super::decode::<SnapshotWithoutSwitches>(bytes) {
-                Ok(o) => Snapshot {
-                    y: o.y,
-                    t: o.t,
-                    contact: o.contact,
-                    last_step: o.last_step,
-                    cs_wall: o.cs_wall,
-                    me_wall: o.me_wall,
-                    derivatives: o.derivatives,
-                    spin: o.spin,
-                    spring: o.spring,
-                    tangential_force: o.tangential_force,
-                    sliding: o.sliding,
-                    mode: o.mode,
-                    announced: o.announced,
-                    me_switches: (f64::NAN, 0),
-                },
+        let (snap, me_switches) = match super::decode::<Snapshot>(bytes) {
+            Ok(s) => (s.core, s.me_switches),
+            Err(e) => match super::decode::<SnapshotCore>(bytes) {
+                Ok(core) => (core, (f64::NAN, 0)),
                 Err(_) => return Err(e),
             },
         };
@@ -867,7 +842,7 @@ impl Model for ParticleWallImpact {
         self.spin = snap.spin;
         self.mode = snap.mode;
         self.announced = snap.announced;
-        self.me_switches = if snap.me_switches.0.is_infinite() { (f64::NAN, 0) } else { snap.me_switches };
+        self.me_switches = if me_switches.0.is_infinite() { (f64::NAN, 0) } else { me_switches };
         Ok(())
     }
 }
@@ -1029,7 +1004,7 @@ mod derivative_state_tests {
         assert_eq!(fresh.me_switches, (1.5e-6, 7));
         // The same state in the layout saved before the counter was kept.
         let s = m.sphere.as_ref().unwrap();
-        let old = contact_parts::encode(&SnapshotWithoutSwitches {
+        let old = contact_parts::encode(&SnapshotCore {
             y: m.y,
             t: m.t,
             contact: s.contact.memory(),
@@ -1045,6 +1020,8 @@ mod derivative_state_tests {
             announced: m.announced,
         })
         .unwrap();
+        // The nested layout is the older bytes followed by the counter.
+        assert!(saved.len() > old.len() && saved.starts_with(&old));
         fresh.restore(&fresh_values, &old).unwrap();
         assert!(fresh.me_switches.0.is_nan() && fresh.me_switches.1 == 0);
         assert_eq!(fresh.y, m.y);

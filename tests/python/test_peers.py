@@ -299,7 +299,8 @@ def _ours_on_plane(cli, scene_file: str, v_n: float, v_t: float, spin: float, sc
     return float(o["tangential_velocity_out_m_per_s"]), float(o["normal_velocity_out_m_per_s"]), float(o["angular_velocity_out_rad_per_s"])
 
 
-def _lammps_for_scene(s: dict, v_n: float, v_t: float, spin: float) -> tuple[float, float, float]:
+def lammps_for_scene(s: dict, v_n: float, v_t: float, spin: float) -> tuple[float, float, float]:
+    """`lammps_sphere_on_plane` for a scene's sphere (scene keys), at 0.001 of its Rayleigh step."""
     nu, E, rho, R = s["particle_poisson_ratio"], s["particle_youngs_modulus"], s["particle_density"], s["particle_radius"]
     rayleigh = math.pi * R * math.sqrt(rho / (E / (2 * (1 + nu)))) / (0.1631 * nu + 0.8766)
     return lammps_sphere_on_plane(radius=R, density=rho, youngs_modulus=E, poisson_ratio=nu, friction=s["friction_coefficient"],
@@ -316,7 +317,7 @@ def test_chung_ooi_test_5_is_lammps_in_micro_slip(material, angle, cli):
     s = json.loads((REPO / f"scenes/chung_ooi_{material}.json").read_text())
     mu, R, v_n = s["friction_coefficient"], s["particle_radius"], 5.0
     v_t = v_n * math.tan(math.radians(angle))
-    vx, vz, wy = _lammps_for_scene(s, v_n, v_t, 0.0)
+    vx, vz, wy = lammps_for_scene(s, v_n, v_t, 0.0)
     ox, oz, ow = _ours_on_plane(cli, f"chung_ooi_{material}.json", v_n, v_t, 0.0)
     assert abs(R * (ow - wy) / (mu * v_n)) < 2e-3, (ow, wy)
     assert abs((ox - R * ow) - (vx - R * wy)) / (mu * v_n) < 2e-3, (ox, ow, vx, wy)
@@ -334,7 +335,7 @@ def test_chung_ooi_test_6_elastic_twin_is_lammps(material, angle, cli, tmp_path)
     path.write_text(json.dumps(s))
     R, v_n = s["particle_radius"], 0.2
     v_st = v_n * math.tan(math.radians(angle))
-    vx, vz, wy = _lammps_for_scene(s, v_n, 0.0, -v_st / R)
+    vx, vz, wy = lammps_for_scene(s, v_n, 0.0, -v_st / R)
     ox, oz, ow = _ours_on_plane(cli, "", v_n, 0.0, -v_st / R, scene_path=path)
     beta_lammps, beta_ours = -(vx - R * wy) / v_st, -(ox - R * ow) / v_st
     assert abs(beta_ours - beta_lammps) < 2e-3, (beta_ours, beta_lammps)
