@@ -119,7 +119,8 @@ def main():
                 rows.append(test6_row(material, "powderfmu adaptive, elastic", elastic, v_n, v_st, oe))
         print(f"Test 6 {material}: done", file=sys.stderr)
     if a.csv:
-        fields = sorted({k for r in rows for k in r}, key=lambda k: list(rows[0]).index(k) if k in rows[0] else 99)
+        # Test 5's columns, then Test 6's: first seen, first written.
+        fields = list(dict.fromkeys(k for r in rows for k in r))
         with open(a.csv, "w", newline="") as f:
             w = csv.DictWriter(f, fieldnames=fields)
             w.writeheader()
