@@ -9,7 +9,8 @@
 //!   given thread count;
 //! - `force_loop`: the force loop of one part over its pairs and wall contacts;
 //! - `isa`: the instruction set the force loop and the kick run with (AVX2 where the CPU has it);
-//! - `lanes`: the pair loop on AVX2 lanes, four contacts at once, for the laws that have it.
+//! - `lanes`: the pair loop on AVX2 lanes, four contacts at once, for the laws that have it; the kick on
+//!   lanes, four spheres at once (`lanes/kick.rs`).
 
 mod contact_memory;
 mod force_loop;
@@ -259,6 +260,21 @@ impl<L: BedLaw> Engine<L> {
         self.pairs = pairs;
         self.wall_pairs = wall_pairs;
         self.reach = reach;
+        Ok(())
+    }
+
+    /// A new Verlet skin [m] for the rest of the run, the list rebuilt at once with every contact's
+    /// memory carried (a pair beyond the new range forgets, as at any rebuild). Refused when it does not
+    /// exceed the adhesive necks' reach. The skin changes which pairs the list holds, never a force: one
+    /// thread steps to the same bits under any skin above the reach.
+    pub fn set_skin(&mut self, skin: f64) -> Result<(), String> {
+        if !(skin > self.reach) || !skin.is_finite() {
+            return Err(format!("skin = {skin:e} m must exceed the reach of the adhesive necks, {:e} m", self.reach));
+        }
+        if skin != self.list.skin {
+            self.list.skin = skin;
+            self.rebuild();
+        }
         Ok(())
     }
 
@@ -555,6 +571,32 @@ struct Body<'a> {
 fn kick_range(isa: Isa, base: usize, v: &mut [Vec3], w: &mut [Vec3], x: &mut [Vec3], body: Body, load: &[Load], reference: &[Vec3], kick: Kick) -> f64 {
     #[cfg(target_arch = "x86_64")]
     if isa == Isa::Avx2 {
+        let end = base + v.len();
+        if body.held.is_empty() && reference.len() >= end {
+            // Four spheres at a time on lanes, the last 0-3 one at a time (the same bits: `lanes::kick`).
+            let Kick { g, h, halves, dt } = kick;
+            // SAFETY: an engine takes Isa::Avx2 only where the CPU reports AVX2 (`Engine::set_isa`).
+            let moved = unsafe {
+                lanes::kick4(
+                    v,
+                    w,
+                    x,
+                    &body.inv_mass[base..end],
+                    &body.inv_inertia[base..end],
+                    &body.radius[base..end],
+                    &load[base..end],
+                    &reference[base..end],
+                    g,
+                    h,
+                    halves,
+                    dt,
+                )
+            };
+            let done = v.len() / 4 * 4;
+            // SAFETY: as above.
+            let rest = unsafe { kick_avx2(base + done, &mut v[done..], &mut w[done..], &mut x[done..], body, load, reference, kick) };
+            return moved.max(rest);
+        }
         // SAFETY: an engine takes Isa::Avx2 only where the CPU reports AVX2 (`Engine::set_isa`).
         return unsafe { kick_avx2(base, v, w, x, body, load, reference, kick) };
     }

@@ -19,10 +19,14 @@ mod hertz;
 #[cfg(target_arch = "x86_64")]
 mod jkr;
 #[cfg(target_arch = "x86_64")]
+mod kick;
+#[cfg(target_arch = "x86_64")]
 mod linear;
 #[cfg(target_arch = "x86_64")]
 mod pasha_simplified;
 
+#[cfg(target_arch = "x86_64")]
+pub use kick::kick4;
 #[cfg(target_arch = "x86_64")]
 pub use x86::*;
 

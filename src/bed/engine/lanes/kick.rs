@@ -1,0 +1,150 @@
+//! The kick on AVX2 lanes: four consecutive spheres at a time, each lane the same IEEE operations in the
+//! same order as the scalar `kick_body` (the half kicks, the rolling brake, the drift and the largest
+//! squared displacement), so a run gives the same bits either way (`tests/bed_isa.rs`).
+//!
+//! Why: the scalar kick is a chain per sphere (the spin's square root, the brake's division, then the
+//! second half kick on the braked spin) behind a branch on `spin > brake` that a settled bed cannot
+//! predict; it took 18.5 % of a step of the seed's test on the shipped quarter bed (`perf record`, one
+//! thread). On lanes the branch is a select and four chains run in one (docs/benchmarks.md, issue 30's
+//! eleventh round).
+
+use super::x86::{select, splat};
+use crate::bed::Vec3;
+use std::arch::x86_64::*;
+
+const _: () = assert!(std::mem::size_of::<Vec3>() == 24, "four vectors are twelve consecutive f64");
+
+/// Four consecutive 3-vectors from `v[q]` on as x, y and z lanes: twelve f64 in three loads, shuffled.
+#[inline(always)]
+unsafe fn load3(v: &[Vec3], q: usize) -> [__m256d; 3] {
+    // SAFETY: AVX2 (the caller's); the four vectors are checked in bounds and are twelve consecutive f64.
+    unsafe {
+        let p = v[q..q + 4].as_ptr() as *const f64;
+        let (a, b, c) = (_mm256_loadu_pd(p), _mm256_loadu_pd(p.add(4)), _mm256_loadu_pd(p.add(8)));
+        // a = x0 y0 z0 x1, b = y1 z1 x2 y2, c = z2 x3 y3 z3
+        let s = _mm256_blend_pd::<0b1100>(a, b); // x0 y0 x2 y2
+        let t = _mm256_permute2f128_pd::<0x21>(a, c); // z0 x1 z2 x3
+        let u = _mm256_permute2f128_pd::<0x30>(b, c); // y1 z1 y3 z3
+        [_mm256_shuffle_pd::<0b1010>(s, t), _mm256_shuffle_pd::<0b0101>(s, u), _mm256_shuffle_pd::<0b1010>(t, u)]
+    }
+}
+
+/// Four rows of four f64 from `p`, `p + stride`, ... as four lanes (row k's element c in lane k of the c-th).
+#[inline(always)]
+unsafe fn load4x4(rows: [*const f64; 4]) -> [__m256d; 4] {
+    // SAFETY: AVX2 (the caller's); each pointer holds four f64 (the caller's).
+    unsafe {
+        let (r0, r1, r2, r3) = (_mm256_loadu_pd(rows[0]), _mm256_loadu_pd(rows[1]), _mm256_loadu_pd(rows[2]), _mm256_loadu_pd(rows[3]));
+        let t0 = _mm256_unpacklo_pd(r0, r1);
+        let t1 = _mm256_unpackhi_pd(r0, r1);
+        let t2 = _mm256_unpacklo_pd(r2, r3);
+        let t3 = _mm256_unpackhi_pd(r2, r3);
+        [
+            _mm256_permute2f128_pd(t0, t2, 0x20),
+            _mm256_permute2f128_pd(t1, t3, 0x20),
+            _mm256_permute2f128_pd(t0, t2, 0x31),
+            _mm256_permute2f128_pd(t1, t3, 0x31),
+        ]
+    }
+}
+
+/// x, y and z lanes back to four consecutive 3-vectors from `v[q]` on: `load3` reversed, three stores
+/// (masked stores cost this machine more than the kick's arithmetic).
+#[inline(always)]
+unsafe fn store3(v: &mut [Vec3], q: usize, c: [__m256d; 3]) {
+    // SAFETY: AVX2 (the caller's); the four vectors are checked in bounds and are twelve consecutive f64.
+    unsafe {
+        let p = v[q..q + 4].as_mut_ptr() as *mut f64;
+        let [x, y, z] = c;
+        let s = _mm256_shuffle_pd::<0b0000>(x, y); // x0 y0 x2 y2
+        let t = _mm256_shuffle_pd::<0b1010>(z, x); // z0 x1 z2 x3
+        let u = _mm256_shuffle_pd::<0b1111>(y, z); // y1 z1 y3 z3
+        _mm256_storeu_pd(p, _mm256_permute2f128_pd::<0x20>(s, t));
+        _mm256_storeu_pd(p.add(4), _mm256_permute2f128_pd::<0x30>(u, s));
+        _mm256_storeu_pd(p.add(8), _mm256_permute2f128_pd::<0x31>(t, u));
+    }
+}
+
+/// `kick_body` for spheres [0, 4 m) of the slices (none held, every sphere with a reference position);
+/// returns the largest squared displacement from the reference (with a drift, `dt` > 0), else 0. The
+/// caller kicks the last 0-3 spheres.
+///
+/// # Safety
+/// AVX2 must be available.
+#[target_feature(enable = "avx2")]
+#[allow(clippy::too_many_arguments)] // the kick's slices, as `kick_body` takes them
+pub unsafe fn kick4(
+    v: &mut [Vec3],
+    w: &mut [Vec3],
+    x: &mut [Vec3],
+    inv_mass: &[f64],
+    inv_inertia: &[f64],
+    radius: &[f64],
+    load: &[crate::bed::engine::partition::Load],
+    reference: &[Vec3],
+    g: Vec3,
+    h: f64,
+    halves: usize,
+    dt: f64,
+) -> f64 {
+    // SAFETY: AVX2 is available (the contract); every slice access below is checked.
+    unsafe {
+        let n = v.len() / 4 * 4;
+        assert!(w.len() >= n && x.len() >= n && inv_mass.len() >= n && inv_inertia.len() >= n && radius.len() >= n);
+        assert!(load.len() >= n && reference.len() >= n);
+        let (zero, one) = (_mm256_setzero_pd(), splat(1.0));
+        let (gx, gy, gz, hv, dtv) = (splat(g.x), splat(g.y), splat(g.z), splat(h), splat(dt));
+        let mut moved = zero;
+        let mut q = 0;
+        while q < n {
+            let im = _mm256_loadu_pd(inv_mass[q..q + 4].as_ptr());
+            let ii = _mm256_loadu_pd(inv_inertia[q..q + 4].as_ptr());
+            let r = _mm256_loadu_pd(radius[q..q + 4].as_ptr());
+            let l = &load[q..q + 4];
+            // A Load is eight f64: [force, rolling] then [torque, pad].
+            let lower: [*const f64; 4] = std::array::from_fn(|k| &l[k] as *const _ as *const f64);
+            let [fx, fy, fz, rolling] = load4x4(lower);
+            let [tx, ty, tz, _] = load4x4(lower.map(|p| p.wrapping_add(4)));
+            let [mut vx, mut vy, mut vz] = load3(v, q);
+            let [mut wx, mut wy, mut wz] = load3(w, q);
+            let rolls = _mm256_cmp_pd::<_CMP_GT_OQ>(rolling, zero);
+            // ((rolling r) ii) h, as the scalar brake.
+            let brake = _mm256_mul_pd(_mm256_mul_pd(_mm256_mul_pd(rolling, r), ii), hv);
+            for _ in 0..halves {
+                vx = _mm256_add_pd(vx, _mm256_mul_pd(_mm256_add_pd(_mm256_mul_pd(fx, im), gx), hv));
+                vy = _mm256_add_pd(vy, _mm256_mul_pd(_mm256_add_pd(_mm256_mul_pd(fy, im), gy), hv));
+                vz = _mm256_add_pd(vz, _mm256_mul_pd(_mm256_add_pd(_mm256_mul_pd(fz, im), gz), hv));
+                wx = _mm256_add_pd(wx, _mm256_mul_pd(_mm256_mul_pd(tx, ii), hv));
+                wy = _mm256_add_pd(wy, _mm256_mul_pd(_mm256_mul_pd(ty, ii), hv));
+                wz = _mm256_add_pd(wz, _mm256_mul_pd(_mm256_mul_pd(tz, ii), hv));
+                if _mm256_movemask_pd(rolls) != 0 {
+                    // nalgebra's norm: sqrt((x x + y y) + z z).
+                    let spin = _mm256_sqrt_pd(_mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(wx, wx), _mm256_mul_pd(wy, wy)), _mm256_mul_pd(wz, wz)));
+                    let stops = _mm256_cmp_pd::<_CMP_GT_OQ>(spin, brake);
+                    let keep = _mm256_and_pd(_mm256_sub_pd(one, _mm256_div_pd(brake, spin)), stops);
+                    wx = select(rolls, _mm256_mul_pd(wx, keep), wx);
+                    wy = select(rolls, _mm256_mul_pd(wy, keep), wy);
+                    wz = select(rolls, _mm256_mul_pd(wz, keep), wz);
+                }
+            }
+            store3(v, q, [vx, vy, vz]);
+            store3(w, q, [wx, wy, wz]);
+            if dt != 0.0 {
+                let [mut xx, mut xy, mut xz] = load3(x, q);
+                xx = _mm256_add_pd(xx, _mm256_mul_pd(vx, dtv));
+                xy = _mm256_add_pd(xy, _mm256_mul_pd(vy, dtv));
+                xz = _mm256_add_pd(xz, _mm256_mul_pd(vz, dtv));
+                store3(x, q, [xx, xy, xz]);
+                let [rx, ry, rz] = load3(reference, q);
+                let (dx, dy, dz) = (_mm256_sub_pd(xx, rx), _mm256_sub_pd(xy, ry), _mm256_sub_pd(xz, rz));
+                let d2 = _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy)), _mm256_mul_pd(dz, dz));
+                // max(d2, moved) keeps `moved` where d2 is NaN, as the scalar f64::max does.
+                moved = _mm256_max_pd(d2, moved);
+            }
+            q += 4;
+        }
+        let mut m = [0.0f64; 4];
+        _mm256_storeu_pd(m.as_mut_ptr(), moved);
+        m.into_iter().fold(0.0, f64::max)
+    }
+}
