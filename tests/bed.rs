@@ -627,12 +627,13 @@ fn a_changed_scene_keeps_the_memory_and_renews_the_untouched_pairs() {
         |gamma: f64| json!({"contact_model": "pasha", "particle_youngs_modulus": 55e6, "particle_yield_pressure": 2e6, "surface_energy": gamma});
     let scene_of = |gamma: f64| {
         BedScene::from_json(
-            &json!({"particle_particle": law(gamma), "size_distribution": {"diameters": [1e-3], "frequencies": [1.0]}, "gravity": 0.0}).to_string(),
+            &json!({"particle_particle": law(gamma), "size_distribution": {"diameters": [1e-3], "frequencies": [1.0]}, "gravity": 0.0, "skin": 1e-4})
+                .to_string(),
         )
         .unwrap()
     };
     let mut p = Particles::default();
-    // 0 and 1 pressed together; 2 near 1 within the list's skin but apart.
+    // 0 and 1 pressed together; 2 near 1 within the list's skin (0.1 mm) but apart.
     p.push(Vec3::new(0.0, 0.0, 0.0), 0.5e-3, 2456.0, 0);
     p.push(Vec3::new(0.999e-3, 0.0, 0.0), 0.5e-3, 2456.0, 0);
     p.push(Vec3::new(2.03e-3, 0.0, 0.0), 0.5e-3, 2456.0, 0);

@@ -95,3 +95,26 @@ fn an_indentation_is_the_same_with_avx2_and_the_baseline() {
         }
     }
 }
+
+#[test]
+fn the_skin_changes_no_force_under_laws_without_history_apart() {
+    // The skin decides which pairs the list holds, and so which of the lanes' blocks carry apart pairs;
+    // a pair apart adds +0.0 to its bodies, so one thread steps to the same bits under any skin above the
+    // reach (the laws with a plastic memory apart differ only in when a separating pair forgets it).
+    for law in ["hertz", "hooke", "jkr"] {
+        let runs: Vec<(String, u64)> = ["1e-4", "2.5e-5", "1e-5"]
+            .iter()
+            .map(|skin| {
+                let args = ["bed", "bench", BED, "--model", law, "--steps", "300", "--warmup", "0", "--threads", "1", "--skin", skin];
+                let out = run(&args, false);
+                (field(&out, "state_digest=").to_string(), field(&out, "list_builds=").parse().unwrap())
+            })
+            .collect();
+        assert!(runs.iter().all(|r| r.0 == runs[0].0), "{law}: {runs:?}");
+        // The skin took effect: the smallest rebuilds the list more often.
+        assert!(runs[2].1 > runs[0].1, "{law}: {runs:?}");
+    }
+    let out = Command::new(env!("CARGO_BIN_EXE_powderfmu")).args(["bed", "bench", BED, "--model", "hertz", "--skin", "0"]).output().unwrap();
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--skin"), "{}", String::from_utf8_lossy(&out.stderr));
+}

@@ -178,10 +178,23 @@ fn make<L: BedLaw>(scene: &BedScene, particles: Particles, walls: Vec<Wall>) -> 
         None => scene.rayleigh_fraction * limit,
     };
     let reach = pairs.iter().chain(wall_pairs.iter().flatten()).map(|it| it.reach).fold(0.0, f64::max);
-    let skin = scene.skin.unwrap_or(0.1 * scene.size_distribution.mean_diameter()).max(2.0 * reach);
+    let skin = skin_of(scene, reach);
     let species = scene.species().len();
     Ok(Engine::new(particles, walls, pairs, wall_pairs, species, Vec3::new(0.0, 0.0, -scene.gravity), dt, skin, scene.threads)?)
 }
+
+/// The Verlet skin of a scene: its `skin`, else `DEFAULT_SKIN` of the mean diameter; never below twice
+/// the adhesive necks' reach.
+fn skin_of(scene: &BedScene, reach: f64) -> f64 {
+    scene.skin.unwrap_or(DEFAULT_SKIN * scene.size_distribution.mean_diameter()).max(2.0 * reach)
+}
+
+/// The default skin as a fraction of the mean diameter. A settled or slowly loaded bed (the tests) spends
+/// most of its step in the pair loop, whose four-slot blocks carry the pairs within the skin but apart:
+/// 0.025 against 0.1 made the seed's test on the shipped quarter bed 1.17 times faster (108.2 -> 92.3 s on
+/// two threads) and the LAMMPS bench bed 1.05-1.13 times, while the rebuilds it adds cost little (a
+/// rebuild is about five steps' work; docs/benchmarks.md, issue 30's eleventh round).
+pub const DEFAULT_SKIN: f64 = 0.025;
 
 impl AnyEngine {
     /// Builds the engine of a scene's law over these particles and walls. The step is the scene's
@@ -268,7 +281,13 @@ impl AnyEngine {
                     allowed: format!("(0, {limit:.4e}] s under the changed scene: its contacts are stiffer than the bed's (000 Eq. 68)"),
                 }));
             }
+            let reach = pairs.iter().chain(wall_pairs.iter().flatten()).map(|it| it.reach).fold(0.0, f64::max);
+            let skin = skin_of(scene, reach);
+            if skin > e.list.skin {
+                e.set_skin(skin)?;
+            }
             e.set_interactions(pairs, wall_pairs)?;
+            e.set_skin(skin)?;
             Ok(())
         })
     }

@@ -186,6 +186,9 @@ pub struct BenchArgs {
     /// Rolling friction coefficient, particles and walls [-] (default: the bed's)
     #[arg(long, value_name = "MU", value_parser = options::in_range(0.0, 10.0, true, "-"))]
     rolling_friction: Option<f64>,
+    /// Verlet list skin [m] (default: the bed's; never below twice the adhesive necks' reach)
+    #[arg(long, value_name = "M", value_parser = options::in_range(0.0, 1.0, false, "m"))]
+    skin: Option<f64>,
 }
 
 pub fn run(command: BedCommand) -> Result<(), String> {
@@ -442,6 +445,7 @@ fn export_cmd(path: &Path, out: &Path) -> Result<(), String> {
 }
 
 /// The bed of `path` under another law: same positions and walls, contacts start fresh.
+#[allow(clippy::too_many_arguments)] // the bench's options, each laid over the bed's scene
 fn with_model(
     path: &Path,
     model: &str,
@@ -450,6 +454,7 @@ fn with_model(
     surface_energy: Option<f64>,
     threads: usize,
     rolling: Option<f64>,
+    skin: Option<f64>,
 ) -> Result<(AnyEngine, BedScene), String> {
     let bytes = std::fs::read(path).map_err(|e| format!("cannot read bed file `{}`: {e}", path.display()))?;
     let mut f: BedFile = file::decode(&bytes).map_err(|e| format!("{}: {e}", path.display()))?;
@@ -474,6 +479,9 @@ fn with_model(
         scene["rolling_friction"] = mu_r.into();
         scene["wall_rolling_friction"] = mu_r.into();
     }
+    if let Some(skin) = skin {
+        scene["skin"] = skin.into();
+    }
     f.scene = scene.to_string();
     // No contacts of the old law: empty lists (an empty list encodes the same whatever its item type).
     f.contacts = powderfmu::codec::to_bytes(&Vec::<()>::new())?;
@@ -482,9 +490,9 @@ fn with_model(
 }
 
 fn bench_cmd(a: BenchArgs) -> Result<(), String> {
-    let BenchArgs { bed, model, steps, warmup, threads, stiffness, yield_pressure, surface_energy, rolling_friction } = a;
+    let BenchArgs { bed, model, steps, warmup, threads, stiffness, yield_pressure, surface_energy, rolling_friction, skin } = a;
     let threads = usize::from(threads);
-    let (mut engine, _) = with_model(&bed, &model, stiffness, yield_pressure, surface_energy, threads, rolling_friction)?;
+    let (mut engine, _) = with_model(&bed, &model, stiffness, yield_pressure, surface_energy, threads, rolling_friction, skin)?;
     engine.run(warmup);
     let n = engine.particles().len();
     let start = Instant::now();

@@ -265,8 +265,10 @@ impl<L: BedLaw> Engine<L> {
 
     /// A new Verlet skin [m] for the rest of the run, the list rebuilt at once with every contact's
     /// memory carried (a pair beyond the new range forgets, as at any rebuild). Refused when it does not
-    /// exceed the adhesive necks' reach. The skin changes which pairs the list holds, never a force: one
-    /// thread steps to the same bits under any skin above the reach.
+    /// exceed the adhesive necks' reach. The skin changes which pairs the list holds and so how far apart
+    /// a pair must be at a rebuild to forget its memory (the plastic history of Pasha's and Nan's laws,
+    /// a tangential spring): under the laws without history apart (Hertz, the linear spring, JKR) one
+    /// thread steps to the same bits under any skin above the reach (docs/bed.md).
     pub fn set_skin(&mut self, skin: f64) -> Result<(), String> {
         if !(skin > self.reach) || !skin.is_finite() {
             return Err(format!("skin = {skin:e} m must exceed the reach of the adhesive necks, {:e} m", self.reach));
