@@ -53,9 +53,9 @@ E_STAR_WALL = 1.0 / ((1 - NU**2) / E + (1 - 0.3**2) / 182e9)
 E_WALL, NU_WALL = 2 * (1 - NU) * E_STAR_WALL, NU
 KN = 1000.0  # linear spring [N/m]: about the Hertz stiffness of these contacts, so the step is the same
 KT = KN * 2 * (1 - NU) / (2 - NU)  # powderfmu's k_t = 4 G*/E* k_n for two equal spheres (000 Eq. 22)
-# Both codes' Verlet skin: 0.025 of the mean diameter, powderfmu's default since issue 30's eleventh round
-# (a tenth before; LAMMPS ran at the same speed with either, docs/benchmarks.md). --skin sets another.
-SKIN = 2.5e-5
+# Both codes' Verlet skin: a tenth of the mean diameter, powderfmu's default. --skin sets another (issue
+# 30's eleventh round: 2.5e-5 made powderfmu 1.05-1.13 times faster, LAMMPS not; docs/benchmarks.md).
+SKIN = 1e-4
 DIE_RADIUS = 0.0195
 
 
@@ -128,7 +128,7 @@ def main():
     ap.add_argument("--steps", type=int, default=2000)
     ap.add_argument("--repeats", type=int, default=3)
     ap.add_argument("--compare", type=Path, help="a second powderfmu binary, timed alongside this build")
-    ap.add_argument("--skin", type=float, default=SKIN, help="the Verlet skin of both codes [m] (default 2.5e-5, 0.025 of the mean diameter)")
+    ap.add_argument("--skin", type=float, default=SKIN, help="the Verlet skin of both codes [m] (default 1e-4, a tenth of the mean diameter)")
     ap.add_argument("--out", type=Path, default=ROOT / "docs" / "figures" / "vs_lammps.csv", help="the CSV to write")
     args = ap.parse_args()
     SKIN = args.skin

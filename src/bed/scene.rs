@@ -70,7 +70,7 @@ pub struct BedScene {
     /// Time step, when `time_step` is None, as a fraction of the stability limit (`any::stability_limit`:
     /// the Rayleigh time of the smallest sphere, 000 Eq. 71, or less for stiff springs) [-].
     pub rayleigh_fraction: f64,
-    /// Verlet skin [m], or None for `DEFAULT_SKIN` (0.025) of the mean diameter.
+    /// Verlet skin [m], or None for `DEFAULT_SKIN` (0.1) of the mean diameter.
     pub skin: Option<f64>,
     /// Solid fraction of the loose random fill.
     pub fill_solid_fraction: f64,
@@ -102,7 +102,7 @@ crate::scene_options! {
         gravity: number(9.81), "m/s^2", Range::ClosedLow(0.0, 1e6), "gravitational acceleration, downward";
         time_step: number(0.0), "s", Range::ClosedLow(0.0, 1.0), "fixed time step; 0 derives rayleigh_fraction x the Rayleigh time of the smallest sphere";
         rayleigh_fraction: number(0.2), "-", Range::OpenClosed(0.0, 1.0), "time step as a fraction of the Rayleigh time (000 Eq. 71)";
-        skin: number(0.0), "m", Range::ClosedLow(0.0, 1.0), "Verlet list skin; 0 derives 0.025 of the mean diameter";
+        skin: number(0.0), "m", Range::ClosedLow(0.0, 1.0), "Verlet list skin; 0 derives a tenth of the mean diameter";
         fill_solid_fraction: number(0.3), "-", Range::Open(0.0, 0.5), "solid fraction of the loose random fill";
         settle_energy_ratio: number(1e-6), "-", Range::Open(0.0, 1.0), "settled when the kinetic energy < this x sum(m g d_mean)";
         consolidation_stress: number(10e3), "Pa", Range::Open(0.0, 1e9), "piston stress to consolidate to (004 Sec. 5.1.3: 10 kPa)";
