@@ -284,15 +284,16 @@ impl AnyEngine {
                     allowed: format!("(0, {limit:.4e}] s under the changed scene: its contacts are stiffer than the bed's (000 Eq. 68)"),
                 }));
             }
-            let reach = pairs.iter().chain(wall_pairs.iter().flatten()).map(|it| it.reach).fold(0.0, f64::max);
-            let skin = skin_of(scene, reach);
-            if skin > e.list.skin {
-                e.set_skin(skin)?;
-            }
             e.set_interactions(pairs, wall_pairs)?;
-            e.set_skin(skin)?;
             Ok(())
         })
+    }
+
+    /// A new Verlet skin [m] (`Engine::set_skin`; a scene's `skin` key changed on a prepared bed). Not
+    /// called from `set_scene`: with it there the two-thread force loop ran 25 % slower on the same
+    /// work (the rayon schedule's regime moved with the code's layout; docs/benchmarks.md, eleventh round).
+    pub fn set_skin(&mut self, skin: f64) -> Result<(), String> {
+        with_engine!(self, e => e.set_skin(skin))
     }
 
     /// Spheres touching wall `w` now. Only the wall's contact list is searched: every sphere that can

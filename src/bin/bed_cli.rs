@@ -539,6 +539,9 @@ fn changed_scene(engine: &mut AnyEngine, scene: &BedScene, overlay: &str) -> Res
         return Err(format!("contact_model must stay the bed's ({}): the contacts' memory is that law's", scene.model.name()));
     }
     engine.set_scene(&changed).map_err(|e| e.to_string())?;
+    if let Some(skin) = changed.skin {
+        engine.set_skin(skin)?;
+    }
     Ok(changed)
 }
 
