@@ -191,12 +191,12 @@ fn skin_of(scene: &BedScene, reach: f64) -> f64 {
 
 /// The default skin as a fraction of the mean diameter. A settled or slowly loaded bed (the tests) spends
 /// most of its step in the pair loop, whose four-slot blocks carry the pairs within the skin but apart:
-/// 0.025 against 0.1 made the seed's test on the shipped quarter bed 1.17 times faster (108.2 -> 92.3 s on
-/// two threads) and the LAMMPS bench bed 1.05-1.13 times, while the rebuilds it adds cost little (a
-/// rebuild is about five steps' work; docs/benchmarks.md, issue 30's eleventh round). It is not the
-/// default yet: the skin is also the distance at which a separating Pasha pair forgets its plastic
-/// memory, so the default test's outputs move (within their scatter), and the command-line runs the FMU
-/// is checked against to seven digits (docs/data/ch6_indentation) must be recorded again with it.
+/// 0.025 against 0.1 made the seed's test on the shipped quarter bed 1.12 times faster (77.3 -> 68.8 s on
+/// two threads) and the LAMMPS bench bed's laws 1.10-1.19 times on one, while the rebuilds it adds cost
+/// little (preparation took the same time; docs/benchmarks.md, issue 30's eleventh round). It is not the
+/// default: the skin is also the distance at which a separating Pasha pair forgets its plastic memory,
+/// and 0.025 moved the seed's test's plateau hardness by +6 % on both shipped beds (docs/bed.md); the
+/// forgetting distance must become a parameter of its own first.
 pub const DEFAULT_SKIN: f64 = 0.1;
 
 impl AnyEngine {
