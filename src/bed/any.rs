@@ -194,9 +194,10 @@ fn skin_of(scene: &BedScene, reach: f64) -> f64 {
 /// 0.025 against 0.1 made the seed's test on the shipped quarter bed 1.12 times faster (77.3 -> 68.8 s on
 /// two threads) and the LAMMPS bench bed's laws 1.10-1.19 times on one, while the rebuilds it adds cost
 /// little (preparation took the same time; docs/benchmarks.md, issue 30's eleventh round). It is not the
-/// default: the skin is also the distance at which a separating Pasha pair forgets its plastic memory,
-/// and 0.025 moved the seed's test's plateau hardness by +6 % on both shipped beds (docs/bed.md); the
-/// forgetting distance must become a parameter of its own first.
+/// default yet: the skin is also the distance at which a separating Pasha pair forgets its plastic
+/// memory, so the plastic laws' runs become other realisations (the differences measured between skins
+/// lie within the spread of realisations at one skin, docs/bed.md), and the command-line runs the FMU is
+/// checked against to seven digits (docs/data/ch6_indentation) must be recorded again with it.
 pub const DEFAULT_SKIN: f64 = 0.1;
 
 impl AnyEngine {
