@@ -198,7 +198,7 @@ fn skin_of(scene: &BedScene, reach: f64) -> f64 {
 /// memory, so the plastic laws' runs become other realisations (the differences measured between skins
 /// lie within the spread of realisations at one skin, docs/bed.md), and the command-line runs the FMU is
 /// checked against to seven digits (docs/data/ch6_indentation) must be recorded again with it.
-pub const DEFAULT_SKIN: f64 = 0.1;
+const DEFAULT_SKIN: f64 = 0.1;
 
 impl AnyEngine {
     /// Builds the engine of a scene's law over these particles and walls. The step is the scene's

@@ -576,24 +576,8 @@ fn kick_range(isa: Isa, base: usize, v: &mut [Vec3], w: &mut [Vec3], x: &mut [Ve
         let end = base + v.len();
         if body.held.is_empty() && reference.len() >= end {
             // Four spheres at a time on lanes, the last 0-3 one at a time (the same bits: `lanes::kick`).
-            let Kick { g, h, halves, dt } = kick;
             // SAFETY: an engine takes Isa::Avx2 only where the CPU reports AVX2 (`Engine::set_isa`).
-            let moved = unsafe {
-                lanes::kick4(
-                    v,
-                    w,
-                    x,
-                    &body.inv_mass[base..end],
-                    &body.inv_inertia[base..end],
-                    &body.radius[base..end],
-                    &load[base..end],
-                    &reference[base..end],
-                    g,
-                    h,
-                    halves,
-                    dt,
-                )
-            };
+            let moved = unsafe { lanes::kick4(base, v, w, x, body, load, reference, kick) };
             let done = v.len() / 4 * 4;
             // SAFETY: as above.
             let rest = unsafe { kick_avx2(base + done, &mut v[done..], &mut w[done..], &mut x[done..], body, load, reference, kick) };

@@ -8,7 +8,9 @@
 //! thread). On lanes the branch is a select and four chains run in one (docs/benchmarks.md, issue 30's
 //! eleventh round).
 
-use super::x86::{select, splat};
+use super::x86::{select, splat, transpose};
+use crate::bed::engine::partition::Load;
+use crate::bed::engine::{Body, Kick};
 use crate::bed::Vec3;
 use std::arch::x86_64::*;
 
@@ -29,23 +31,12 @@ unsafe fn load3(v: &[Vec3], q: usize) -> [__m256d; 3] {
     }
 }
 
-/// Four rows of four f64 from `p`, `p + stride`, ... as four lanes (row k's element c in lane k of the c-th).
+/// Four rows of four f64 (the `Load` halves of four spheres) as four lanes: row k's element c in lane k
+/// of the c-th.
 #[inline(always)]
 unsafe fn load4x4(rows: [*const f64; 4]) -> [__m256d; 4] {
     // SAFETY: AVX2 (the caller's); each pointer holds four f64 (the caller's).
-    unsafe {
-        let (r0, r1, r2, r3) = (_mm256_loadu_pd(rows[0]), _mm256_loadu_pd(rows[1]), _mm256_loadu_pd(rows[2]), _mm256_loadu_pd(rows[3]));
-        let t0 = _mm256_unpacklo_pd(r0, r1);
-        let t1 = _mm256_unpackhi_pd(r0, r1);
-        let t2 = _mm256_unpacklo_pd(r2, r3);
-        let t3 = _mm256_unpackhi_pd(r2, r3);
-        [
-            _mm256_permute2f128_pd(t0, t2, 0x20),
-            _mm256_permute2f128_pd(t1, t3, 0x20),
-            _mm256_permute2f128_pd(t0, t2, 0x31),
-            _mm256_permute2f128_pd(t1, t3, 0x31),
-        ]
-    }
+    unsafe { transpose(_mm256_loadu_pd(rows[0]), _mm256_loadu_pd(rows[1]), _mm256_loadu_pd(rows[2]), _mm256_loadu_pd(rows[3])) }
 }
 
 /// x, y and z lanes back to four consecutive 3-vectors from `v[q]` on: `load3` reversed, three stores
@@ -65,33 +56,23 @@ unsafe fn store3(v: &mut [Vec3], q: usize, c: [__m256d; 3]) {
     }
 }
 
-/// `kick_body` for spheres [0, 4 m) of the slices (none held, every sphere with a reference position);
-/// returns the largest squared displacement from the reference (with a drift, `dt` > 0), else 0. The
-/// caller kicks the last 0-3 spheres.
+/// `kick_body` (the same arguments) for the first 4 m spheres of the slices `v`, `w`, `x` (spheres
+/// `base` on), none held and every one with a reference position; returns the largest squared
+/// displacement from the reference (with a drift, `dt` > 0), else 0. The caller kicks the last 0-3.
 ///
 /// # Safety
 /// AVX2 must be available.
 #[target_feature(enable = "avx2")]
-#[allow(clippy::too_many_arguments)] // the kick's slices, as `kick_body` takes them
-pub unsafe fn kick4(
-    v: &mut [Vec3],
-    w: &mut [Vec3],
-    x: &mut [Vec3],
-    inv_mass: &[f64],
-    inv_inertia: &[f64],
-    radius: &[f64],
-    load: &[crate::bed::engine::partition::Load],
-    reference: &[Vec3],
-    g: Vec3,
-    h: f64,
-    halves: usize,
-    dt: f64,
-) -> f64 {
+#[allow(clippy::too_many_arguments)] // as `kick_body`
+pub unsafe fn kick4(base: usize, v: &mut [Vec3], w: &mut [Vec3], x: &mut [Vec3], body: Body, load: &[Load], reference: &[Vec3], kick: Kick) -> f64 {
+    let Kick { g, h, halves, dt } = kick;
+    let end = base + v.len() / 4 * 4;
+    let (inv_mass, inv_inertia, radius) = (&body.inv_mass[base..end], &body.inv_inertia[base..end], &body.radius[base..end]);
+    let (load, reference) = (&load[base..end], &reference[base..end]);
     // SAFETY: AVX2 is available (the contract); every slice access below is checked.
     unsafe {
         let n = v.len() / 4 * 4;
-        assert!(w.len() >= n && x.len() >= n && inv_mass.len() >= n && inv_inertia.len() >= n && radius.len() >= n);
-        assert!(load.len() >= n && reference.len() >= n);
+        assert!(w.len() >= n && x.len() >= n);
         let (zero, one) = (_mm256_setzero_pd(), splat(1.0));
         let (gx, gy, gz, hv, dtv) = (splat(g.x), splat(g.y), splat(g.z), splat(h), splat(dt));
         let mut moved = zero;

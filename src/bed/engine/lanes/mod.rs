@@ -188,7 +188,7 @@ mod x86 {
 
     /// Lanes a, b, c, d to four rows [a_k, b_k, c_k, d_k].
     #[inline(always)]
-    unsafe fn transpose(a: __m256d, b: __m256d, c: __m256d, d: __m256d) -> [__m256d; 4] {
+    pub(super) unsafe fn transpose(a: __m256d, b: __m256d, c: __m256d, d: __m256d) -> [__m256d; 4] {
         unsafe {
             let t0 = _mm256_unpacklo_pd(a, b);
             let t1 = _mm256_unpackhi_pd(a, b);
