@@ -654,3 +654,54 @@ fn a_changed_scene_keeps_the_memory_and_renews_the_untouched_pairs() {
     let hertz = BedScene::from_json(&json!({"particle_particle": {"contact_model": "hertz", "particle_youngs_modulus": 55e6}, "size_distribution": {"diameters": [1e-3], "frequencies": [1.0]}, "gravity": 0.0}).to_string()).unwrap();
     assert!(e.set_scene(&hertz).is_err(), "another law's tables do not fit this engine");
 }
+
+/// A Pasha pair that let go keeps its plastic history until its surfaces are farther apart than the
+/// forgetting distance, whatever the skin: beyond the skin but within the forgetting distance it stays in
+/// the list at a rebuild with its memory; beyond the forgetting distance it forgets at the next force
+/// loop, and the next rebuild drops it (docs/bed.md, "What a contact remembers").
+#[test]
+fn a_pair_forgets_at_the_forgetting_distance_not_at_the_skin() {
+    let (skin, forget) = (1e-5, 1e-4);
+    let scene = BedScene::from_json(
+        &json!({"particle_particle": {"contact_model": "pasha", "particle_youngs_modulus": 55e6, "particle_yield_pressure": 2e6, "surface_energy": 0.5},
+                "size_distribution": {"diameters": [1e-3], "frequencies": [1.0]}, "gravity": 0.0, "skin": skin, "forgetting_distance": forget})
+        .to_string(),
+    )
+    .unwrap();
+    let mut p = Particles::default();
+    p.push(Vec3::new(0.0, 0.0, 0.0), 0.5e-3, 2456.0, 0);
+    p.push(Vec3::new(0.995e-3, 0.0, 0.0), 0.5e-3, 2456.0, 0);
+    let mut e = AnyEngine::build(&scene, p, vec![]).unwrap();
+    assert_eq!(e.forgetting_distance(), forget);
+    e.step();
+    let history = |e: &AnyEngine| {
+        with_engine!(e, x => x.list.row(0).binary_search(&1).ok().map(|k| (format!("{:?}", x.memory.history[x.list.start[0] as usize + k]), format!("{:?}", x.pairs[0].initial))))
+    };
+    let (pressed, initial) = history(&e).expect("the pressed pair is listed");
+    assert_ne!(pressed, initial, "the pressed pair yielded and remembers it");
+    // Apart by 5 skins, half the forgetting distance: still listed after a rebuild, still remembering.
+    let place = |e: &mut AnyEngine, gap: f64| {
+        with_engine!(e, x => {
+            x.particles.position[1] = Vec3::new(1e-3 + gap, 0.0, 0.0);
+            x.particles.velocity[1] = Vec3::new(0.0, 0.0, 0.0);
+            x.particles.velocity[0] = Vec3::new(0.0, 0.0, 0.0);
+        })
+    };
+    place(&mut e, 5e-5);
+    with_engine!(&mut e, x => { x.rebuild(); x.compute_forces() });
+    // (The law broke the contact, `established` false; its plastic memory alpha_max stays.)
+    let alpha_max = |h: &str| h[h.find("alpha_max").expect("Pasha's history has alpha_max")..].to_string();
+    let (apart, _) = history(&e).expect("beyond the skin, within the forgetting distance, the pair stays listed");
+    assert_eq!(alpha_max(&apart), alpha_max(&pressed), "beyond the skin, within the forgetting distance, it remembers");
+    assert_ne!(alpha_max(&apart), alpha_max(&initial));
+    // Beyond the forgetting distance: forgotten at the force loop, dropped by the next rebuild.
+    place(&mut e, 1.5e-4);
+    with_engine!(&mut e, x => x.compute_forces());
+    assert_eq!(history(&e), Some((initial.clone(), initial.clone())), "beyond the forgetting distance the pair forgets");
+    with_engine!(&mut e, x => x.rebuild());
+    assert_eq!(history(&e), None, "a pair that forgot and is beyond the skin leaves the list");
+    // A forgetting distance within the necks' reach is refused by name.
+    let reach = with_engine!(&e, x => x.reach());
+    let refused = e.set_forgetting_distance(0.5 * reach).unwrap_err();
+    assert!(refused.contains("forgetting_distance"), "{refused}");
+}

@@ -178,9 +178,9 @@ fn make<L: BedLaw>(scene: &BedScene, particles: Particles, walls: Vec<Wall>) -> 
         None => scene.rayleigh_fraction * limit,
     };
     let reach = pairs.iter().chain(wall_pairs.iter().flatten()).map(|it| it.reach).fold(0.0, f64::max);
-    let skin = skin_of(scene, reach);
+    let (skin, forget) = (skin_of(scene, reach), forgetting_distance_of(scene, reach));
     let species = scene.species().len();
-    Ok(Engine::new(particles, walls, pairs, wall_pairs, species, Vec3::new(0.0, 0.0, -scene.gravity), dt, skin, scene.threads)?)
+    Ok(Engine::new(particles, walls, pairs, wall_pairs, species, Vec3::new(0.0, 0.0, -scene.gravity), dt, skin, forget, scene.threads)?)
 }
 
 /// The Verlet skin of a scene: its `skin`, else `DEFAULT_SKIN` of the mean diameter; never below twice
@@ -189,16 +189,27 @@ fn skin_of(scene: &BedScene, reach: f64) -> f64 {
     scene.skin.unwrap_or(DEFAULT_SKIN * scene.size_distribution.mean_diameter()).max(2.0 * reach)
 }
 
+/// The forgetting distance of a scene: its `forgetting_distance`, else `DEFAULT_FORGETTING_DISTANCE` of
+/// the mean diameter; never below twice the adhesive necks' reach.
+fn forgetting_distance_of(scene: &BedScene, reach: f64) -> f64 {
+    scene.forgetting_distance.unwrap_or(DEFAULT_FORGETTING_DISTANCE * scene.size_distribution.mean_diameter()).max(2.0 * reach)
+}
+
 /// The default skin as a fraction of the mean diameter. A settled or slowly loaded bed (the tests) spends
 /// most of its step in the pair loop, whose four-slot blocks carry the pairs within the skin but apart:
 /// 0.025 against 0.1 made the seed's test on the shipped quarter bed 1.12 times faster (77.3 -> 68.8 s on
 /// two threads) and the LAMMPS bench bed's laws 1.10-1.19 times on one, while the rebuilds it adds cost
-/// little (preparation took the same time; docs/benchmarks.md, issue 30's eleventh round). It is not the
-/// default yet: the skin is also the distance at which a separating Pasha pair forgets its plastic
-/// memory, so the plastic laws' runs become other realisations (the differences measured between skins
-/// lie within the spread of realisations at one skin, docs/bed.md), and the command-line runs the FMU is
-/// checked against to seven digits (docs/data/ch6_indentation) must be recorded again with it.
-const DEFAULT_SKIN: f64 = 0.1;
+/// little (preparation took the same time; docs/benchmarks.md, issue 30's eleventh and twelfth rounds).
+/// The skin is a speed setting only: what a contact remembers is the forgetting distance's.
+const DEFAULT_SKIN: f64 = 0.025;
+
+/// The default forgetting distance as a fraction of the mean diameter: about 75 mean overlaps of the
+/// seed's consolidated bed, so a Pasha pair that lets go and touches again within a few overlaps (the
+/// bed's rattle) keeps its plastic history, and one that has moved away meets as new. Until the twelfth
+/// round of issue 30 a pair forgot when it had left the skin at a rebuild; skins of 0.01 to 0.4 of the
+/// mean diameter moved the seed's test by no more than two realisations at one skin differ
+/// (docs/benchmarks.md, issue 30's eleventh round; docs/models.md).
+const DEFAULT_FORGETTING_DISTANCE: f64 = 0.025;
 
 impl AnyEngine {
     /// Builds the engine of a scene's law over these particles and walls. The step is the scene's
@@ -295,6 +306,17 @@ impl AnyEngine {
     /// work (the rayon schedule's regime moved with the code's layout; docs/benchmarks.md, eleventh round).
     pub fn set_skin(&mut self, skin: f64) -> Result<(), String> {
         with_engine!(self, e => e.set_skin(skin))
+    }
+
+    /// A new forgetting distance [m] (`Engine::set_forgetting_distance`; a scene's `forgetting_distance`
+    /// key changed on a prepared bed).
+    pub fn set_forgetting_distance(&mut self, forget: f64) -> Result<(), String> {
+        with_engine!(self, e => e.set_forgetting_distance(forget))
+    }
+
+    /// The forgetting distance [m].
+    pub fn forgetting_distance(&self) -> f64 {
+        with_engine!(self, e => e.forgetting_distance())
     }
 
     /// Spheres touching wall `w` now. Only the wall's contact list is searched: every sphere that can

@@ -70,8 +70,13 @@ pub struct BedScene {
     /// Time step, when `time_step` is None, as a fraction of the stability limit (`any::stability_limit`:
     /// the Rayleigh time of the smallest sphere, 000 Eq. 71, or less for stiff springs) [-].
     pub rayleigh_fraction: f64,
-    /// Verlet skin [m], or None for `DEFAULT_SKIN` (0.1) of the mean diameter.
+    /// Verlet skin [m], or None for `DEFAULT_SKIN` (0.025) of the mean diameter. A speed setting only:
+    /// what a contact remembers does not depend on it.
     pub skin: Option<f64>,
+    /// Forgetting distance [m]: a contact whose surfaces are farther apart forgets its memory (the
+    /// plastic history of Pasha's and Nan's laws), or None for `DEFAULT_FORGETTING_DISTANCE` (0.025) of
+    /// the mean diameter.
+    pub forgetting_distance: Option<f64>,
     /// Solid fraction of the loose random fill.
     pub fill_solid_fraction: f64,
     /// Settling ends when the kinetic energy falls below this fraction of sum(m g d_mean).
@@ -102,7 +107,8 @@ crate::scene_options! {
         gravity: number(9.81), "m/s^2", Range::ClosedLow(0.0, 1e6), "gravitational acceleration, downward";
         time_step: number(0.0), "s", Range::ClosedLow(0.0, 1.0), "fixed time step; 0 derives rayleigh_fraction x the Rayleigh time of the smallest sphere";
         rayleigh_fraction: number(0.2), "-", Range::OpenClosed(0.0, 1.0), "time step as a fraction of the Rayleigh time (000 Eq. 71)";
-        skin: number(0.0), "m", Range::ClosedLow(0.0, 1.0), "Verlet list skin; 0 derives a tenth of the mean diameter";
+        skin: number(0.0), "m", Range::ClosedLow(0.0, 1.0), "Verlet list skin, a speed setting; 0 derives 0.025 of the mean diameter (at least twice the adhesive necks' reach)";
+        forgetting_distance: number(0.0), "m", Range::ClosedLow(0.0, 1.0), "a contact whose surfaces are farther apart forgets its memory (Pasha's and Nan's plastic history); 0 derives 0.025 of the mean diameter (at least twice the necks' reach)";
         fill_solid_fraction: number(0.3), "-", Range::Open(0.0, 0.5), "solid fraction of the loose random fill";
         settle_energy_ratio: number(1e-6), "-", Range::Open(0.0, 1.0), "settled when the kinetic energy < this x sum(m g d_mean)";
         consolidation_stress: number(10e3), "Pa", Range::Open(0.0, 1e9), "piston stress to consolidate to (004 Sec. 5.1.3: 10 kPa)";
@@ -289,6 +295,7 @@ impl BedScene {
             time_step: (keys.time_step > 0.0).then_some(keys.time_step),
             rayleigh_fraction: keys.rayleigh_fraction,
             skin: (keys.skin > 0.0).then_some(keys.skin),
+            forgetting_distance: (keys.forgetting_distance > 0.0).then_some(keys.forgetting_distance),
             fill_solid_fraction: keys.fill_solid_fraction,
             settle_energy_ratio: keys.settle_energy_ratio,
             consolidation_stress: keys.consolidation_stress,
@@ -316,6 +323,7 @@ impl BedScene {
             "time_step": self.time_step.unwrap_or(0.0),
             "rayleigh_fraction": self.rayleigh_fraction,
             "skin": self.skin.unwrap_or(0.0),
+            "forgetting_distance": self.forgetting_distance.unwrap_or(0.0),
             "fill_solid_fraction": self.fill_solid_fraction,
             "settle_energy_ratio": self.settle_energy_ratio,
             "consolidation_stress": self.consolidation_stress,

@@ -189,6 +189,10 @@ pub struct BenchArgs {
     /// Verlet list skin [m] (default: the bed's; never below twice the adhesive necks' reach)
     #[arg(long, value_name = "M", value_parser = options::in_range(0.0, 1.0, false, "m"))]
     skin: Option<f64>,
+    /// Forgetting distance [m]: a contact whose surfaces are farther apart forgets its memory (default:
+    /// the bed's; never below twice the adhesive necks' reach)
+    #[arg(long, value_name = "M", value_parser = options::in_range(0.0, 1.0, false, "m"))]
+    forgetting_distance: Option<f64>,
 }
 
 pub fn run(command: BedCommand) -> Result<(), String> {
@@ -455,6 +459,7 @@ fn with_model(
     threads: usize,
     rolling: Option<f64>,
     skin: Option<f64>,
+    forget: Option<f64>,
 ) -> Result<(AnyEngine, BedScene), String> {
     let bytes = std::fs::read(path).map_err(|e| format!("cannot read bed file `{}`: {e}", path.display()))?;
     let mut f: BedFile = file::decode(&bytes).map_err(|e| format!("{}: {e}", path.display()))?;
@@ -482,6 +487,9 @@ fn with_model(
     if let Some(skin) = skin {
         scene["skin"] = skin.into();
     }
+    if let Some(forget) = forget {
+        scene["forgetting_distance"] = forget.into();
+    }
     f.scene = scene.to_string();
     // No contacts of the old law: empty lists (an empty list encodes the same whatever its item type).
     f.contacts = powderfmu::codec::to_bytes(&Vec::<()>::new())?;
@@ -490,9 +498,9 @@ fn with_model(
 }
 
 fn bench_cmd(a: BenchArgs) -> Result<(), String> {
-    let BenchArgs { bed, model, steps, warmup, threads, stiffness, yield_pressure, surface_energy, rolling_friction, skin } = a;
+    let BenchArgs { bed, model, steps, warmup, threads, stiffness, yield_pressure, surface_energy, rolling_friction, skin, forgetting_distance } = a;
     let threads = usize::from(threads);
-    let (mut engine, _) = with_model(&bed, &model, stiffness, yield_pressure, surface_energy, threads, rolling_friction, skin)?;
+    let (mut engine, _) = with_model(&bed, &model, stiffness, yield_pressure, surface_energy, threads, rolling_friction, skin, forgetting_distance)?;
     engine.run(warmup);
     let n = engine.particles().len();
     let start = Instant::now();
@@ -541,6 +549,9 @@ fn changed_scene(engine: &mut AnyEngine, scene: &BedScene, overlay: &str) -> Res
     engine.set_scene(&changed).map_err(|e| e.to_string())?;
     if let Some(skin) = changed.skin {
         engine.set_skin(skin)?;
+    }
+    if let Some(forget) = changed.forgetting_distance {
+        engine.set_forgetting_distance(forget)?;
     }
     Ok(changed)
 }

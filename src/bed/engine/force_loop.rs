@@ -27,6 +27,8 @@ struct Shared<'a, L: BedLaw> {
     walls: &'a [Wall],
     species: usize,
     dt: f64,
+    /// The forgetting distance [m] (`Engine::forget`).
+    forget: f64,
     /// Some sphere is held (`Engine::hold`).
     any_held: bool,
     isa: Isa,
@@ -75,6 +77,7 @@ impl<L: BedLaw> Engine<L> {
             walls: &self.walls,
             species: self.species,
             dt: self.dt,
+            forget: self.forget,
             any_held: self.any_held,
             isa: self.isa,
             lanes: lanes.then_some(&self.lane_table[..]),
@@ -178,6 +181,7 @@ fn run_part_body<L: BedLaw>(s: &Shared<L>, part: Part<L::History>) {
             table,
             pairs: s.pairs,
             dt: s.dt,
+            forget: s.forget,
         };
         // SAFETY: `lanes` is Some only on an engine whose isa is AVX2, which it takes only where the CPU
         // reports AVX2 (`Engine::set_isa`).
@@ -261,11 +265,19 @@ fn pair<L: BedLaw>(
     let rj = radii[j];
     let it = &row.table[species[j] as usize];
     let range = ri + rj + it.reach;
-    if dist2 >= range * range && *tangential_spring == ZERO && (*history == it.initial || it.law.rests_apart(history)) {
-        // Apart, beyond any neck, and nothing to forget or nothing the law would change (a Pasha
-        // pair that touched and let go: 0.3 of 2.45 evaluated pairs per particle on the shipped
-        // quarter bed, benches/engine_counts.sh).
-        return;
+    if dist2 >= range * range {
+        let far = ri + rj + s.forget;
+        if dist2 >= far * far {
+            // Beyond the forgetting distance: the contact forgets (as one that never touched).
+            forget(history, tangential_spring, contact_radius, it.initial);
+            return;
+        }
+        if *tangential_spring == ZERO && (*history == it.initial || it.law.rests_apart(history)) {
+            // Apart, beyond any neck, and nothing to forget or nothing the law would change (a Pasha
+            // pair that touched and let go: 0.3 of 2.45 evaluated pairs per particle on the shipped
+            // quarter bed, benches/engine_counts.sh).
+            return;
+        }
     }
     let dist = dist2.sqrt();
     let nrm = super::super::scale(d, 1.0 / dist);
@@ -293,8 +305,14 @@ fn walls_of_part<L: BedLaw>(s: &Shared<L>, walls: Vec<WallMemory<'_, L::History>
             let ri = p.radius[i];
             let t = wall.touch(p.position[i], ri);
             let it = &table[p.species[i] as usize];
-            if t.overlap < -it.reach && spring[slot] == ZERO && (normal[slot] == it.initial || it.law.rests_apart(&normal[slot])) {
-                continue;
+            if t.overlap < -it.reach {
+                if t.overlap < -s.forget {
+                    forget(&mut normal[slot], &mut spring[slot], &mut radius[slot], it.initial);
+                    continue;
+                }
+                if spring[slot] == ZERO && (normal[slot] == it.initial || it.law.rests_apart(&normal[slot])) {
+                    continue;
+                }
             }
             let li = ri - 0.5 * t.overlap;
             let v = surface_velocity(p.velocity[i], p.angular_velocity[i], li, wall.velocity, ZERO, 0.0, t.normal);
@@ -306,4 +324,13 @@ fn walls_of_part<L: BedLaw>(s: &Shared<L>, walls: Vec<WallMemory<'_, L::History>
             }
         }
     }
+}
+
+/// A contact beyond the forgetting distance forgets its memory: its law's initial history, no spring, no
+/// contact radius (`ContactMemory::reset`).
+#[inline(always)]
+pub(super) fn forget<H: Copy>(history: &mut H, spring: &mut Vec3, contact_radius: &mut f64, initial: H) {
+    *history = initial;
+    *spring = ZERO;
+    *contact_radius = 0.0;
 }

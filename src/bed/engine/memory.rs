@@ -1,6 +1,8 @@
 //! Contact memory across rebuilds of the Verlet list: a pair that stays in the list keeps its law
 //! history, tangential spring and contact radius (the rows are merged in order); a new pair starts with
-//! the initial history of its own interaction; a pair that leaves the list forgets. Wall contacts alike.
+//! the initial history of its own interaction. A pair beyond the skin that still remembers something
+//! stays in the list: it forgets only beyond the forgetting distance (`force_loop::forget`), so what a
+//! contact remembers does not depend on the skin or on when the list is rebuilt. Wall contacts alike.
 
 use super::super::interaction::BedLaw;
 use super::super::neighbors::carry;
@@ -51,9 +53,14 @@ impl<L: BedLaw> Engine<L> {
 
     /// Rebuilds the Verlet list and the wall contact lists, carrying every contact's memory across.
     pub fn rebuild(&mut self) {
+        let remembering = self.remembering_pairs();
         let old_start = std::mem::take(&mut self.list.start);
         let old_partner = std::mem::take(&mut self.list.partner);
         self.list.build(&self.particles.position, &self.particles.radius);
+        // Pairs that remember and are now beyond the skin stay (none when the skin is at least the
+        // forgetting distance: they forgot in the force loop before they got there).
+        let outside: Vec<(u32, u32)> = remembering.into_iter().filter(|&(i, j)| self.list.row(i as usize).binary_search(&j).is_err()).collect();
+        self.list.insert_pairs(&outside);
         // For each new slot, the old slot of the same pair (or none): the pair keeps its memory; a new
         // pair starts with the initial history of its own interaction.
         let old_slots: Vec<u32> = (0..old_partner.len() as u32).collect();
@@ -79,20 +86,52 @@ impl<L: BedLaw> Engine<L> {
             let new = &mut self.wall_contacts[w];
             for i in 0..self.particles.len() {
                 let t = wall.touch(self.particles.position[i], self.particles.radius[i]);
-                if t.overlap > -skin {
-                    while k_old < old.particle.len() && (old.particle[k_old] as usize) < i {
-                        k_old += 1;
-                    }
+                while k_old < old.particle.len() && (old.particle[k_old] as usize) < i {
+                    k_old += 1;
+                }
+                let initial = self.wall_pairs[w][self.particles.species[i] as usize].initial;
+                let had = k_old < old.particle.len() && old.particle[k_old] as usize == i;
+                // Within the skin, or beyond it and still remembering (as the pairs).
+                if had && old.memory.remembers(k_old, initial) {
                     new.particle.push(i as u32);
-                    if k_old < old.particle.len() && old.particle[k_old] as usize == i {
+                    new.memory.push(old.memory.get(k_old));
+                } else if t.overlap > -skin {
+                    new.particle.push(i as u32);
+                    if had {
                         new.memory.push(old.memory.get(k_old));
                     } else {
-                        new.memory.push_fresh(self.wall_pairs[w][self.particles.species[i] as usize].initial);
+                        new.memory.push_fresh(initial);
                     }
                 }
             }
         }
         self.partition();
         self.resize_buffers();
+    }
+
+    /// The list's pairs beyond half the skin whose contact remembers something
+    /// (`ContactMemory::remembers`), as (i, j): those the new list may lack (the nearer ones it holds).
+    /// None when the particles are not the list's (a rebuild after spheres were added).
+    fn remembering_pairs(&self) -> Vec<(u32, u32)> {
+        let (p, n) = (&self.particles, self.particles.len());
+        let mut out = Vec::new();
+        if self.list.rows() != n {
+            return out;
+        }
+        let half_skin = 0.5 * self.list.skin;
+        for i in 0..n {
+            let a = p.species[i] as usize;
+            for (k, &j) in (self.list.start[i] as usize..).zip(self.list.row(i)) {
+                let j = j as usize;
+                if self.memory.remembers(k, self.pair(a, p.species[j] as usize).initial) {
+                    let d = super::super::sub(p.position[j], p.position[i]);
+                    let far = p.radius[i] + p.radius[j] + half_skin;
+                    if super::super::dot(d, d) >= far * far {
+                        out.push((i as u32, j as u32));
+                    }
+                }
+            }
+        }
+        out
     }
 }

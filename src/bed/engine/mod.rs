@@ -65,6 +65,9 @@ pub struct Engine<L: BedLaw> {
     wall_reference: Vec<Vec3>,
     /// Largest reach of any interaction [m].
     reach: f64,
+    /// The forgetting distance [m]: a contact whose surfaces are farther apart than this forgets its
+    /// memory at that step (as one that never touched), whatever the skin (docs/bed.md).
+    forget: f64,
     /// Forces, torques, rolling loads (and dipoles) of the last step.
     total: Accum,
     /// Each part's buffer over its span (threads > 1; one thread writes into `total`).
@@ -100,7 +103,7 @@ impl<L: BedLaw> Engine<L> {
     }
 
     /// An engine over these particles and walls. `threads` >= 1; more than one starts a pool the engine
-    /// owns. The skin must exceed every interaction's reach.
+    /// owns. The skin and the forgetting distance must exceed every interaction's reach.
     #[allow(clippy::too_many_arguments)] // the engine's whole set-up, each argument named at the one call site
     pub fn new(
         particles: Particles,
@@ -111,6 +114,7 @@ impl<L: BedLaw> Engine<L> {
         gravity: Vec3,
         dt: f64,
         skin: f64,
+        forget: f64,
         threads: usize,
     ) -> Result<Engine<L>, String> {
         assert_eq!(pairs.len(), species * species);
@@ -119,11 +123,7 @@ impl<L: BedLaw> Engine<L> {
             return Err("a particle has a species beyond the interaction table".into());
         }
         let reach = pairs.iter().chain(wall_pairs.iter().flatten()).map(|it| it.reach).fold(0.0, f64::max);
-        if !(skin > reach) {
-            return Err(format!(
-                "skin = {skin:e} m must exceed the reach of the adhesive necks, {reach:e} m (the largest separation at which a contact still pulls)"
-            ));
-        }
+        beyond_reach("the bed's", reach, skin, forget)?;
         if !(1..=256).contains(&threads) {
             return Err(format!("threads = {threads} is out of range: allowed [1, 256]"));
         }
@@ -144,6 +144,7 @@ impl<L: BedLaw> Engine<L> {
             list: NeighborList::new(skin),
             memory: ContactMemory::default(),
             reach,
+            forget,
             total: Accum::default(),
             buffers: vec![],
             parts: vec![],
@@ -233,9 +234,7 @@ impl<L: BedLaw> Engine<L> {
             return Err("the interaction tables do not fit this bed's species and walls".into());
         }
         let reach = pairs.iter().chain(wall_pairs.iter().flatten()).map(|it| it.reach).fold(0.0, f64::max);
-        if !(self.list.skin > reach) {
-            return Err(format!("the changed law's adhesive necks reach {reach:e} m, beyond the bed's skin {:e} m", self.list.skin));
-        }
+        beyond_reach("the changed law's", reach, self.list.skin, self.forget)?;
         // A pair that never touched holds its law's initial history, which may depend on the changed
         // parameters (Pasha's alpha_0 on f_ce): it takes the new one; every other memory stays.
         let s = self.species;
@@ -264,15 +263,15 @@ impl<L: BedLaw> Engine<L> {
     }
 
     /// A new Verlet skin [m] for the rest of the run, the list rebuilt at once with every contact's
-    /// memory carried (a pair beyond the new range forgets, as at any rebuild). Refused when it does not
-    /// exceed the adhesive necks' reach. The skin changes which pairs the list holds and so how far apart
-    /// a pair must be at a rebuild to forget its memory (the plastic history of Pasha's and Nan's laws,
-    /// a tangential spring): under the laws without history apart (Hertz, the linear spring, JKR) one
-    /// thread steps to the same bits under any skin above the reach (docs/bed.md).
+    /// memory carried (a contact that remembers stays in the list until it is beyond the forgetting
+    /// distance). Refused when it does not exceed the adhesive necks' reach. The skin changes which pairs
+    /// the list holds, not what any contact remembers: one thread steps to the same bits under any skin
+    /// above the reach, for every law (docs/bed.md).
     pub fn set_skin(&mut self, skin: f64) -> Result<(), String> {
-        if !(skin > self.reach) || !skin.is_finite() {
-            return Err(format!("skin = {skin:e} m must exceed the reach of the adhesive necks, {:e} m", self.reach));
+        if !skin.is_finite() {
+            return Err(format!("skin = {skin:e} m must be finite"));
         }
+        beyond_reach("the bed's", self.reach, skin, self.forget)?;
         if skin != self.list.skin {
             self.list.skin = skin;
             self.rebuild();
@@ -280,14 +279,30 @@ impl<L: BedLaw> Engine<L> {
         Ok(())
     }
 
+    /// A new forgetting distance [m] (`forget`), from the next force loop on: a contact whose surfaces
+    /// are farther apart forgets its memory (the plastic history of Pasha's and Nan's laws, a tangential
+    /// spring). Refused when it does not exceed the adhesive necks' reach (a neck that still pulls must
+    /// not forget).
+    pub fn set_forgetting_distance(&mut self, forget: f64) -> Result<(), String> {
+        if !forget.is_finite() {
+            return Err(format!("forgetting_distance = {forget:e} m must be finite"));
+        }
+        beyond_reach("the bed's", self.reach, self.list.skin, forget)?;
+        self.forget = forget;
+        Ok(())
+    }
+
+    /// The forgetting distance [m].
+    pub fn forgetting_distance(&self) -> f64 {
+        self.forget
+    }
+
     /// Widens the engine's reach to a wall's new interactions (one per species), refused when its
-    /// adhesive necks would reach beyond the skin.
+    /// adhesive necks would reach beyond the skin or the forgetting distance.
     fn reach_for(&mut self, wall: &str, row: &[Interaction<L>]) -> Result<(), String> {
         assert_eq!(row.len(), self.species);
         let reach = row.iter().map(|it| it.reach).fold(self.reach, f64::max);
-        if !(self.list.skin > reach) {
-            return Err(format!("wall `{wall}`: its adhesive necks reach {reach:e} m, beyond the bed's skin {:e} m", self.list.skin));
-        }
+        beyond_reach(&format!("wall `{wall}`'s"), reach, self.list.skin, self.forget)?;
         self.reach = reach;
         Ok(())
     }
@@ -643,4 +658,18 @@ fn kick_body(base: usize, v: &mut [Vec3], w: &mut [Vec3], x: &mut [Vec3], body: 
         }
     }
     moved
+}
+
+/// Both the skin and the forgetting distance must exceed the adhesive necks' reach: the list must hold
+/// every pair a neck still pulls, and a neck that still pulls must not forget.
+fn beyond_reach(whose: &str, reach: f64, skin: f64, forget: f64) -> Result<(), String> {
+    if !(skin > reach) {
+        return Err(format!("skin = {skin:e} m must exceed {whose} adhesive necks' reach, {reach:e} m (the largest separation at which a contact still pulls)"));
+    }
+    if !(forget > reach) {
+        return Err(format!(
+            "forgetting_distance = {forget:e} m must exceed {whose} adhesive necks' reach, {reach:e} m (the largest separation at which a contact still pulls)"
+        ));
+    }
+    Ok(())
 }

@@ -230,6 +230,8 @@ mod x86 {
         /// The species pairs' interactions (`Engine::pairs`), for the laws evaluated per lane.
         pub pairs: &'a [Interaction<L>],
         pub dt: f64,
+        /// The forgetting distance [m] (`Engine::forget`).
+        pub forget: f64,
     }
 
     /// The law of a `Lanes::PerLane` law evaluated once per visited lane (bit k of `visit` set), as
@@ -311,6 +313,7 @@ mod x86 {
             let neg_zero = splat(-0.0);
             let (one, half) = (splat(1.0), splat(0.5));
             let dt = splat(e.dt);
+            let forget = splat(e.forget);
             // The partner's share: force and its sign flipped (a - b is a + (-b) to the bit), rolling load added.
             let flip = _mm256_set_pd(0.0, -0.0, -0.0, -0.0);
             let base = sink.base;
@@ -331,6 +334,16 @@ mod x86 {
                 let rj = _mm256_set_pd(e.radius[jj[3]], e.radius[jj[2]], e.radius[jj[1]], e.radius[jj[0]]);
                 let sum_r = _mm256_add_pd(ri, rj);
                 let range = _mm256_add_pd(sum_r, param(0));
+                // Beyond the forgetting distance a contact forgets (as the scalar loop's `pair`), before its
+                // memory is read; such lanes are then skipped below (apart, nothing remembered).
+                let far = _mm256_add_pd(sum_r, forget);
+                let beyond = _mm256_movemask_pd(_mm256_cmp_pd::<_CMP_GE_OQ>(dist2, _mm256_mul_pd(far, far)));
+                if beyond != 0 {
+                    for k in (0..4).filter(|k| beyond & (1 << k) != 0) {
+                        let initial = e.pairs[pair[k]].initial;
+                        super::super::force_loop::forget(&mut normal[m + k], &mut spring[m + k], &mut radius_memory[m + k], initial);
+                    }
+                }
                 let mem = &mut spring[m..m + 4];
                 let s0 = [
                     _mm256_set_pd(mem[3].x, mem[2].x, mem[1].x, mem[0].x),
