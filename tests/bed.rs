@@ -655,7 +655,7 @@ fn a_changed_scene_keeps_the_memory_and_renews_the_untouched_pairs() {
     assert!(e.set_scene(&hertz).is_err(), "another law's tables do not fit this engine");
 }
 
-/// A Pasha pair that let go keeps its plastic history until its surfaces are farther apart than the
+/// A Pasha pair (and a sphere on a floor) that let go keeps its plastic history until its surfaces are farther apart than the
 /// forgetting distance, whatever the skin: beyond the skin but within the forgetting distance it stays in
 /// the list at a rebuild with its memory; beyond the forgetting distance it forgets at the next force
 /// loop, and the next rebuild drops it (docs/bed.md, "What a contact remembers").
@@ -700,6 +700,31 @@ fn a_pair_forgets_at_the_forgetting_distance_not_at_the_skin() {
     assert_eq!(history(&e), Some((initial.clone(), initial.clone())), "beyond the forgetting distance the pair forgets");
     with_engine!(&mut e, x => x.rebuild());
     assert_eq!(history(&e), None, "a pair that forgot and is beyond the skin leaves the list");
+    // A wall contact alike: a sphere pressed on a floor, lifted beyond the skin but within the forgetting
+    // distance, keeps its contact with its memory at a rebuild; lifted beyond it, forgets and is dropped.
+    let mut p = Particles::default();
+    p.push(Vec3::new(0.0, 0.0, 0.495e-3), 0.5e-3, 2456.0, 0);
+    let floor = Wall::plane("floor", Vec3::new(0.0, 0.0, 0.0), Vec3::new(0.0, 0.0, 1.0));
+    let mut w = AnyEngine::build(&scene, p, vec![floor]).unwrap();
+    w.step();
+    let wall_history = |e: &AnyEngine| {
+        with_engine!(e, x => x.wall_contacts[0].particle.binary_search(&0).ok().map(|k| format!("{:?}", x.wall_contacts[0].memory.history[k])))
+    };
+    let on_floor = wall_history(&w).expect("the pressed sphere is in the floor's list");
+    assert_ne!(alpha_max(&on_floor), alpha_max(&initial), "it yielded on the floor");
+    let lift = |e: &mut AnyEngine, gap: f64| {
+        with_engine!(e, x => {
+            x.particles.position[0] = Vec3::new(0.0, 0.0, 0.5e-3 + gap);
+            x.particles.velocity[0] = Vec3::new(0.0, 0.0, 0.0);
+        })
+    };
+    lift(&mut w, 5e-5);
+    with_engine!(&mut w, x => { x.rebuild(); x.compute_forces() });
+    let apart = wall_history(&w).expect("beyond the skin, within the forgetting distance, the wall contact stays listed");
+    assert_eq!(alpha_max(&apart), alpha_max(&on_floor));
+    lift(&mut w, 1.5e-4);
+    with_engine!(&mut w, x => { x.compute_forces(); x.rebuild() });
+    assert_eq!(wall_history(&w), None, "beyond the forgetting distance the wall contact forgets and leaves the list");
     // A forgetting distance within the necks' reach is refused by name.
     let reach = with_engine!(&e, x => x.reach());
     let refused = e.set_forgetting_distance(0.5 * reach).unwrap_err();
