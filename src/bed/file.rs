@@ -120,7 +120,8 @@ impl<L: BedLaw> Engine<L> {
             }
         }
         if grown {
-            self.partition();
+            // The parts over threads stay cut on the list the positions give (`Engine::rebuild`).
+            self.resize_buffers();
         }
         // Every slot starts as a pair that has never touched (the engine's first force pass may have
         // loaded springs); the file then says which remember something.

@@ -57,8 +57,12 @@ impl<L: BedLaw> Engine<L> {
         let old_start = std::mem::take(&mut self.list.start);
         let old_partner = std::mem::take(&mut self.list.partner);
         self.list.build(&self.particles.position, &self.particles.radius);
-        // Pairs that remember and are now beyond the skin stay (none when the skin is at least the
-        // forgetting distance: they forgot in the force loop before they got there).
+        // The parts over threads are cut on the list the positions give, before the remembering pairs
+        // are added: an engine restored from a saved state (`rebuild_at`) then cuts the same parts, and
+        // with two threads the parts decide each sphere's order of summation.
+        self.cut_parts();
+        // Pairs that remember and are now beyond the skin stay (few when the skin is at least the
+        // forgetting distance: they forget at the next force loop).
         let outside: Vec<(u32, u32)> = remembering.into_iter().filter(|&(i, j)| self.list.row(i as usize).binary_search(&j).is_err()).collect();
         self.list.insert_pairs(&outside);
         // For each new slot, the old slot of the same pair (or none): the pair keeps its memory; a new
@@ -105,7 +109,6 @@ impl<L: BedLaw> Engine<L> {
                 }
             }
         }
-        self.partition();
         self.resize_buffers();
     }
 

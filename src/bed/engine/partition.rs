@@ -113,9 +113,9 @@ impl Sink<'_> {
 }
 
 impl<L: BedLaw> Engine<L> {
-    /// Splits the rows into `threads` parts of about equal work (list slots plus one per row), and sizes
-    /// each part's buffer for the particles it touches.
-    pub(crate) fn partition(&mut self) {
+    /// Splits the rows into `threads` parts of about equal work (list slots plus one per row); then
+    /// `resize_buffers` sizes each part's buffer for the particles it touches.
+    pub(super) fn cut_parts(&mut self) {
         let n = self.particles.len();
         let t = self.threads;
         let total = self.list.partner.len() + n;
@@ -130,7 +130,6 @@ impl<L: BedLaw> Engine<L> {
             self.parts.push(i);
         }
         self.parts.push(n);
-        self.resize_buffers();
     }
 
     /// The end of part k's span: one past its last row or its rows' last partner, whichever is later.
@@ -139,7 +138,7 @@ impl<L: BedLaw> Engine<L> {
         (a..b).filter_map(|i| self.list.row(i).last().map(|&j| j as usize + 1)).max().unwrap_or(b).max(b)
     }
 
-    pub(super) fn resize_buffers(&mut self) {
+    pub(crate) fn resize_buffers(&mut self) {
         let n = self.particles.len();
         let w = self.walls.len();
         let d = self.record_dipoles;
