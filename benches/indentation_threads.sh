@@ -9,7 +9,7 @@ cargo build --locked --quiet --release --bin powderfmu
 for rep in $(seq "$reps"); do
     for threads in 1 2; do
         printf 'threads %s, run %s: ' "$threads" "$rep"
-        target/release/powderfmu bed indent beds/bed_004_ch6.pfbed --speed 0.1429 --time-step 2.5e-7 --fidelity fast \
+        target/release/powderfmu bed indent beds/bed_004_ch6.pfbed --diameter 0.016 --max-penetration 0.0016 --speed 0.1429 --time-step 2.5e-7 --fidelity fast \
             --threads "$threads" --every 1e-4 --out /dev/null 2>&1 | grep -o '[0-9.]* s wall time, [0-9]* steps, [0-9.e]* particle-steps/s'
     done
 done

@@ -226,7 +226,7 @@ def indentation(fmu, out):
            if start["fidelity"] == "quarter" else "the seed's bed (resources/bed.pfbed: 29000 spheres, 004 Ch. 6)")
     print(f"  {bed}, indenter d = {d * 1e3:.1f} mm to h = {h_max * 1e3:.2f} mm "
           f"(h/r = {2 * h_max / d:.2f}) at {v} m/s, time step {float(start['time_step']):.2e} s, fidelity {start['fidelity']}, "
-          f"{start['threads']} threads; running (about 100 s on two cores)")
+          f"{start['threads']} threads; running (35-100 s on two cores with AVX2, by machine)")
     t0 = time.perf_counter()
     r = simulate_fmu(fmu)
     wall = time.perf_counter() - t0
