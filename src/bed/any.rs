@@ -178,21 +178,15 @@ fn make<L: BedLaw>(scene: &BedScene, particles: Particles, walls: Vec<Wall>) -> 
         None => scene.rayleigh_fraction * limit,
     };
     let reach = pairs.iter().chain(wall_pairs.iter().flatten()).map(|it| it.reach).fold(0.0, f64::max);
-    let (skin, forget) = (skin_of(scene, reach), forgetting_distance_of(scene, reach));
+    let (skin, forget) = (derived(scene.skin, DEFAULT_SKIN, scene, reach), derived(scene.forgetting_distance, DEFAULT_FORGETTING_DISTANCE, scene, reach));
     let species = scene.species().len();
     Ok(Engine::new(particles, walls, pairs, wall_pairs, species, Vec3::new(0.0, 0.0, -scene.gravity), dt, skin, forget, scene.threads)?)
 }
 
-/// The Verlet skin of a scene: its `skin`, else `DEFAULT_SKIN` of the mean diameter; never below twice
-/// the adhesive necks' reach.
-fn skin_of(scene: &BedScene, reach: f64) -> f64 {
-    scene.skin.unwrap_or(DEFAULT_SKIN * scene.size_distribution.mean_diameter()).max(2.0 * reach)
-}
-
-/// The forgetting distance of a scene: its `forgetting_distance`, else `DEFAULT_FORGETTING_DISTANCE` of
-/// the mean diameter; never below twice the adhesive necks' reach.
-fn forgetting_distance_of(scene: &BedScene, reach: f64) -> f64 {
-    scene.forgetting_distance.unwrap_or(DEFAULT_FORGETTING_DISTANCE * scene.size_distribution.mean_diameter()).max(2.0 * reach)
+/// A scene's length (the skin, the forgetting distance): as given, else `fraction` of the mean diameter;
+/// never below twice the adhesive necks' reach.
+fn derived(given: Option<f64>, fraction: f64, scene: &BedScene, reach: f64) -> f64 {
+    given.unwrap_or(fraction * scene.size_distribution.mean_diameter()).max(2.0 * reach)
 }
 
 /// The default skin as a fraction of the mean diameter. A settled or slowly loaded bed (the tests) spends

@@ -59,16 +59,13 @@ pub struct BedFile {
 impl<L: BedLaw> Engine<L> {
     /// The contacts that remember something (history changed or spring loaded), as `codec` bytes.
     fn saved_contacts(&self) -> Result<(Vec<u8>, Vec<u8>), BedError> {
-        let mut pairs = Vec::new();
-        for i in 0..self.list.rows() {
-            let si = self.particles.species[i] as usize;
-            for (k, &j) in (self.list.start[i] as usize..).zip(self.list.row(i)) {
-                if self.memory.remembers(k, self.pair(si, self.particles.species[j as usize] as usize).initial) {
-                    let (h, s, a) = self.memory.get(k);
-                    pairs.push((i as u32, j, h, s, a));
-                }
-            }
-        }
+        let pairs: Vec<_> = self
+            .remembering()
+            .map(|(i, j, k)| {
+                let (h, s, a) = self.memory.get(k);
+                (i as u32, j, h, s, a)
+            })
+            .collect();
         let walls: Vec<Vec<SavedWallContact<L::History>>> = self
             .wall_contacts
             .iter()
@@ -96,11 +93,8 @@ impl<L: BedLaw> Engine<L> {
         // A saved contact beyond the list's range (its spheres moved apart since the saving engine last
         // built its list) is put into the list: the saving engine held it until its next rebuild.
         let n = self.particles.len() as u32;
-        let outside: Vec<(u32, u32)> =
-            pairs.iter().filter(|c| c.0 < c.1 && c.1 < n && self.list.row(c.0 as usize).binary_search(&c.1).is_err()).map(|c| (c.0, c.1)).collect();
-        let mut grown = !outside.is_empty();
+        let mut grown = self.list.insert_missing(pairs.iter().filter(|c| c.0 < c.1 && c.1 < n).map(|c| (c.0, c.1)));
         if grown {
-            self.list.insert_pairs(&outside);
             let slots = self.list.partner.len();
             let init = self.pairs[0].initial;
             self.memory.resize_fresh(slots, init);

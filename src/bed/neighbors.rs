@@ -158,6 +158,13 @@ impl NeighborList {
     /// Adds pairs (i < j) that are not in the list, keeping each row sorted: a saved contact that has
     /// moved beyond the list's range since the saving engine's last build still belongs to it until the
     /// next rebuild, and the loaded engine must hold it too to continue the same way.
+    /// Adds the pairs (i < j) the list lacks; true if any was added (then slots moved).
+    pub fn insert_missing(&mut self, pairs: impl IntoIterator<Item = (u32, u32)>) -> bool {
+        let missing: Vec<(u32, u32)> = pairs.into_iter().filter(|&(i, j)| self.row(i as usize).binary_search(&j).is_err()).collect();
+        self.insert_pairs(&missing);
+        !missing.is_empty()
+    }
+
     pub fn insert_pairs(&mut self, extra: &[(u32, u32)]) {
         if extra.is_empty() {
             return;

@@ -63,8 +63,7 @@ impl<L: BedLaw> Engine<L> {
         self.cut_parts();
         // Pairs that remember and are now beyond the skin stay (few when the skin is at least the
         // forgetting distance: they forget at the next force loop).
-        let outside: Vec<(u32, u32)> = remembering.into_iter().filter(|&(i, j)| self.list.row(i as usize).binary_search(&j).is_err()).collect();
-        self.list.insert_pairs(&outside);
+        self.list.insert_missing(remembering);
         // For each new slot, the old slot of the same pair (or none): the pair keeps its memory; a new
         // pair starts with the initial history of its own interaction.
         let old_slots: Vec<u32> = (0..old_partner.len() as u32).collect();
@@ -96,10 +95,7 @@ impl<L: BedLaw> Engine<L> {
                 let initial = self.wall_pairs[w][self.particles.species[i] as usize].initial;
                 let had = k_old < old.particle.len() && old.particle[k_old] as usize == i;
                 // Within the skin, or beyond it and still remembering (as the pairs).
-                if had && old.memory.remembers(k_old, initial) {
-                    new.particle.push(i as u32);
-                    new.memory.push(old.memory.get(k_old));
-                } else if t.overlap > -skin {
+                if t.overlap > -skin || (had && old.memory.remembers(k_old, initial)) {
                     new.particle.push(i as u32);
                     if had {
                         new.memory.push(old.memory.get(k_old));
@@ -112,29 +108,33 @@ impl<L: BedLaw> Engine<L> {
         self.resize_buffers();
     }
 
-    /// The list's pairs beyond half the skin whose contact remembers something
-    /// (`ContactMemory::remembers`), as (i, j): those the new list may lack (the nearer ones it holds).
-    /// None when the particles are not the list's (a rebuild after spheres were added).
+    /// The list's contacts that remember something (`ContactMemory::remembers`): (i, j, slot).
+    pub(crate) fn remembering(&self) -> impl Iterator<Item = (usize, u32, usize)> + '_ {
+        let sp = &self.particles.species;
+        (0..self.list.rows()).flat_map(move |i| {
+            (self.list.start[i] as usize..).zip(self.list.row(i)).filter_map(move |(k, &j)| {
+                self.memory.remembers(k, self.pair(sp[i] as usize, sp[j as usize] as usize).initial).then_some((i, j, k))
+            })
+        })
+    }
+
+    /// The list's remembering pairs beyond half the skin, as (i, j): those the new list may lack (the
+    /// nearer ones it holds). None when the particles are not the list's (a rebuild after spheres were
+    /// added).
     fn remembering_pairs(&self) -> Vec<(u32, u32)> {
-        let (p, n) = (&self.particles, self.particles.len());
-        let mut out = Vec::new();
-        if self.list.rows() != n {
-            return out;
+        let p = &self.particles;
+        if self.list.rows() != p.len() {
+            return Vec::new();
         }
         let half_skin = 0.5 * self.list.skin;
-        for i in 0..n {
-            let a = p.species[i] as usize;
-            for (k, &j) in (self.list.start[i] as usize..).zip(self.list.row(i)) {
+        self.remembering()
+            .filter(|&(i, j, _)| {
                 let j = j as usize;
-                if self.memory.remembers(k, self.pair(a, p.species[j] as usize).initial) {
-                    let d = super::super::sub(p.position[j], p.position[i]);
-                    let far = p.radius[i] + p.radius[j] + half_skin;
-                    if super::super::dot(d, d) >= far * far {
-                        out.push((i as u32, j as u32));
-                    }
-                }
-            }
-        }
-        out
+                let d = super::super::sub(p.position[j], p.position[i]);
+                let far = p.radius[i] + p.radius[j] + half_skin;
+                super::super::dot(d, d) >= far * far
+            })
+            .map(|(i, j, _)| (i as u32, j))
+            .collect()
     }
 }
