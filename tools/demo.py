@@ -236,10 +236,11 @@ def indentation(fmu, out):
     se = last["plateau_hardness_standard_error"]
     print(f"  plateau hardness (mean F/A(h) while loading at {p0} <= h/r <= {p1}, 004 Figs. 5.2-5.3): {last['plateau_hardness']:.4g} "
           f"+- {se:.2g} Pa (standard error from this run's fluctuations, {last['plateau_samples']} samples; quarter beds differ by a further 8-12 %: docs/indentation.md; replicas = 3 measures it), "
-          f"unconfined yield strength {last['plateau_hardness'] / float(start['constraint_factor']):.4g} Pa (C = {start['constraint_factor']})")
+          f"unconfined yield strength plateau / C {last['plateau_hardness'] / float(start['constraint_factor']):.4g} +- {se / float(start['constraint_factor']):.2g} Pa "
+          f"(C = {start['constraint_factor']}, taken as exact)")
     how = "from the tangent to the unloading curve" if last["contact_depth_from_tangent"] else "= h_max: the bed let go of the indenter too fast for a tangent"
     print(f"  after unloading: F_max {last['force_at_turn']:.4f} N (the loading curve at the turn; largest output sample "
-          f"{r['indenter_force'].max():.4f} N), h_c {last['contact_depth'] * 1e3:.4f} mm ({how}), hardness F_max/A(h_c) {last['hardness']:.4g} Pa "
+          f"{r['indenter_force'].max():.4f} N), h_c {last['contact_depth'] * 1e3:.4f} mm ({how}), hardness F_max/A(h_c) {last['hardness']:.4g} +- {last['hardness_standard_error']:.2g} Pa "
           f"(a local reading at h_max: over 29 recorded runs 4 % below the plateau, standard deviation 8 %)")
     reference = None
     if os.path.isfile(REFERENCE):
