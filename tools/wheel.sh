@@ -9,7 +9,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 out=${1:-target/wheels}
 python=$(bash tools/venv.sh)
-units=(ParticleWallImpact ContactElement BallIndentation)
+units=(ParticleWallImpact ContactElement BallIndentation UnconfinedCompression)
 for u in "${units[@]}"; do
     if [ ! -f "target/fmu/$u.fmu" ]; then
         cargo run --locked --quiet --release -p fmu_build -- --linux-only >&2

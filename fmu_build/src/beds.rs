@@ -4,6 +4,7 @@
 
 use powderfmu::bed::{file, BedScene};
 use powderfmu::units::ball_indentation::{DEFAULT_BED_SCENE, QUARTER_BED_SCENE, QUARTER_REPLICAS, SHIPPED_BED, SHIPPED_QUARTER_BED};
+use powderfmu::units::unconfined_compression::{SHIPPED_SPECIMEN, SPECIMEN_SCENE};
 use serde_json::Value;
 use std::path::Path;
 
@@ -23,9 +24,15 @@ pub fn shipped_quarter_replicas(root: &Path) -> Result<Vec<(&'static str, Vec<u8
     QUARTER_REPLICAS.iter().map(|&(name, scene, bed)| Ok((name, shipped_bed(root, bed, scene)?))).collect()
 }
 
+/// The bytes of the specimen UnconfinedCompression ships, checked against `SPECIMEN_SCENE`.
+pub fn shipped_specimen(root: &Path) -> Result<Vec<u8>, String> {
+    shipped_bed(root, SHIPPED_SPECIMEN, SPECIMEN_SCENE)
+}
+
 fn shipped_bed(root: &Path, bed: &str, scene: &str) -> Result<Vec<u8>, String> {
     let path = root.join(bed);
-    let bytes = std::fs::read(&path).map_err(|e| format!("cannot read the shipped bed {}: {e} (beds/README.md says how to prepare it)", path.display()))?;
+    let bytes =
+        std::fs::read(&path).map_err(|e| format!("cannot read the shipped bed {}: {e} (beds/README.md says how to prepare it)", path.display()))?;
     let bed = file::decode(&bytes).map_err(|e| format!("the shipped bed {}: {e}", path.display()))?;
     let theirs = BedScene::from_stored_json(&bed.scene).map_err(|e| format!("the shipped bed {}: its scene: {e}", path.display()))?;
     let ours = BedScene::from_json(scene).map_err(|e| format!("the unit's bed scene: {e}"))?;
@@ -83,6 +90,9 @@ mod tests {
         let (bed, scene) = file::load(&root.join(SHIPPED_QUARTER_BED), Some(1)).unwrap();
         assert_eq!((scene.die_sector, bed.particles().len()), (0.25, 7250));
         assert!(quarter.len() < bytes.len() / 2);
+        shipped_specimen(root).expect("the shipped compression specimen is accepted");
+        let (specimen, scene) = file::load(&root.join(SHIPPED_SPECIMEN), Some(1)).unwrap();
+        assert_eq!((specimen.particles().len(), scene.consolidation_stress), (4000, 10e3));
     }
 
     #[test]

@@ -180,6 +180,11 @@ fn entries(unit: &UnitInfo, binaries: &Binaries, root: &Path, version: Version) 
         }
         entries.push(Entry { name: "resources/bed_scene.json".into(), data: scene });
         entries.push(Entry { name: "documentation/bed.md".into(), data: read(root, "docs/bed.md")? });
+    } else if id == units::unconfined_compression::MODEL_IDENTIFIER {
+        let specimen = beds::shipped_specimen(root)?;
+        entries.push(Entry { name: format!("resources/{}", units::unconfined_compression::RESOURCE_SPECIMEN), data: specimen });
+        entries.push(Entry { name: "resources/specimen_scene.json".into(), data: units::unconfined_compression::SPECIMEN_SCENE.as_bytes().to_vec() });
+        entries.push(Entry { name: "documentation/bed.md".into(), data: read(root, "docs/bed.md")? });
     } else {
         entries.push(Entry { name: "resources/default_scene.json".into(), data: units::DEFAULT_SCENE.as_bytes().to_vec() });
     }

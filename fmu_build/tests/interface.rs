@@ -41,8 +41,8 @@ fn every_scene_key_is_a_parameter_of_both_contact_units_and_names_are_unique() {
         let n = names.len();
         names.dedup();
         assert_eq!(names.len(), n, "{}: duplicate variable names", unit.model_identifier);
-        // BallIndentation's contact laws are those of its bed file.
-        if unit.model_identifier == units::ball_indentation::MODEL_IDENTIFIER {
+        // The DEM units' contact laws are those of their bed files.
+        if [units::ball_indentation::MODEL_IDENTIFIER, units::unconfined_compression::MODEL_IDENTIFIER].contains(&unit.model_identifier) {
             continue;
         }
         for key in powderfmu::scene::KEYS.iter() {

@@ -9,7 +9,7 @@ import os
 import subprocess
 from pathlib import Path
 
-UNITS = ("ParticleWallImpact", "ContactElement", "BallIndentation")
+UNITS = ("ParticleWallImpact", "ContactElement", "BallIndentation", "UnconfinedCompression")
 
 #: The FMUs a wheel carries, beside this module.
 PACKAGED = Path(__file__).resolve().parent / "fmus"

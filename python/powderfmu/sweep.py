@@ -3,7 +3,7 @@
 A spec is a JSON object:
 
     {
-      "task": "sieve",                        # or "indentation" (BallIndentation, Co-Simulation)
+      "task": "sieve",                        # or "indentation" (BallIndentation), "compression" (UnconfinedCompression)
       "base": {"particles": 20},              # keys every task shares (system keys or unit parameters)
       "grid": {"frequency": [1e3, 1e4], "acceleration": [1e5, 1e6]},   # every combination, or
       "sample": {"count": 50, "seed": 1, "ranges": {"frequency": [1e3, 1e6, "log"]}},
@@ -66,6 +66,7 @@ class Task:
 TASKS: dict[str, Task] = {
     "sieve": Task(unit="ParticleWallImpact", module="sieve"),
     "indentation": Task(unit="BallIndentation", module="indentation"),
+    "compression": Task(unit="UnconfinedCompression", module="compression"),
 }
 
 

@@ -342,6 +342,11 @@ impl AnyEngine {
         with_engine!(self, e => e.run(steps))
     }
 
+    /// See `Engine::run_while`.
+    pub fn run_while(&mut self, steps: u64, go_on: impl FnMut(&[Wall], f64) -> bool + Send) -> u64 {
+        with_engine!(self, e => e.run_while(steps, go_on))
+    }
+
     /// See `Engine::hold`.
     pub fn hold(&mut self, held: &[bool]) {
         with_engine!(self, e => e.hold(held))

@@ -24,6 +24,9 @@ pub struct CompressArgs {
     /// Strain window of the stress's mean for the peak sigma_c [-]
     #[arg(long, value_name = "STRAIN", default_value_t = Setup::default().window, value_parser = options::positive("-"))]
     window: f64,
+    /// Strain from which the samples are read for sigma_c and the failure (past the platen's arrival transient) [-]
+    #[arg(long, value_name = "STRAIN", default_value_t = Setup::default().reading_start, value_parser = options::in_range(0.0, 0.9, true, "-"))]
+    reading_start: f64,
     /// Threads of the force loop (default: the bed scene's)
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..=256))]
     threads: Option<u16>,
@@ -34,7 +37,7 @@ pub struct CompressArgs {
 
 pub fn compress_cmd(a: CompressArgs) -> Result<(), String> {
     let (mut engine, scene) = load(&a.bed, a.threads.map(usize::from))?;
-    let setup = Setup { strain_rate: a.strain_rate, max_strain: a.max_strain, free_time: a.free_time, window: a.window };
+    let setup = Setup { strain_rate: a.strain_rate, max_strain: a.max_strain, free_time: a.free_time, window: a.window, reading_start: a.reading_start };
     let started = Instant::now();
     let mut test = Compression::new(&mut engine, &scene, setup).map_err(|e| e.to_string())?;
     let s = test.start;

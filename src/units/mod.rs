@@ -11,6 +11,7 @@ pub mod model_description;
 pub mod model_description_fmi3;
 pub mod particle_wall_impact;
 mod scene_params;
+pub mod unconfined_compression;
 
 use std::sync::OnceLock;
 pub use error::UnitError;
@@ -177,7 +178,7 @@ fn uuid_of(text: &str) -> String {
 /// Every unit of the crate, built once.
 pub fn all() -> &'static [UnitInfo] {
     static UNITS: OnceLock<Vec<UnitInfo>> = OnceLock::new();
-    UNITS.get_or_init(|| vec![particle_wall_impact::info(), contact_element::info(), ball_indentation::info()])
+    UNITS.get_or_init(|| vec![particle_wall_impact::info(), contact_element::info(), ball_indentation::info(), unconfined_compression::info()])
 }
 
 /// The unit with this model identifier.

@@ -114,6 +114,30 @@ def indentation(shipped_indentation, quick_bed) -> Unit:
 
 
 @pytest.fixture(scope="session")
+def compression_fmu_path() -> Path:
+    """Path of UnconfinedCompression.fmu."""
+    return _fmu_path("UnconfinedCompression")
+
+
+@pytest.fixture(scope="session")
+def shipped_compression(compression_fmu_path, _unzip_root) -> Unit:
+    """UnconfinedCompression as shipped, extracted once: the Ch. 6 specimen and the unit's own defaults."""
+    return _unit("UnconfinedCompression", compression_fmu_path, _unzip_root)
+
+
+@pytest.fixture(scope="session")
+def compression(shipped_compression, quick_bed) -> Unit:
+    """UnconfinedCompression on the stand-in bed (800 soft cohesive spheres, 10 kPa; it fails at about 2 %
+    strain in about 10000 engine steps), one thread, a window of 0.5 % strain (the default 0.05 % holds 2
+    samples at this soft bed's step, and is refused). The same extraction as `shipped_compression`."""
+    return dataclasses.replace(
+        shipped_compression,
+        defaults={"bed_file": quick_bed["bed_file"], "threads": 1, "window": 0.005},
+        experiment={"stop_time": 0.05, "output_interval": 5e-4},
+    )
+
+
+@pytest.fixture(scope="session")
 def cli() -> Cli:
     """`powderfmu analyze` for energy-balance and closed-form reference values."""
     path = cli_path()

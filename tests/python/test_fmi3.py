@@ -22,7 +22,7 @@ from fmpy.validation import validate_fmu
 
 from fmu_support import StrictCVode, fmu_dir
 
-UNITS = ["ParticleWallImpact", "ContactElement", "BallIndentation"]
+UNITS = ["ParticleWallImpact", "ContactElement", "BallIndentation", "UnconfinedCompression"]
 
 
 def path3(name: str):
@@ -91,7 +91,7 @@ def test_every_fmi3_fmu_validates_and_has_the_fmi2_variables(name):
         assert cs.hasEventMode and cs.mightReturnEarlyFromDoStep
         # The normal motion's three and the tangential contact's (issue 33).
         assert len(md3.eventIndicators) == 4 and len(md3.derivatives) == 6
-    if name == "BallIndentation":
+    if name in ("BallIndentation", "UnconfinedCompression"):
         assert md3.modelExchange is None
 
 

@@ -16,7 +16,7 @@ import pytest
 
 from fmu_support import REPO, fmu_dir
 
-UNITS = ["ParticleWallImpact", "ContactElement", "BallIndentation"]
+UNITS = ["ParticleWallImpact", "ContactElement", "BallIndentation", "UnconfinedCompression"]
 
 
 def sha256(path) -> str:

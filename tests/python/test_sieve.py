@@ -305,6 +305,27 @@ def test_the_sweep_runs_the_indentation_units_parameter_studies(tmp_path, quick_
         sweep.check(bad)
 
 
+def test_the_sweep_runs_the_compression_units_parameter_studies(tmp_path, quick_bed):
+    """The compression task: one UnconfinedCompression run per task on the suite's stand-in bed, here the
+    strain rate and the window of sigma_c; a bad value is refused by name before any task runs."""
+    spec = {
+        "task": "compression",
+        "base": {"bed_file": quick_bed["bed_file"], "threads": 1, "stop_time": 0.1, "output_interval": 1e-3},
+        "grid": {"strain_rate": [1.0, 0.5], "window": [0.005, 0.01]},
+    }
+    counts = sweep.run(spec, tmp_path / "uct.csv", serial=True, progress=False)
+    assert counts["ran"] == 4 and counts["failed"] == 0
+    _, rows = sweep.read(tmp_path / "uct.csv")
+    strength = {(float(r["strain_rate"]), float(r["window"])): float(r["unconfined_yield_strength"]) for r in rows}
+    assert all(s > 0 for s in strength.values()) and len(set(strength.values())) == 4, strength
+    for r in rows:
+        sigma_1, sigma_c = float(r["consolidation_stress"]), float(r["unconfined_yield_strength"])
+        assert float(r["flow_function"]) == pytest.approx(sigma_1 / sigma_c, rel=1e-12)
+        assert r["failed"] == "True" and int(r["test_state"]) == 1, r
+    with pytest.raises(sweep.SweepError, match="strain_rate"):
+        sweep.check({**spec, "grid": {"strain_rate": [2e3]}})
+
+
 def test_a_scene_file_becomes_start_values_and_a_misspelt_key_is_named(tmp_path):
     from powderfmu import fmu_path, start_values
 

@@ -39,7 +39,7 @@ def installed(tmp_path_factory):
 
 def test_the_installed_package_finds_the_fmus_it_carries(installed):
     python, work, env = installed
-    out = _run([str(python), "-c", "import powderfmu, json; print(json.dumps([str(powderfmu.fmu_path(u)) for u in ('ParticleWallImpact', 'ContactElement', 'BallIndentation')] + [powderfmu.__file__]))"], work, env)
+    out = _run([str(python), "-c", "import powderfmu, powderfmu.fmus, json; print(json.dumps([str(powderfmu.fmu_path(u)) for u in powderfmu.fmus.UNITS] + [powderfmu.__file__]))"], work, env)
     *paths, package = json.loads(out)
     site = Path(package).parent
     assert str(REPO) not in package, package
