@@ -293,7 +293,7 @@ def compression(fmu, out, plateau):
           f"its own weight {last['self_weight_stress']:.0f} Pa on its base; consolidated to sigma_1 = {last['consolidation_stress']:.0f} Pa")
     state = "failed" if last["failed"] else "not failed by max_strain: a lower bound"
     print(f"  sigma_c (the largest mean stress over 0.05 % strain, read from 0.05 % on, past the platen's arrival) {sigma_c:.4g} +- {se:.2g} Pa "
-          f"(standard error; at 1/s: the 8100-sphere specimen reads 4.6 % lower, 0.1/s 6.7 % lower, docs/units/UnconfinedCompression.md) "
+          f"(standard error; the 8100- and 16400-sphere specimens read 4.5 % lower and 10.4 % higher, 0.1/s 6.7 % lower: docs/units/UnconfinedCompression.md) "
           f"at strain {last['strain_at_failure']:.4f}, {state}; ff_c = sigma_1 / sigma_c = {last['flow_function']:.3g} "
           f"(004 Table 2.1: free flowing above 10)")
     if not last["failed"]:

@@ -51,11 +51,11 @@ def test_a_missing_fmu_is_named_and_nothing_is_built(tmp_path, monkeypatch, no_e
 
 
 def test_every_task_names_a_unit_and_a_module_that_runs_it():
-    assert set(sweep.TASKS) == {"sieve", "indentation"}
+    assert set(sweep.TASKS) == {"sieve", "indentation", "compression"}
     for name, task in sweep.TASKS.items():
         assert task.unit in fmus.UNITS, name
         code = importlib.import_module(f"powderfmu.{task.module}")
         assert callable(code.resolve) and callable(code.run), name
         assert len(task.summary_keys()) > 0 and all(isinstance(k, str) for k in task.summary_keys()), name
-    with pytest.raises(sweep.SweepError, match="not one of sieve, indentation"):
+    with pytest.raises(sweep.SweepError, match="not one of sieve, indentation, compression"):
         sweep.check({"task": "hopper", "grid": {"frequency": [1.0]}})
