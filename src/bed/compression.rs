@@ -13,7 +13,9 @@
 //!   mean stress reaches `TOUCH` of the specimen's own weight stress, the bulk meeting it, not a lone
 //!   sphere standing above a rough top (on the 20 kPa Ch. 6 specimen such a sphere met it 0.09 % of
 //!   strain before the bulk, with sample means under 40 Pa and single steps above the threshold; the
-//!   bulk's arrival is an impact of kPa); stress the platen's force
+//!   bulk's arrival is an impact of kPa), or, for a specimen that never carries that much (one with no
+//!   strength to speak of, which slumps), where the platen has come `TOUCH_DEPTH` of the specimen's
+//!   height below its top; stress the platen's force
 //!   over the die's cross-section (the whole die's for a sector bed), averaged over each `CHECK_EVERY`
 //!   steps.
 //! - sigma_c is the largest mean stress over a window of `Setup::window` strain, with the standard error
@@ -40,6 +42,8 @@ pub const SOFTENING: f64 = 0.8;
 /// The platen touches the specimen when a sample's mean stress reaches this fraction of the specimen's
 /// own weight stress (module docs).
 pub const TOUCH: f64 = 0.5;
+/// Or when the platen has come this fraction of the specimen's height below its top (module docs).
+pub const TOUCH_DEPTH: f64 = 0.01;
 
 /// The test's settings.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -142,6 +146,8 @@ pub struct Compression {
     pub samples: Vec<Sample>,
     /// The platen's height at its touch (`TOUCH`) [m].
     touch: Option<f64>,
+    /// The platen's height at which it touches whatever it carries (`TOUCH_DEPTH`) [m].
+    touch_at_the_latest: f64,
     /// Sum of the stress over the current sample's steps, and their count.
     sum: (f64, u64),
     /// Whether the test has ended (failure or max_strain).
@@ -191,7 +197,8 @@ impl Compression {
         platen.velocity = Vec3::new(0.0, 0.0, -setup.strain_rate * height);
         e.rebuild();
         let start = Start { height, solid_fraction, self_weight_stress, consolidation_stress: scene.consolidation_stress };
-        Ok(Compression { setup, start, samples: Vec::new(), touch: None, sum: (0.0, 0), done: false, dt: e.dt() })
+        let touch_at_the_latest = top - TOUCH_DEPTH * height;
+        Ok(Compression { setup, start, samples: Vec::new(), touch: None, touch_at_the_latest, sum: (0.0, 0), done: false, dt: e.dt() })
     }
 
     /// Runs `steps` engine steps (or fewer, if the test ends), sampling every `CHECK_EVERY`. The steps run
@@ -215,7 +222,8 @@ impl Compression {
         self.sum = (self.sum.0 + stress, self.sum.1 + 1);
         if self.sum.1 == CHECK_EVERY {
             let mean = self.sum.0 / CHECK_EVERY as f64;
-            if self.touch.is_none() && mean > 0.0 && mean >= TOUCH * self.start.self_weight_stress {
+            let carries = mean > 0.0 && mean >= TOUCH * self.start.self_weight_stress;
+            if self.touch.is_none() && (carries || z <= self.touch_at_the_latest) {
                 self.touch = Some(z);
             }
             let strain = self.touch.map_or(0.0, |t| (t - z) / t);
@@ -373,7 +381,7 @@ mod tests {
         let setup = Setup { strain_rate: 1.0, max_strain: 0.5, free_time: 0.0, window: 0.005, reading_start: 0.0 };
         let dt = 1e-5; // 100 steps of 1e-5 s at 1/s: 1e-3 strain per sample, a window of 5 samples
         let samples = stresses.iter().enumerate().map(|(k, &s)| Sample { time: (k + 1) as f64 * 100.0 * dt, strain: k as f64 * 1e-3, stress: s }).collect();
-        Compression { setup, start, samples, touch: Some(1.0), sum: (0.0, 0), done: false, dt }
+        Compression { setup, start, samples, touch: Some(1.0), touch_at_the_latest: 0.99, sum: (0.0, 0), done: false, dt }
     }
 
     #[test]
@@ -419,6 +427,15 @@ mod tests {
         z -= 1e-6;
         t.observe(2000.0, z, 0.0);
         assert_eq!(t.samples.len(), 2);
+        // A specimen that never carries it: touched where the platen has come TOUCH_DEPTH below the top.
+        let mut weak = test_with(&[]);
+        (weak.touch, weak.start.self_weight_stress, weak.touch_at_the_latest) = (None, 300.0, 0.99);
+        let mut z = 1.0;
+        while weak.touch.is_none() {
+            z -= 1e-5;
+            weak.observe(10.0, z, 0.0);
+        }
+        assert!((0.99 - 1e-3..=0.99).contains(&weak.touch.unwrap()), "{:?}", weak.touch);
     }
 
     #[test]
