@@ -309,7 +309,6 @@ impl Specimen {
     /// Starts the test on a prepared bed (`Compression::new`), at the engine step `time_step` [s] when
     /// given (refused above the bed's stability limit).
     pub fn new(mut engine: AnyEngine, scene: BedScene, setup: Setup, time_step: Option<f64>) -> Result<Specimen, BedError> {
-        setup.check()?;
         if let Some(dt) = time_step {
             engine.set_time_step(&scene, dt)?;
         }

@@ -277,11 +277,7 @@ impl BallIndentation {
     }
 
     fn threads(values: &[Value]) -> Result<usize, UnitError> {
-        let t = values[REFS.threads].as_real();
-        if !(1.0..=256.0).contains(&t) {
-            return Err(variable("threads", format!("parameter `threads` = {t} is out of range: allowed [1, 256]")));
-        }
-        Ok(t as usize)
+        super::engine_threads(values[REFS.threads].as_real())
     }
 
     fn setup(values: &[Value]) -> Result<Setup, UnitError> {

@@ -186,6 +186,14 @@ pub fn by_identifier(id: &str) -> Option<&'static UnitInfo> {
     all().iter().find(|u| u.model_identifier == id)
 }
 
+/// The DEM units' `threads` parameter: the bed engine's threads, in [1, 256].
+pub(crate) fn engine_threads(t: f64) -> Result<usize, UnitError> {
+    if !(1.0..=256.0).contains(&t) {
+        return Err(UnitError::Variable { name: "threads", why: format!("parameter `threads` = {t} is out of range: allowed [1, 256]") });
+    }
+    Ok(t as usize)
+}
+
 /// Reads a model snapshot written by `contact_parts::encode` (`codec`), refusing anything larger than
 /// 1 MiB (a contact unit's snapshot is a few hundred bytes) or with bytes left over.
 pub(crate) fn decode<T: serde::de::DeserializeOwned>(bytes: &[u8]) -> Result<T, UnitError> {

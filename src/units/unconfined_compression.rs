@@ -119,11 +119,7 @@ impl UnconfinedCompression {
     }
 
     fn threads(values: &[Value]) -> Result<usize, UnitError> {
-        let t = values[REFS.threads].as_real();
-        if !(1.0..=256.0).contains(&t) {
-            return Err(variable("threads", format!("parameter `threads` = {t} is out of range: allowed [1, 256]")));
-        }
-        Ok(t as usize)
+        super::engine_threads(values[REFS.threads].as_real())
     }
 
     fn setup(values: &[Value]) -> Result<Setup, UnitError> {
@@ -212,11 +208,10 @@ impl Model for UnconfinedCompression {
         let t = &s.test;
         let last = t.samples.last().copied().unwrap_or_default();
         let reading = t.reading();
-        let (sigma_c, error, at, failed) = match &reading {
-            Some(r) => (r.unconfined_yield_strength.mean, r.unconfined_yield_strength.standard_error, r.strain_at_failure, r.failed),
-            None => (0.0, 0.0, 0.0, false),
+        let (sigma_c, error, at, failed, ff_c) = match &reading {
+            Some(r) => (r.unconfined_yield_strength.mean, r.unconfined_yield_strength.standard_error, r.strain_at_failure, r.failed, r.flow_function),
+            None => (0.0, 0.0, 0.0, false, f64::INFINITY),
         };
-        let ff_c = if sigma_c > 0.0 { t.start.consolidation_stress / sigma_c } else { f64::INFINITY };
         for (vr, x) in [
             (REFS.axial_stress, last.stress),
             (REFS.axial_strain, last.strain),

@@ -157,6 +157,26 @@ class Unit:
         fmu.exitInitializationMode()
 
 
+def refused(unit: Unit, start_values: dict, name: str, inputs: dict | None = None) -> list[str]:
+    """Initializes a Co-Simulation instance of `unit` with its suite defaults and `start_values` (and
+    `inputs`), expects fmi2ExitInitializationMode to fail, and that a logged message names `name`; frees
+    the instance. Returns the messages."""
+    import pytest
+
+    log = MessageLog()
+    fmu = unit.slave("bad", log)
+    fmu.setupExperiment(startTime=0.0)
+    unit.set_start_values(fmu, {**unit.defaults, **start_values})
+    for k, v in (inputs or {}).items():
+        fmu.setReal([unit.vr[k]], [v])
+    fmu.enterInitializationMode()
+    with pytest.raises(Exception):
+        fmu.exitInitializationMode()
+    fmu.freeInstance()
+    assert any(name in m for m in log.messages()), log.messages()
+    return log.messages()
+
+
 # ---------------------------------------------------------------------------------------------------
 # The command-line tool
 

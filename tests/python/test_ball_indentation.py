@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 from fmpy.validation import validate_fmu
 
-from fmu_support import MessageLog
+from fmu_support import MessageLog, refused
 
 LOADING, UNLOADING, DONE = 0, 1, 2
 
@@ -131,41 +131,26 @@ def test_a_saved_state_continues_bit_for_bit(indentation, threads):
     fmu.freeInstance()
 
 
-def _refused(indentation, start_values, name, inputs=None):
-    log = MessageLog()
-    fmu = indentation.slave("bad", log)
-    fmu.setupExperiment(startTime=0.0)
-    indentation.set_start_values(fmu, {**indentation.defaults, **start_values})
-    for k, v in (inputs or {}).items():
-        fmu.setReal([indentation.vr[k]], [v])
-    fmu.enterInitializationMode()
-    with pytest.raises(Exception):
-        fmu.exitInitializationMode()
-    fmu.freeInstance()
-    assert any(name in m for m in log.messages()), log.messages()
-    return log.messages()
-
-
 def test_bad_input_is_refused_at_initialization_and_the_host_survives(indentation, tmp_path):
-    _refused(indentation, {"indenter_diameter": 0.01}, "indenter_diameter")
-    _refused(indentation, {"max_penetration": 0.05}, "max_penetration")
-    _refused(indentation, {"bed_file": str(tmp_path / "missing.pfbed")}, "bed_file")
+    refused(indentation, {"indenter_diameter": 0.01}, "indenter_diameter")
+    refused(indentation, {"max_penetration": 0.05}, "max_penetration")
+    refused(indentation, {"bed_file": str(tmp_path / "missing.pfbed")}, "bed_file")
     bed = Path(indentation.unzipdir) / "resources" / "bed.pfbed"
     truncated = tmp_path / "truncated.pfbed"
     truncated.write_bytes(bed.read_bytes()[: bed.stat().st_size // 2])
-    _refused(indentation, {"bed_file": str(truncated)}, "bed_file")
-    _refused(indentation, {"indenter_motion": "input"}, "indenter_velocity", {"indenter_displacement": 0.0, "indenter_velocity": -0.01})
-    _refused(indentation, {"indenter_motion": "input"}, "indenter_displacement", {"indenter_displacement": 1e-4, "indenter_velocity": 0.01})
-    _refused(indentation, {"indenter_motion": "sideways"}, "indenter_motion")
-    _refused(indentation, {"fidelity": "medium"}, "fidelity")
-    _refused(indentation, {"time_step": 1e-3}, "time_step")
-    _refused(indentation, {"depth_origin": "surface"}, "depth_origin")
-    _refused(indentation, {"plateau_start": 0.2, "plateau_end": 0.1}, "plateau_end")
+    refused(indentation, {"bed_file": str(truncated)}, "bed_file")
+    refused(indentation, {"indenter_motion": "input"}, "indenter_velocity", {"indenter_displacement": 0.0, "indenter_velocity": -0.01})
+    refused(indentation, {"indenter_motion": "input"}, "indenter_displacement", {"indenter_displacement": 1e-4, "indenter_velocity": 0.01})
+    refused(indentation, {"indenter_motion": "sideways"}, "indenter_motion")
+    refused(indentation, {"fidelity": "medium"}, "fidelity")
+    refused(indentation, {"time_step": 1e-3}, "time_step")
+    refused(indentation, {"depth_origin": "surface"}, "depth_origin")
+    refused(indentation, {"plateau_start": 0.2, "plateau_end": 0.1}, "plateau_end")
     # A bed prepared with other materials is another powder: the difference is named, for a changed
     # parameter and for another bed (the shipped one, under the stand-in's parameters).
-    messages = _refused(indentation, {"particle_particle.surface_energy": 2.0}, "bed_file")
+    messages = refused(indentation, {"particle_particle.surface_energy": 2.0}, "bed_file")
     assert any("particle_particle.surface_energy" in m for m in messages), messages
-    messages = _refused(indentation, {"bed_file": str(bed)}, "bed_file")
+    messages = refused(indentation, {"bed_file": str(bed)}, "bed_file")
     assert any("was prepared with particle_particle." in m for m in messages), messages
     # After all that, a good instance still runs.
     fmu = indentation.slave("good")

@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 from fmpy.validation import validate_fmu
 
-from fmu_support import MessageLog
+from fmu_support import MessageLog, refused
 
 LOADING, DONE = 0, 1
 
@@ -125,35 +125,22 @@ def test_a_saved_state_continues_bit_for_bit(compression, threads):
     fmu.freeInstance()
 
 
-def _refused(compression, start_values, name):
-    log = MessageLog()
-    fmu = compression.slave("bad", log)
-    fmu.setupExperiment(startTime=0.0)
-    compression.set_start_values(fmu, {**compression.defaults, **start_values})
-    fmu.enterInitializationMode()
-    with pytest.raises(Exception):
-        fmu.exitInitializationMode()
-    fmu.freeInstance()
-    assert any(name in m for m in log.messages()), log.messages()
-    return log.messages()
-
-
 def test_bad_input_is_refused_at_initialization_by_name_and_the_host_survives(compression, tmp_path):
-    _refused(compression, {"strain_rate": 2e3}, "strain_rate")
-    _refused(compression, {"max_strain": 0.95}, "max_strain")
-    _refused(compression, {"window": 0.5}, "window")
+    refused(compression, {"strain_rate": 2e3}, "strain_rate")
+    refused(compression, {"max_strain": 0.95}, "max_strain")
+    refused(compression, {"window": 0.5}, "window")
     # The shipped default's 0.05 % holds 2 samples at the stand-in's step: refused, saying why.
-    messages = _refused(compression, {"window": 0.0005}, "window")
+    messages = refused(compression, {"window": 0.0005}, "window")
     assert any("at least 8 samples" in m for m in messages), messages
-    _refused(compression, {"reading_start": 0.099}, "reading_start")
-    _refused(compression, {"free_time": 20.0}, "free_time")
-    _refused(compression, {"threads": 0}, "threads")
-    _refused(compression, {"time_step": 1e-3}, "time_step")
-    _refused(compression, {"bed_file": str(tmp_path / "missing.pfbed")}, "bed_file")
+    refused(compression, {"reading_start": 0.099}, "reading_start")
+    refused(compression, {"free_time": 20.0}, "free_time")
+    refused(compression, {"threads": 0}, "threads")
+    refused(compression, {"time_step": 1e-3}, "time_step")
+    refused(compression, {"bed_file": str(tmp_path / "missing.pfbed")}, "bed_file")
     bed = Path(compression.defaults["bed_file"])
     truncated = tmp_path / "truncated.pfbed"
     truncated.write_bytes(bed.read_bytes()[: bed.stat().st_size // 2])
-    _refused(compression, {"bed_file": str(truncated)}, "bed_file")
+    refused(compression, {"bed_file": str(truncated)}, "bed_file")
     # After all that, a good instance still runs.
     fmu = compression.slave("good")
     compression.initialize(fmu)
