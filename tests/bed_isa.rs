@@ -1,21 +1,25 @@
-//! The engine's hot loops compiled for AVX2 (`bed/engine/isa.rs`), and the pair loop on AVX2 lanes where
-//! a law has one (`bed/engine/lanes`), step to the same bits as the x86-64 baseline's scalar loops: every
-//! law of the table on the shipped quarter bed (one and two threads), and indentations with the
-//! indenter and the die walls, with held spheres (the scalar loop) and without (the lanes). `POWDERFMU_ENGINE_ISA=baseline` forces the
-//! baseline; the bench prints the ISA it ran and a digest of every position, velocity and force.
+//! The engine's hot loops compiled for AVX2 and for AVX-512 (`bed/engine/isa.rs`), and the pair loop on
+//! lanes of four (AVX2) or eight (AVX-512) where a law has one (`bed/engine/lanes`), step to the same bits
+//! as the x86-64 baseline's scalar loops: every law of the table on the shipped quarter bed (one and two
+//! threads), and indentations with the indenter and the die walls, with held spheres (the scalar loop)
+//! and without (the lanes). `POWDERFMU_ENGINE_ISA` names the set (`baseline`, `avx2`; unset: the best
+//! the CPU has); the bench prints the set it ran and a digest of every position, velocity and force. A set
+//! this CPU lacks is left out of the comparison, with a line saying so.
 
 use std::process::Command;
 
 const BED: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/beds/bed_004_ch6_quarter.pfbed");
 
-fn run(args: &[&str], baseline: bool) -> String {
+/// The instruction sets compared: `(the value of POWDERFMU_ENGINE_ISA or None, the name the bench reports)`.
+const SETS: [(Option<&str>, &str); 3] = [(Some("baseline"), "baseline"), (Some("avx2"), "avx2"), (None, "avx512")];
+
+fn run(args: &[&str], isa: Option<&str>) -> String {
     let mut c = Command::new(env!("CARGO_BIN_EXE_powderfmu"));
     c.args(args);
-    if baseline {
-        c.env("POWDERFMU_ENGINE_ISA", "baseline");
-    } else {
-        c.env_remove("POWDERFMU_ENGINE_ISA");
-    }
+    match isa {
+        Some(isa) => c.env("POWDERFMU_ENGINE_ISA", isa),
+        None => c.env_remove("POWDERFMU_ENGINE_ISA"),
+    };
     let out = c.output().unwrap();
     assert!(out.status.success(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
     String::from_utf8_lossy(&out.stdout).into()
@@ -25,51 +29,63 @@ fn field<'a>(out: &'a str, key: &str) -> &'a str {
     out.split_whitespace().find_map(|w| w.strip_prefix(key)).unwrap_or_else(|| panic!("no {key} in {out}"))
 }
 
-/// Whether this CPU runs the AVX2 loops (then the comparisons below compare two builds of the loops).
-fn avx2() -> bool {
+/// Whether this CPU runs a set (the bench's `isa=` names it).
+fn available(name: &str) -> bool {
     #[cfg(target_arch = "x86_64")]
-    return std::is_x86_feature_detected!("avx2");
+    return match name {
+        "baseline" => true,
+        "avx2" => std::is_x86_feature_detected!("avx2"),
+        _ => std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("avx512f") && std::is_x86_feature_detected!("avx512dq"),
+    };
     #[cfg(not(target_arch = "x86_64"))]
-    false
+    return name == "baseline";
+}
+
+/// The sets this CPU runs, after saying which it cannot.
+fn sets() -> Vec<(Option<&'static str>, &'static str)> {
+    for (_, name) in SETS.iter().filter(|(_, name)| !available(name)) {
+        eprintln!("this CPU has no {name}: its loops are not compared here");
+    }
+    SETS.into_iter().filter(|(_, name)| available(name)).collect()
 }
 
 #[test]
-fn every_law_steps_to_the_same_bits_with_avx2_and_the_baseline() {
-    if !avx2() {
-        eprintln!("this CPU has no AVX2: only the baseline loops run here, nothing to compare");
-    }
+fn every_law_steps_to_the_same_bits_with_avx512_avx2_and_the_baseline() {
     let laws = ["nan", "pasha", "pasha_simplified", "luding", "thornton_ning", "tomas", "hertz", "jkr", "jkr_modified", "hooke", "walton_braun"];
     for law in laws {
         for threads in ["1", "2"] {
             let args = ["bed", "bench", BED, "--model", law, "--steps", "40", "--warmup", "0", "--threads", threads];
-            let (fast, base) = (run(&args, false), run(&args, true));
-            assert_eq!(field(&base, "isa="), "baseline");
-            assert_eq!(field(&fast, "isa="), if avx2() { "avx2" } else { "baseline" });
-            assert_eq!(field(&fast, "state_digest="), field(&base, "state_digest="), "{law}, {threads} threads");
-            assert_eq!(field(&base, "pair_loop="), "scalar");
-            // The lanes ran (so the comparison compared them): on lanes the laws that have them, the law per
-            // lane for the others whose tangential damping has a fixed ratio to the normal one.
-            let lanes = match law {
-                "pasha_simplified" | "hertz" | "hooke" | "jkr" | "jkr_modified" => "vector",
-                "tomas" => "scalar",
-                _ => "per_lane",
-            };
-            assert_eq!(field(&fast, "pair_loop="), if avx2() { lanes } else { "scalar" }, "{law}");
+            let runs: Vec<(&str, String)> = sets().into_iter().map(|(isa, name)| (name, run(&args, isa))).collect();
+            let base = &runs[0].1;
+            assert_eq!(field(base, "isa="), "baseline");
+            assert_eq!(field(base, "pair_loop="), "scalar");
+            for (name, out) in &runs[1..] {
+                assert_eq!(field(out, "isa="), *name);
+                assert_eq!(field(out, "state_digest="), field(base, "state_digest="), "{law}, {threads} threads, {name}");
+                // The lanes ran (so the comparison compared them): on lanes the laws that have them, the law
+                // per lane for the others whose tangential damping has a fixed ratio to the normal one.
+                let lanes = match law {
+                    "pasha_simplified" | "hertz" | "hooke" | "jkr" | "jkr_modified" => "vector",
+                    "tomas" => "scalar",
+                    _ => "per_lane",
+                };
+                assert_eq!(field(out, "pair_loop="), lanes, "{law}, {name}");
+            }
         }
     }
 }
 
 #[test]
-fn an_indentation_is_the_same_with_avx2_and_the_baseline() {
+fn an_indentation_is_the_same_with_avx512_avx2_and_the_baseline() {
     let dir = std::env::temp_dir().join(format!("powderfmu-isa-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     // `fast` holds the spheres far from the indenter (the scalar pair loop); `full` moves every sphere (the
     // lanes, with contacts that slide and let go under the indenter).
     for fidelity in ["fast", "full"] {
         for threads in ["1", "2"] {
-            let csv = |name: &str| dir.join(format!("{name}_{fidelity}_{threads}.csv"));
-            for (name, baseline) in [("avx2", false), ("base", true)] {
-                let out = csv(name);
+            let mut records = Vec::new();
+            for (isa, name) in sets() {
+                let out = dir.join(format!("{name}_{fidelity}_{threads}.csv"));
                 let args = [
                     "bed",
                     "indent",
@@ -87,11 +103,14 @@ fn an_indentation_is_the_same_with_avx2_and_the_baseline() {
                     "--out",
                     out.to_str().unwrap(),
                 ];
-                run(&args, baseline);
+                run(&args, isa);
+                records.push((name, std::fs::read(out).unwrap()));
             }
-            let (fast, base) = (std::fs::read(csv("avx2")).unwrap(), std::fs::read(csv("base")).unwrap());
-            assert!(fast.len() > 200, "a force-depth record");
-            assert!(fast == base, "{fidelity}, {threads} threads: the force-depth records differ");
+            let base = &records[0].1;
+            assert!(base.len() > 200, "a force-depth record");
+            for (name, record) in &records[1..] {
+                assert!(record == base, "{fidelity}, {threads} threads: the force-depth records of {name} and the baseline differ");
+            }
         }
     }
 }
@@ -107,7 +126,7 @@ fn the_skin_changes_no_force_under_any_law() {
     let bench = |law: &str, skin: &str, forget: &str| -> (String, u64) {
         let steps = if law == "pasha_simplified" { "2500" } else { "1000" };
         let args = ["bed", "bench", BED, "--model", law, "--steps", steps, "--warmup", "0", "--threads", "1", "--skin", skin, "--forgetting-distance", forget];
-        let out = run(&args, false);
+        let out = run(&args, None);
         (field(&out, "state_digest=").to_string(), field(&out, "list_builds=").parse().unwrap())
     };
     let mut rebuilt_more = 0;
@@ -125,7 +144,7 @@ fn the_skin_changes_no_force_under_any_law() {
     assert_ne!(bench("pasha_simplified", "1e-4", "2e-5").0, forgetting);
     // The lanes forget as the scalar loop does: the baseline steps to the same bits.
     let args = ["bed", "bench", BED, "--model", "pasha_simplified", "--steps", "2500", "--warmup", "0", "--threads", "1", "--skin", "1e-4", "--forgetting-distance", "2e-6"];
-    assert_eq!(field(&run(&args, true), "state_digest="), forgetting, "the baseline's scalar loop against the lanes");
+    assert_eq!(field(&run(&args, Some("baseline")), "state_digest="), forgetting, "the baseline's scalar loop against the lanes");
     for (option, value) in [("--skin", "0"), ("--forgetting-distance", "0")] {
         let out = Command::new(env!("CARGO_BIN_EXE_powderfmu")).args(["bed", "bench", BED, "--model", "hertz", option, value]).output().unwrap();
         assert!(!out.status.success());

@@ -23,7 +23,7 @@ fn run(api: &Api, index: usize) -> Vec<u64> {
     let step = f!(api, b"fmi2DoStep", DoStep);
     // Laws with and without the exact solver, damped and not: each thread its own path.
     assert_eq!(api.set(c, PWI, "initial_velocity", 0.5 + 0.37 * index as f64), fmi2OK);
-    assert_eq!(api.set(c, PWI, "restitution_coefficient", if index % 2 == 0 { 1.0 } else { 0.6 }), fmi2OK);
+    assert_eq!(api.set(c, PWI, "restitution_coefficient", if index.is_multiple_of(2) { 1.0 } else { 0.6 }), fmi2OK);
     unsafe {
         assert_eq!(setup(c, fmi2False, 0.0, 0.0, fmi2False, 0.0), fmi2OK);
     }
@@ -80,7 +80,7 @@ fn run3(api: &Api3, index: usize, early_return: bool) -> Vec<u64> {
     let c = api.instantiate(PWI, false, false, early_return, &log);
     assert!(!c.is_null(), "{:?}", log.lock().unwrap().last());
     assert_eq!(api.set(c, PWI, "initial_velocity", 0.5 + 0.37 * index as f64), fmi2OK);
-    assert_eq!(api.set(c, PWI, "restitution_coefficient", if index % 2 == 0 { 1.0 } else { 0.6 }), fmi2OK);
+    assert_eq!(api.set(c, PWI, "restitution_coefficient", if index.is_multiple_of(2) { 1.0 } else { 0.6 }), fmi2OK);
     assert_eq!(api.enter_initialization(c), fmi2OK);
     assert_eq!(api.call0(b"fmi3ExitInitializationMode", c), fmi2OK);
     let mut bits = Vec::with_capacity(STEPS * 4);

@@ -151,7 +151,7 @@ impl NeighborList {
         self.owner.clear();
         for i in 0..self.rows() {
             let len = (self.start[i + 1] - self.start[i]) as usize;
-            self.owner.extend(std::iter::repeat(i as u32).take(len));
+            self.owner.extend(std::iter::repeat_n(i as u32, len));
         }
     }
 

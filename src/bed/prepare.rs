@@ -363,7 +363,7 @@ fn run_phases(mut e: AnyEngine, scene: &BedScene, done: &str, last: &str, fill_h
                     scene.consolidation_stress
                 )));
             }
-            if steps % REPORT_EVERY == 0 {
+            if steps.is_multiple_of(REPORT_EVERY) {
                 progress(&Progress { phase: "consolidate", fraction: overall("consolidate", mean / scene.consolidation_stress), time: e.time(), steps, detail: format!("piston stress {mean:.4e} Pa"), bed: &e });
             }
         }
@@ -388,7 +388,7 @@ fn run_phases(mut e: AnyEngine, scene: &BedScene, done: &str, last: &str, fill_h
             e.step();
             steps += 1;
             free_steps = if e.walls()[PISTON].force == ZERO { free_steps + 1 } else { 0 };
-            if steps % REPORT_EVERY == 0 {
+            if steps.is_multiple_of(REPORT_EVERY) {
                 let sigma = piston_stress(&e, scene);
                 progress(&Progress { phase: "unload", fraction: overall("unload", 1.0 - sigma / report.consolidation_stress), time: e.time(), steps, detail: format!("piston stress {sigma:.4e} Pa"), bed: &e });
             }

@@ -181,7 +181,7 @@ impl Segment {
                 let g_b = g(tb);
                 if g_lo >= 0.0 && g_b < 0.0 {
                     let t = first_outside(g, |v| v >= 0.0, (lo, g_lo), (tb, g_b), |lo, hi| hi - lo <= 2.0 * f64::EPSILON * hi);
-                    if best.map_or(true, |b| t < b.0) {
+                    if best.is_none_or(|b| t < b.0) {
                         best = Some((t, i));
                     }
                     break;

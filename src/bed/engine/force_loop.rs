@@ -3,8 +3,9 @@
 //! arithmetic is hand-written (`dot`, `sub`, `scale`), as in the kernel, for speed (measured in
 //! `bed/mod.rs`), and so is the accumulation (`Sink::add_contact`), which adds the partner's share with
 //! the signs the other side of the contact gives. With AVX2 the particle pairs run four at a time on
-//! lanes (`lanes`; 1.4-1.8 times the scalar loop for the laws evaluated on lanes, docs/benchmarks.md),
-//! their last 0-3 slots and the wall contacts one at a time here.
+//! lanes, with AVX-512 eight (`lanes`; 1.4-1.8 times the scalar loop for the laws evaluated on lanes
+//! with AVX2, docs/benchmarks.md), a part's last slots (fewer than a block) and the wall contacts one at
+//! a time here.
 
 use super::super::interaction::{BedLaw, Interaction};
 use super::super::kernel::{contact, surface_velocity};
@@ -144,10 +145,12 @@ impl<L: BedLaw> Engine<L> {
 
 /// The force loop of one part, with the engine's instruction set.
 fn run_part<L: BedLaw>(s: &Shared<L>, part: Part<L::History>) {
+    // SAFETY: an engine takes an instruction set only where the CPU reports it (`Engine::set_isa`).
     #[cfg(target_arch = "x86_64")]
-    if s.isa == Isa::Avx2 {
-        // SAFETY: an engine takes Isa::Avx2 only where the CPU reports AVX2 (`Engine::set_isa`).
-        return unsafe { run_part_avx2(s, part) };
+    match s.isa {
+        Isa::Avx512 => return unsafe { run_part_avx512(s, part) },
+        Isa::Avx2 => return unsafe { run_part_avx2(s, part) },
+        Isa::Baseline => {}
     }
     run_part_body(s, part)
 }
@@ -155,6 +158,12 @@ fn run_part<L: BedLaw>(s: &Shared<L>, part: Part<L::History>) {
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
 unsafe fn run_part_avx2<L: BedLaw>(s: &Shared<L>, part: Part<L::History>) {
+    run_part_body(s, part)
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,avx512f,avx512dq")]
+unsafe fn run_part_avx512<L: BedLaw>(s: &Shared<L>, part: Part<L::History>) {
     run_part_body(s, part)
 }
 
@@ -183,10 +192,16 @@ fn run_part_body<L: BedLaw>(s: &Shared<L>, part: Part<L::History>) {
             dt: s.dt,
             forget: s.forget,
         };
-        // SAFETY: `lanes` is Some only on an engine whose isa is AVX2, which it takes only where the CPU
-        // reports AVX2 (`Engine::set_isa`).
-        let done = unsafe { super::lanes::pairs::<L>(&input, first, last, slot0, normal, spring, radius, &mut sink) };
-        // The part's last 0-3 slots, one at a time.
+        // SAFETY: `lanes` is Some only on an engine whose isa is AVX2 or AVX-512, which it takes only
+        // where the CPU reports it (`Engine::set_isa`).
+        let done = unsafe {
+            if s.isa == Isa::Avx512 {
+                super::lanes::pairs_avx512::<L>(&input, first, last, slot0, normal, spring, radius, &mut sink)
+            } else {
+                super::lanes::pairs_avx2::<L>(&input, first, last, slot0, normal, spring, radius, &mut sink)
+            }
+        };
+        // The part's last slots (fewer than a block), one at a time.
         for slot in done..last {
             let i = s.list.owner[slot] as usize;
             let m = slot - slot0;

@@ -8,9 +8,10 @@
 //!   over the particles it touches, and their sum in part order, so a run is bitwise the same for a
 //!   given thread count;
 //! - `force_loop`: the force loop of one part over its pairs and wall contacts;
-//! - `isa`: the instruction set the force loop and the kick run with (AVX2 where the CPU has it);
-//! - `lanes`: the pair loop on AVX2 lanes, four contacts at once, for the laws that have it; the kick on
-//!   lanes, four spheres at once (`lanes/kick.rs`).
+//! - `isa`: the instruction set the force loop and the kick run with (AVX-512 or AVX2 where the CPU
+//!   has it);
+//! - `lanes`: the pair loop on lanes, four contacts at once with AVX2 and eight with AVX-512, for the
+//!   laws that have it; the kick on AVX2 lanes, four spheres at once (`lanes/kick.rs`).
 
 mod contact_memory;
 mod force_loop;
@@ -172,7 +173,7 @@ impl<L: BedLaw> Engine<L> {
         self.isa
     }
 
-    /// How the force loop runs the particle pairs now: `vector` (the law on AVX2 lanes), `per_lane` (the
+    /// How the force loop runs the particle pairs now: `vector` (the law on lanes), `per_lane` (the
     /// law once per lane, the rest on lanes) or `scalar` (`lanes`).
     pub fn pair_loop(&self) -> &'static str {
         #[cfg(target_arch = "x86_64")]
@@ -185,10 +186,10 @@ impl<L: BedLaw> Engine<L> {
         "scalar"
     }
 
-    /// Whether this force loop may run the pairs on lanes, the law and its pairs aside: AVX2, and neither
+    /// Whether this force loop may run the pairs on lanes, the law and its pairs aside: AVX2 or AVX-512, and neither
     /// held spheres nor the dipole pass (both stay on the scalar loop).
     pub(super) fn lanes_allowed(&self) -> bool {
-        self.isa == Isa::Avx2 && !self.any_held && !self.record_dipoles
+        self.isa != Isa::Baseline && !self.any_held && !self.record_dipoles
     }
 
     /// Runs the hot loops with another instruction set (the same bits either way; for comparisons).
@@ -610,18 +611,18 @@ struct Body<'a> {
 #[allow(clippy::too_many_arguments)]
 fn kick_range(isa: Isa, base: usize, v: &mut [Vec3], w: &mut [Vec3], x: &mut [Vec3], body: Body, load: &[Load], reference: &[Vec3], kick: Kick) -> f64 {
     #[cfg(target_arch = "x86_64")]
-    if isa == Isa::Avx2 {
+    if isa != Isa::Baseline {
         let end = base + v.len();
         if body.held.is_empty() && reference.len() >= end {
             // Four spheres at a time on lanes, the last 0-3 one at a time (the same bits: `lanes::kick`).
-            // SAFETY: an engine takes Isa::Avx2 only where the CPU reports AVX2 (`Engine::set_isa`).
+            // SAFETY: an engine takes Isa::Avx2 or Isa::Avx512 (which includes AVX2) only where the CPU reports it (`Engine::set_isa`).
             let moved = unsafe { lanes::kick4(base, v, w, x, body, load, reference, kick) };
             let done = v.len() / 4 * 4;
             // SAFETY: as above.
             let rest = unsafe { kick_avx2(base + done, &mut v[done..], &mut w[done..], &mut x[done..], body, load, reference, kick) };
             return moved.max(rest);
         }
-        // SAFETY: an engine takes Isa::Avx2 only where the CPU reports AVX2 (`Engine::set_isa`).
+        // SAFETY: an engine takes Isa::Avx2 or Isa::Avx512 (which includes AVX2) only where the CPU reports it (`Engine::set_isa`).
         return unsafe { kick_avx2(base, v, w, x, body, load, reference, kick) };
     }
     kick_body(base, v, w, x, body, load, reference, kick)

@@ -7,11 +7,11 @@
 //! Lane parameters: R*, E*, Gamma, b, sqrt(a) at detachment, the detachment overlap of the curve, the
 //! overlap where an established contact ends, and 1 for `repulsive` Coulomb limit (else 0).
 
-use super::x86::{select, splat, Eval4, History4, LaneLaw, Lanes};
+use super::simd::{Mask, Simd};
+use super::x86::{Eval, History, LaneLaw, Lanes};
 use super::LAW_PARAMS;
 use crate::law::jkr::{Jkr, JkrCurve, JkrHistory};
 use crate::law::jkr_modified::{JkrFrictionLimit, JkrModified, JkrStiffnessRadius};
-use std::arch::x86_64::*;
 use std::f64::consts::PI;
 
 fn params(curve: &JkrCurve, detach_at: f64, repulsive: bool) -> [f64; LAW_PARAMS] {
@@ -22,51 +22,46 @@ fn params(curve: &JkrCurve, detach_at: f64, repulsive: bool) -> [f64; LAW_PARAMS
 /// The contact radius of the lanes in `need` (others give anything), `JkrCurve::contact_radius_from`
 /// with the same operations in the same order.
 #[inline(always)]
-unsafe fn contact_radius4(p: &[__m256d; LAW_PARAMS], alpha: __m256d, guess: __m256d, need: __m256d, curves: [&JkrCurve; 4]) -> __m256d {
-    // SAFETY: the caller runs with AVX2 (the trait's contract).
+unsafe fn contact_radius<V: Simd>(p: &[V; LAW_PARAMS], alpha: V, guess: V, need: V::Mask, curves: &[&JkrCurve]) -> V {
+    // SAFETY: the caller runs with the width's instruction set (the trait's contract).
     unsafe {
         let (r, b, wf, alpha_detach) = (p[0], p[3], p[4], p[5]);
-        let zero = _mm256_setzero_pd();
-        let threshold = _mm256_mul_pd(_mm256_mul_pd(wf, wf), splat(1.0 + 1e-6));
+        let zero = V::splat(0.0);
+        let threshold = wf * wf * V::splat(1.0 + 1e-6);
         // The scalar law's closed form where b = 0, alpha <= alpha_f or the guess is not above a_f.
-        let usable = _mm256_and_pd(
-            _mm256_and_pd(_mm256_cmp_pd::<_CMP_NEQ_UQ>(b, zero), _mm256_cmp_pd::<_CMP_NLE_UQ>(alpha, alpha_detach)),
-            _mm256_cmp_pd::<_CMP_GT_OQ>(guess, threshold),
-        );
-        let mut active = _mm256_and_pd(need, usable);
-        let mut closed_form = _mm256_andnot_pd(usable, need);
-        let mut w = _mm256_sqrt_pd(guess);
+        let usable = b.ne(zero) & alpha.nle(alpha_detach) & guess.gt(threshold);
+        let mut active = need & usable;
+        let mut closed_form = need.and_not(usable);
+        let mut w = guess.sqrt();
         let mut result = zero;
         for _ in 0..8 {
-            if _mm256_movemask_pd(active) == 0 {
+            if active.bits() == 0 {
                 break;
             }
-            let df = _mm256_sub_pd(_mm256_div_pd(_mm256_mul_pd(_mm256_mul_pd(_mm256_mul_pd(splat(4.0), w), w), w), r), b);
-            let failed = _mm256_andnot_pd(_mm256_cmp_pd::<_CMP_GT_OQ>(df, zero), active);
-            closed_form = _mm256_or_pd(closed_form, failed);
-            active = _mm256_andnot_pd(failed, active);
-            let quartic = _mm256_div_pd(_mm256_mul_pd(_mm256_mul_pd(_mm256_mul_pd(w, w), w), w), r);
-            let step = _mm256_div_pd(_mm256_sub_pd(_mm256_sub_pd(quartic, _mm256_mul_pd(b, w)), alpha), df);
-            w = select(active, _mm256_sub_pd(w, step), w);
-            let away = _mm256_cmp_pd::<_CMP_GT_OQ>(df, _mm256_div_pd(_mm256_mul_pd(_mm256_mul_pd(_mm256_mul_pd(splat(0.4), w), w), w), r));
-            let settled = select(away, _mm256_mul_pd(splat(1e-8), w), _mm256_mul_pd(splat(4.0 * f64::EPSILON), w));
-            let done = _mm256_and_pd(active, _mm256_cmp_pd::<_CMP_LE_OQ>(_mm256_andnot_pd(splat(-0.0), step), settled));
-            let m = _mm256_max_pd(w, wf);
-            result = select(done, _mm256_mul_pd(m, m), result);
-            active = _mm256_andnot_pd(done, active);
+            let df = V::splat(4.0) * w * w * w / r - b;
+            let failed = active.and_not(df.gt(zero));
+            closed_form = closed_form | failed;
+            active = active.and_not(failed);
+            let quartic = w * w * w * w / r;
+            let step = (quartic - b * w - alpha) / df;
+            w = V::select(active, w - step, w);
+            let away = df.gt(V::splat(0.4) * w * w * w / r);
+            let settled = V::select(away, V::splat(1e-8) * w, V::splat(4.0 * f64::EPSILON) * w);
+            let done = active & step.abs().le(settled);
+            let m = w.max(wf);
+            result = V::select(done, m * m, result);
+            active = active.and_not(done);
         }
-        closed_form = _mm256_or_pd(closed_form, active);
-        let lanes = _mm256_movemask_pd(closed_form);
+        closed_form = closed_form | active;
+        let lanes = closed_form.bits();
         if lanes != 0 {
-            let (mut a, mut out) = ([0.0f64; 4], [0.0f64; 4]);
-            _mm256_storeu_pd(a.as_mut_ptr(), alpha);
-            _mm256_storeu_pd(out.as_mut_ptr(), result);
-            for k in 0..4 {
+            let (a, mut out) = (alpha.to_array(), result.to_array());
+            for (k, curve) in curves.iter().enumerate() {
                 if lanes & (1 << k) != 0 {
-                    out[k] = curves[k].contact_radius(a[k]);
+                    out.as_mut()[k] = curve.contact_radius(a.as_ref()[k]);
                 }
             }
-            result = _mm256_loadu_pd(out.as_ptr());
+            result = V::load(out.as_ref());
         }
         result
     }
@@ -74,22 +69,19 @@ unsafe fn contact_radius4(p: &[__m256d; LAW_PARAMS], alpha: __m256d, guess: __m2
 
 /// Force and stiffness on the curve at contact radius a (`JkrCurve::force`, `JkrCurve::stiffness`).
 #[inline(always)]
-unsafe fn on_curve4(p: &[__m256d; LAW_PARAMS], a: __m256d) -> (__m256d, __m256d) {
-    // SAFETY: the caller runs with AVX2 (the trait's contract).
+unsafe fn on_curve<V: Simd>(p: &[V; LAW_PARAMS], a: V) -> (V, V) {
+    // SAFETY: the caller runs with the width's instruction set (the trait's contract).
     unsafe {
         let (r, youngs, gamma, b) = (p[0], p[1], p[2], p[3]);
-        let four_e = _mm256_mul_pd(splat(4.0), youngs);
-        let k8 = _mm256_mul_pd(_mm256_mul_pd(splat(8.0 * PI), gamma), youngs);
-        let a3 = _mm256_mul_pd(_mm256_mul_pd(a, a), a);
-        let force = _mm256_sub_pd(_mm256_div_pd(_mm256_mul_pd(four_e, a3), _mm256_mul_pd(splat(3.0), r)), _mm256_sqrt_pd(_mm256_mul_pd(k8, a3)));
-        let df_da = _mm256_sub_pd(
-            _mm256_div_pd(_mm256_mul_pd(_mm256_mul_pd(four_e, a), a), r),
-            _mm256_mul_pd(splat(1.5), _mm256_sqrt_pd(_mm256_mul_pd(k8, a))),
-        );
-        let slope = _mm256_sub_pd(_mm256_div_pd(_mm256_mul_pd(splat(2.0), a), r), _mm256_div_pd(_mm256_mul_pd(splat(0.5), b), _mm256_sqrt_pd(a)));
-        let dalpha_da = _mm256_max_pd(slope, _mm256_div_pd(_mm256_mul_pd(splat(2e-6), a), r));
-        let hertz = _mm256_mul_pd(_mm256_mul_pd(splat(2.0), youngs), a);
-        let stiffness = select(_mm256_cmp_pd::<_CMP_EQ_OQ>(b, _mm256_setzero_pd()), hertz, _mm256_div_pd(df_da, dalpha_da));
+        let four_e = V::splat(4.0) * youngs;
+        let k8 = V::splat(8.0 * PI) * gamma * youngs;
+        let a3 = a * a * a;
+        let force = four_e * a3 / (V::splat(3.0) * r) - (k8 * a3).sqrt();
+        let df_da = four_e * a * a / r - V::splat(1.5) * (k8 * a).sqrt();
+        let slope = V::splat(2.0) * a / r - V::splat(0.5) * b / a.sqrt();
+        let dalpha_da = slope.max(V::splat(2e-6) * a / r);
+        let hertz = V::splat(2.0) * youngs * a;
+        let stiffness = V::select(b.eq(V::splat(0.0)), hertz, df_da / dalpha_da);
         (force, stiffness)
     }
 }
@@ -98,40 +90,38 @@ unsafe fn on_curve4(p: &[__m256d; LAW_PARAMS], a: __m256d) -> (__m256d, __m256d)
 /// `pull_off` (F_n + 2 f_c, 004 Eq. 3.49) or, where the last parameter is set, `repulsive`
 /// (`JkrCurve::repulsive_part`).
 #[inline(always)]
-unsafe fn evaluation(p: &[__m256d; LAW_PARAMS], in_contact: __m256d, a: __m256d, history: History4) -> Eval4 {
-    // SAFETY: the caller runs with AVX2 (the trait's contract).
+unsafe fn evaluation<V: Simd>(p: &[V; LAW_PARAMS], in_contact: V::Mask, a: V, history: History<V>) -> Eval<V> {
+    // SAFETY: the caller runs with the width's instruction set (the trait's contract).
     unsafe {
         let (r, youngs, gamma, b) = (p[0], p[1], p[2], p[3]);
-        let (force, stiffness) = on_curve4(p, a);
-        let (force, stiffness, a) = (_mm256_and_pd(force, in_contact), _mm256_and_pd(stiffness, in_contact), _mm256_and_pd(a, in_contact));
-        let f_c = _mm256_mul_pd(_mm256_mul_pd(splat(1.5 * PI), gamma), r);
-        let pull_off = _mm256_add_pd(force, _mm256_mul_pd(splat(2.0), f_c));
-        let two_e = _mm256_mul_pd(splat(2.0), youngs);
-        let repulsive_lanes = _mm256_cmp_pd::<_CMP_NEQ_UQ>(p[7], _mm256_setzero_pd());
-        let sliding_normal_force = if _mm256_movemask_pd(repulsive_lanes) != 0 {
-            let k = _mm256_div_pd(_mm256_mul_pd(splat(4.0), youngs), _mm256_mul_pd(splat(3.0), r));
-            let c = _mm256_mul_pd(two_e, b);
-            let root = _mm256_sqrt_pd(_mm256_max_pd(
-                _mm256_add_pd(_mm256_mul_pd(c, c), _mm256_mul_pd(_mm256_mul_pd(splat(4.0), k), force)),
-                _mm256_setzero_pd(),
-            ));
-            let x = _mm256_div_pd(_mm256_add_pd(c, root), _mm256_mul_pd(splat(2.0), k));
-            select(repulsive_lanes, _mm256_mul_pd(_mm256_mul_pd(k, x), x), pull_off)
+        let zero = V::splat(0.0);
+        let (force, stiffness) = on_curve(p, a);
+        let (force, stiffness, a) = (force.keep(in_contact), stiffness.keep(in_contact), a.keep(in_contact));
+        let f_c = V::splat(1.5 * PI) * gamma * r;
+        let pull_off = force + V::splat(2.0) * f_c;
+        let two_e = V::splat(2.0) * youngs;
+        let repulsive_lanes = p[7].ne(zero);
+        let sliding_normal_force = if repulsive_lanes.bits() != 0 {
+            let k = V::splat(4.0) * youngs / (V::splat(3.0) * r);
+            let c = two_e * b;
+            let root = (c * c + V::splat(4.0) * k * force).max(zero).sqrt();
+            let x = (c + root) / (V::splat(2.0) * k);
+            V::select(repulsive_lanes, k * x * x, pull_off)
         } else {
             pull_off
         };
-        let damping_stiffness = _mm256_mul_pd(two_e, a);
-        Eval4 {
+        let none = V::mask_from_fn(|_| false);
+        Eval {
             force,
             stiffness,
             in_contact,
             history,
-            yielded: _mm256_setzero_pd(),
+            yielded: none,
             sliding_normal_force,
             radius: a,
-            damping_stiffness,
+            damping_stiffness: two_e * a,
             tangential_stiffness: None,
-            attraction: _mm256_setzero_pd(),
+            attraction: none,
         }
     }
 }
@@ -146,12 +136,13 @@ impl LaneLaw for JkrModified {
     }
 
     #[inline(always)]
-    unsafe fn evaluate4(p: &[__m256d; LAW_PARAMS], alpha: __m256d, h: &History4, laws: [&Self; 4], guess: __m256d) -> Eval4 {
-        // SAFETY: the caller runs with AVX2 (the trait's contract).
+    unsafe fn evaluate_lanes<V: Simd>(p: &[V; LAW_PARAMS], alpha: V, h: &History<V>, laws: &[&Self], guess: V) -> Eval<V> {
+        // SAFETY: the caller runs with the width's instruction set (the trait's contract).
         unsafe {
             // `alpha <= 0` separates; its negation (true for NaN, as the scalar `else`) touches.
-            let in_contact = _mm256_cmp_pd::<_CMP_NLE_UQ>(alpha, _mm256_setzero_pd());
-            let a = contact_radius4(p, alpha, guess, in_contact, laws.map(|l| &l.curve));
+            let in_contact = alpha.nle(V::splat(0.0));
+            let curves: [&JkrCurve; 8] = std::array::from_fn(|k| &laws[k.min(laws.len() - 1)].curve);
+            let a = contact_radius(p, alpha, guess, in_contact, &curves[..laws.len()]);
             evaluation(p, in_contact, a, *h)
         }
     }
@@ -165,20 +156,19 @@ impl LaneLaw for Jkr {
         Some(params(&self.curve, self.detach_overlap(), false))
     }
 
-    /// Lane `a`: established (a mask).
-    fn load_history(h: &[JkrHistory]) -> History4 {
-        let est = |k: usize| if h[k].established { f64::from_bits(u64::MAX) } else { 0.0 };
-        // SAFETY: `_mm256_set_pd` needs only AVX, which every caller (the AVX2 lane loop) has.
-        unsafe { History4 { a: _mm256_set_pd(est(3), est(2), est(1), est(0)), b: _mm256_setzero_pd() } }
+    /// Lanes `established`.
+    #[inline(always)]
+    unsafe fn load_history<V: Simd>(h: &[JkrHistory]) -> History<V> {
+        // SAFETY: the caller's (the trait's contract).
+        unsafe { History { established: V::mask_from_fn(|k| h[k].established), value: V::splat(0.0) } }
     }
 
-    fn store_history(h: &mut [JkrHistory], v: &History4, mask: i32) {
-        let mut est = [0.0f64; 4];
-        // SAFETY: as in `load_history`.
-        unsafe { _mm256_storeu_pd(est.as_mut_ptr(), v.a) };
-        for k in 0..4 {
+    #[inline(always)]
+    fn store_history<V: Simd>(h: &mut [JkrHistory], v: &History<V>, mask: u32) {
+        let est = v.established.bits();
+        for (k, h) in h.iter_mut().enumerate().take(V::N) {
             if mask & (1 << k) != 0 {
-                h[k] = JkrHistory { established: est[k].to_bits() != 0 };
+                *h = JkrHistory { established: est & (1 << k) != 0 };
             }
         }
     }
@@ -186,20 +176,21 @@ impl LaneLaw for Jkr {
     /// The initial history is not established, and an established contact holds at negative overlap
     /// down to its end: only an established contact must be visited.
     #[inline(always)]
-    unsafe fn must_visit(h: &History4) -> __m256d {
-        h.a
+    unsafe fn must_visit<V: Simd>(h: &History<V>) -> V::Mask {
+        h.established
     }
 
     #[inline(always)]
-    unsafe fn evaluate4(p: &[__m256d; LAW_PARAMS], alpha: __m256d, h: &History4, laws: [&Self; 4], guess: __m256d) -> Eval4 {
-        // SAFETY: the caller runs with AVX2 (the trait's contract).
+    unsafe fn evaluate_lanes<V: Simd>(p: &[V; LAW_PARAMS], alpha: V, h: &History<V>, laws: &[&Self], guess: V) -> Eval<V> {
+        // SAFETY: the caller runs with the width's instruction set (the trait's contract).
         unsafe {
-            let zero = _mm256_setzero_pd();
+            let zero = V::splat(0.0);
             // `Jkr::separated`: (!established && alpha < 0) || alpha < detach_at.
-            let separated = _mm256_or_pd(_mm256_andnot_pd(h.a, _mm256_cmp_pd::<_CMP_LT_OQ>(alpha, zero)), _mm256_cmp_pd::<_CMP_LT_OQ>(alpha, p[6]));
-            let in_contact = _mm256_xor_pd(separated, _mm256_cmp_pd::<_CMP_EQ_UQ>(zero, zero));
-            let a = contact_radius4(p, alpha, guess, in_contact, laws.map(|l| &l.curve));
-            evaluation(p, in_contact, a, History4 { a: in_contact, b: zero })
+            let separated = alpha.lt(zero).and_not(h.established) | alpha.lt(p[6]);
+            let in_contact = !separated;
+            let curves: [&JkrCurve; 8] = std::array::from_fn(|k| &laws[k.min(laws.len() - 1)].curve);
+            let a = contact_radius(p, alpha, guess, in_contact, &curves[..laws.len()]);
+            evaluation(p, in_contact, a, History { established: in_contact, value: zero })
         }
     }
 }

@@ -8,7 +8,7 @@
 //! thread). On lanes the branch is a select and four chains run in one (docs/benchmarks.md, issue 30's
 //! eleventh round).
 
-use super::x86::{select, splat, transpose};
+use super::simd::transpose;
 use crate::bed::engine::partition::Load;
 use crate::bed::engine::{Body, Kick};
 use crate::bed::Vec3;
@@ -73,8 +73,8 @@ pub unsafe fn kick4(base: usize, v: &mut [Vec3], w: &mut [Vec3], x: &mut [Vec3],
     unsafe {
         let n = v.len() / 4 * 4;
         assert!(w.len() >= n && x.len() >= n);
-        let (zero, one) = (_mm256_setzero_pd(), splat(1.0));
-        let (gx, gy, gz, hv, dtv) = (splat(g.x), splat(g.y), splat(g.z), splat(h), splat(dt));
+        let (zero, one) = (_mm256_setzero_pd(), _mm256_set1_pd(1.0));
+        let (gx, gy, gz, hv, dtv) = (_mm256_set1_pd(g.x), _mm256_set1_pd(g.y), _mm256_set1_pd(g.z), _mm256_set1_pd(h), _mm256_set1_pd(dt));
         let mut moved = zero;
         let mut q = 0;
         while q < n {
@@ -103,9 +103,9 @@ pub unsafe fn kick4(base: usize, v: &mut [Vec3], w: &mut [Vec3], x: &mut [Vec3],
                     let spin = _mm256_sqrt_pd(_mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(wx, wx), _mm256_mul_pd(wy, wy)), _mm256_mul_pd(wz, wz)));
                     let stops = _mm256_cmp_pd::<_CMP_GT_OQ>(spin, brake);
                     let keep = _mm256_and_pd(_mm256_sub_pd(one, _mm256_div_pd(brake, spin)), stops);
-                    wx = select(rolls, _mm256_mul_pd(wx, keep), wx);
-                    wy = select(rolls, _mm256_mul_pd(wy, keep), wy);
-                    wz = select(rolls, _mm256_mul_pd(wz, keep), wz);
+                    wx = _mm256_blendv_pd(wx, _mm256_mul_pd(wx, keep), rolls);
+                    wy = _mm256_blendv_pd(wy, _mm256_mul_pd(wy, keep), rolls);
+                    wz = _mm256_blendv_pd(wz, _mm256_mul_pd(wz, keep), rolls);
                 }
             }
             store3(v, q, [vx, vy, vz]);

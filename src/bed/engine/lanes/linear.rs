@@ -1,9 +1,9 @@
 //! The linear spring on lanes (`law::linear`, 004 Eq. 3.9): k_n alpha for alpha > 0. No history.
 
-use super::x86::{Eval4, History4, LaneLaw, Lanes};
+use super::simd::Simd;
+use super::x86::{Eval, History, LaneLaw, Lanes};
 use super::LAW_PARAMS;
 use crate::law::linear::Linear;
-use std::arch::x86_64::*;
 
 impl LaneLaw for Linear {
     const LANES: Lanes = Lanes::Vector;
@@ -13,24 +13,25 @@ impl LaneLaw for Linear {
     }
 
     #[inline(always)]
-    unsafe fn evaluate4(p: &[__m256d; LAW_PARAMS], alpha: __m256d, h: &History4, _laws: [&Self; 4], _guess: __m256d) -> Eval4 {
-        // SAFETY: the caller runs with AVX2 (the trait's contract).
+    unsafe fn evaluate_lanes<V: Simd>(p: &[V; LAW_PARAMS], alpha: V, h: &History<V>, _laws: &[&Self], _guess: V) -> Eval<V> {
+        // SAFETY: the caller runs with the width's instruction set (the trait's contract).
         unsafe {
-            let k = p[0];
+            let (k, zero) = (p[0], V::splat(0.0));
             // `alpha <= 0` separates; its negation (true for NaN, as the scalar `else`) touches.
-            let in_contact = _mm256_cmp_pd::<_CMP_NLE_UQ>(alpha, _mm256_setzero_pd());
-            let force = _mm256_and_pd(_mm256_mul_pd(k, alpha), in_contact);
-            Eval4 {
+            let in_contact = alpha.nle(zero);
+            let force = (k * alpha).keep(in_contact);
+            let none = V::mask_from_fn(|_| false);
+            Eval {
                 force,
                 stiffness: k,
                 in_contact,
                 history: *h,
-                yielded: _mm256_setzero_pd(),
+                yielded: none,
                 sliding_normal_force: force,
-                radius: _mm256_setzero_pd(),
+                radius: zero,
                 damping_stiffness: k,
                 tangential_stiffness: None,
-                attraction: _mm256_setzero_pd(),
+                attraction: none,
             }
         }
     }
