@@ -36,6 +36,20 @@ fn prepare_then_info_snapshot_render_export_and_bench() {
     assert!(out.contains("consolidation stress reached") && out.contains("bed written to"), "{out}");
     let memory = |out: &str| out.lines().find(|l| l.starts_with("memory:")).map(str::to_string);
     let prepared = memory(&out);
+    // The same settled fill branched to another consolidation stress; a bed consolidated already is refused.
+    let other = d.join("other.bed");
+    let (code, out2, err) = run(&["bed", "prepare", "--resume", settled.to_str().unwrap(), "--consolidation-stress", "5e3", "-o", other.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out2.contains("(target 5.0000e3 Pa)") && out.contains("(target 1.0000e4 Pa)"), "{out2}\n{out}");
+    let (code, _, err) = run(&["bed", "prepare", "--resume", bed.to_str().unwrap(), "--consolidation-stress", "5e3", "-o", d.join("again.bed").to_str().unwrap()]);
+    assert_ne!(code, 0);
+    assert!(err.contains("--consolidation-stress") && err.contains("consolidated (to 1e4 Pa) already"), "{err}");
+    assert!(!d.join("again.bed").exists());
+    let (code, _, err) = run(&["bed", "prepare", scene.to_str().unwrap(), "--consolidation-stress", "5e3"]);
+    assert_eq!(code, 2, "--consolidation-stress needs --resume: {err}");
+    let (code, _, err) = run(&["bed", "prepare", "--resume", settled.to_str().unwrap(), "--consolidation-stress", "0"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("--consolidation-stress") && err.contains("allowed"), "{err}");
     let (code, out, err) = run(&["bed", "info", bed.to_str().unwrap()]);
     assert_eq!(code, 0, "{err}");
     assert!(prepared.is_some() && prepared == memory(&out), "bed prepare and bed info give one memory per particle: {prepared:?} vs {:?}", memory(&out));

@@ -292,6 +292,13 @@ pub fn phase_done(e: &AnyEngine, scene: &BedScene) -> &'static str {
     }
 }
 
+/// Whether a saved bed's consolidation has begun: its piston has left its parked place at the top of the
+/// die. Before, the consolidation stress can still be chosen (`bed prepare --resume --consolidation-stress`).
+pub fn consolidation_started(e: &AnyEngine, scene: &BedScene) -> bool {
+    let piston = &e.walls()[PISTON];
+    piston.velocity[2] != 0.0 || piston.position[2] != scene.die_height
+}
+
 /// Continues a saved bed (`powderfmu bed prepare --resume`) after the phase it went through, up to and
 /// including `last`: a preparation of hours can be done in parts, and nothing is lost when one stops.
 pub fn resume(e: AnyEngine, scene: &BedScene, last: &str, progress: &mut dyn FnMut(&Progress)) -> Result<(AnyEngine, Report), BedError> {

@@ -39,6 +39,11 @@ pub enum BedCommand {
         /// Minutes between checkpoints [min]
         #[arg(long, value_name = "MIN", default_value_t = 10.0, value_parser = options::positive("min"))]
         checkpoint: f64,
+        /// With --resume of a bed not yet consolidated (saved with --until fill or settle): consolidate
+        /// to this piston stress instead of its scene's [Pa]. One settled fill branched to several
+        /// stresses (a flow function on the same fill); the bed written holds the new stress
+        #[arg(long, value_name = "PA", value_parser = options::in_range(0.0, 1e9, false, "Pa"))]
+        consolidation_stress: Option<f64>,
     },
     /// Count, height, solid fraction, coordination, overlap, stress of a bed file
     Info {
@@ -197,8 +202,8 @@ pub struct BenchArgs {
 
 pub fn run(command: BedCommand) -> Result<(), String> {
     match command {
-        BedCommand::Prepare { scene, output, threads, until, resume, checkpoint } => {
-            prepare_cmd(scene, output, threads.map(usize::from), &until, resume, checkpoint)
+        BedCommand::Prepare { scene, output, threads, until, resume, checkpoint, consolidation_stress } => {
+            prepare_cmd(scene, output, threads.map(usize::from), &until, resume, checkpoint, consolidation_stress)
         }
         BedCommand::Info { bed } => info_cmd(&bed),
         BedCommand::Params { bed } => params_cmd(&bed),
@@ -277,10 +282,24 @@ fn prepare_cmd(
     until: &str,
     resume: Option<PathBuf>,
     every: f64,
+    consolidation_stress: Option<f64>,
 ) -> Result<(), String> {
+    if consolidation_stress.is_some() && resume.is_none() {
+        return Err("--consolidation-stress goes with --resume of a bed saved with --until fill or settle; a new preparation consolidates to its scene's consolidation_stress".into());
+    }
     let (mut scene, saved, default_out) = match (&resume, scene_path) {
         (Some(bed), _) => {
-            let (engine, scene) = load(bed, threads)?;
+            let (engine, mut scene) = load(bed, threads)?;
+            if let Some(stress) = consolidation_stress {
+                if prepare::consolidation_started(&engine, &scene) {
+                    return Err(format!(
+                        "--consolidation-stress: {} has been consolidated (to {:e} Pa) already; give a bed saved with --until fill or --until settle",
+                        bed.display(),
+                        scene.consolidation_stress
+                    ));
+                }
+                scene.consolidation_stress = stress;
+            }
             (scene, Some(engine), bed.clone())
         }
         (None, Some(scene_path)) => {
@@ -578,6 +597,7 @@ fn indent_cmd(a: IndentArgs) -> Result<(), String> {
         indentation_speed: a.speed,
         max_penetration: a.max_penetration.unwrap_or(0.1 * d),
         constraint_factor: 3.0,
+        constraint_factor_standard_error: 0.0,
         motion: Motion::Prescribed,
         shortcut,
         plateau: (a.plateau_start, a.plateau_end),
