@@ -85,6 +85,7 @@ fn the_indenter_reads_the_whole_die_from_the_half() {
         indentation_speed: 0.05,
         max_penetration: 2e-4,
         constraint_factor: 3.0,
+        constraint_factor_standard_error: 0.0,
         motion: Motion::Prescribed,
         shortcut: None,
         plateau: PLATEAU,

@@ -35,6 +35,7 @@ fn setup() -> Setup {
         indentation_speed: 0.05,
         max_penetration: 0.2 * 0.002,
         constraint_factor: 3.0,
+        constraint_factor_standard_error: 0.0,
         motion: Motion::Prescribed,
         shortcut: None,
         plateau: PLATEAU,

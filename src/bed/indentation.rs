@@ -102,6 +102,10 @@ pub struct Setup {
     pub max_penetration: f64,
     /// C of Eq. 2.10.
     pub constraint_factor: f64,
+    /// The standard error of C (0: C taken as exact, the constant of the seed; a measured C has one,
+    /// `bed::constraint_factor`).
+    #[serde(default)]
+    pub constraint_factor_standard_error: f64,
     /// How the indenter moves.
     pub motion: Motion,
     /// The shortcut of `fidelity = fast` (none: every sphere moves, `fidelity = full`).
@@ -270,8 +274,13 @@ pub struct Reading {
     pub hardness_standard_error: f64,
     /// `hardness` / C (004 Eq. 2.10) [Pa].
     pub unconfined_yield_strength: f64,
-    /// `hardness_standard_error` / C [Pa].
+    /// The standard error of `unconfined_yield_strength` from those of the hardness and of C
+    /// (`yield_strength_error`) [Pa].
     pub unconfined_yield_strength_standard_error: f64,
+    /// C the yield strength was divided by.
+    pub constraint_factor: f64,
+    /// C's standard error (0 for a constant C).
+    pub constraint_factor_standard_error: f64,
     /// Hydrostatic stress of Bagi's tensor in the dynamic bin (004 Eq. 5.2) [Pa].
     pub hydrostatic_stress: f64,
     /// Deviatoric stress of Bagi's tensor in the dynamic bin (004 Eq. 5.3) [Pa].
@@ -293,6 +302,13 @@ pub struct Reading {
     pub plateau: MeanEstimate,
     /// Height of the first touch above the depth origin [m] (0 with `DepthOrigin::FirstTouch`).
     pub depth_origin_offset: f64,
+}
+
+/// The standard error of sigma_c = H / C from the part the hardness gives (its standard error over C)
+/// and C's relative standard error: the two independent, added in quadrature. With C exact, the first
+/// to the bit.
+pub fn yield_strength_error(from_hardness: f64, yield_strength: f64, relative_c_error: f64) -> f64 {
+    from_hardness.hypot(yield_strength * relative_c_error)
 }
 
 /// A prepared bed with the indenter in it.
@@ -418,6 +434,10 @@ impl Indentation {
         }
         if !(setup.constraint_factor > 0.0 && setup.constraint_factor.is_finite()) {
             return Err(ParamError::OutOfRange { name: "constraint_factor", value: setup.constraint_factor, allowed: "(0, inf)".into() }.into());
+        }
+        let c_error = setup.constraint_factor_standard_error;
+        if !(c_error >= 0.0 && c_error.is_finite()) {
+            return Err(ParamError::OutOfRange { name: "constraint_factor_standard_error", value: c_error, allowed: "[0, inf)".into() }.into());
         }
         let (p0, p1) = setup.plateau;
         if !(p0 >= 0.0 && p0.is_finite()) {
@@ -669,6 +689,7 @@ impl Indentation {
     /// state unchanged).
     pub fn reading(&mut self) -> Reading {
         let (d, f, h) = (self.setup.indenter_diameter, self.force(), self.depth());
+        let (c, c_error) = (self.setup.constraint_factor, self.setup.constraint_factor_standard_error);
         let area = projected_area(d, h);
         let (hardness, hardness_standard_error) = match self.record.state {
             TestState::Loading if area > 0.0 => (f / area, 0.0),
@@ -687,8 +708,10 @@ impl Indentation {
             projected_area: area,
             hardness,
             hardness_standard_error,
-            unconfined_yield_strength: hardness / self.setup.constraint_factor,
-            unconfined_yield_strength_standard_error: hardness_standard_error / self.setup.constraint_factor,
+            unconfined_yield_strength: hardness / c,
+            unconfined_yield_strength_standard_error: yield_strength_error(hardness_standard_error / c, hardness / c, c_error / c),
+            constraint_factor: c,
+            constraint_factor_standard_error: c_error,
             hydrostatic_stress: stress.hydrostatic(),
             deviatoric_stress: stress.deviatoric(),
             contacts: self.contacts(),

@@ -24,6 +24,7 @@
 #[macro_use]
 mod any;
 pub mod compression;
+pub mod constraint_factor;
 mod engine;
 pub mod export;
 pub mod file;

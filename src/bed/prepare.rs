@@ -245,6 +245,7 @@ pub const PHASES: [&str; 5] = ["fill", "settle", "consolidate", "unload", "relax
 ///     indentation_speed: 0.05,
 ///     max_penetration: 0.1 * 0.002,
 ///     constraint_factor: 3.0,
+///     constraint_factor_standard_error: 0.0,
 ///     motion: Motion::Prescribed,
 ///     shortcut: None,
 ///     plateau: PLATEAU,

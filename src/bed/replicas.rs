@@ -11,7 +11,7 @@
 //! each, 2026-12-03, `benches/indentation_over_beds.py`), no gain beyond the machine's noise, and the
 //! first bed then reads another trajectory than alone.
 
-use super::indentation::{Indentation, Reading, TestState};
+use super::indentation::{yield_strength_error, Indentation, Reading, TestState};
 use super::series::MeanEstimate;
 use super::BedError;
 
@@ -46,6 +46,7 @@ pub fn mean_reading(readings: &[Reading]) -> Reading {
     let mean = |f: fn(&Reading) -> f64| readings.iter().map(f).sum::<f64>() / n;
     let plateau = combined_plateau(&readings.iter().map(|r| r.plateau).collect::<Vec<_>>());
     let state = least_advanced(readings.iter().map(|r| r.state));
+    let unconfined_yield_strength = mean(|r| r.unconfined_yield_strength);
     Reading {
         force: mean(|r| r.force),
         depth: mean(|r| r.depth),
@@ -53,8 +54,15 @@ pub fn mean_reading(readings: &[Reading]) -> Reading {
         projected_area: mean(|r| r.projected_area),
         hardness: mean(|r| r.hardness),
         hardness_standard_error: independent(readings.iter().map(|r| r.hardness_standard_error)),
-        unconfined_yield_strength: mean(|r| r.unconfined_yield_strength),
-        unconfined_yield_strength_standard_error: independent(readings.iter().map(|r| r.unconfined_yield_strength_standard_error)),
+        unconfined_yield_strength,
+        // The hardness's part independent from bed to bed, C's common to every bed (the same material).
+        unconfined_yield_strength_standard_error: yield_strength_error(
+            independent(readings.iter().map(|r| r.hardness_standard_error / r.constraint_factor)),
+            unconfined_yield_strength,
+            mean(|r| r.constraint_factor_standard_error / r.constraint_factor),
+        ),
+        constraint_factor: mean(|r| r.constraint_factor),
+        constraint_factor_standard_error: mean(|r| r.constraint_factor_standard_error),
         hydrostatic_stress: mean(|r| r.hydrostatic_stress),
         deviatoric_stress: mean(|r| r.deviatoric_stress),
         contacts: (readings.iter().map(|r| r.contacts).sum::<usize>() as f64 / n).round() as usize,
@@ -214,6 +222,8 @@ mod tests {
             hardness_standard_error: force / 4e-6,
             unconfined_yield_strength: force / 4e-5 / 3.0,
             unconfined_yield_strength_standard_error: force / 4e-6 / 3.0,
+            constraint_factor: 3.0,
+            constraint_factor_standard_error: 0.0,
             hydrostatic_stress: 2.0 * force,
             deviatoric_stress: force,
             contacts: 3,
@@ -246,5 +256,27 @@ mod tests {
         assert_eq!(m.contacts, 3);
         let alone = mean_reading(&[a]);
         assert_eq!(alone, a, "one bed's reading is its own");
+    }
+
+    #[test]
+    fn a_measured_constraint_factors_error_is_common_to_the_beds_and_does_not_average_down() {
+        // C = 6 +- 0.6 (10 %) on both beds; their hardness errors 5e4 and 1e5 Pa as above.
+        let with_c = |r: Reading| {
+            let (c, e) = (6.0, 0.6);
+            let s = r.hardness / c;
+            Reading { unconfined_yield_strength: s, unconfined_yield_strength_standard_error: yield_strength_error(r.hardness_standard_error / c, s, e / c), constraint_factor: c, constraint_factor_standard_error: e, ..r }
+        };
+        let (a, b) = (with_c(reading(0.2, TestState::Done, true, (7000.0, 300.0, 100))), with_c(reading(0.4, TestState::Done, true, (9000.0, 400.0, 120))));
+        let m = mean_reading(&[a, b]);
+        let from_hardness = (5e4f64.powi(2) + 1e5f64.powi(2)).sqrt() / 2.0 / 6.0;
+        let s = 0.3 / 4e-5 / 6.0;
+        assert!((m.unconfined_yield_strength - s).abs() < 1e-9);
+        let expected = (from_hardness.powi(2) + (0.1 * s).powi(2)).sqrt();
+        assert!((m.unconfined_yield_strength_standard_error / expected - 1.0).abs() < 1e-12, "{} {expected}", m.unconfined_yield_strength_standard_error);
+        assert_eq!((m.constraint_factor, m.constraint_factor_standard_error), (6.0, 0.6));
+        // One bed: its own error, the hardness's and C's in quadrature.
+        assert_eq!(mean_reading(&[a]), a);
+        let own = ((5e4f64 / 6.0).powi(2) + (0.2f64 / 4e-5 / 6.0 * 0.1).powi(2)).sqrt();
+        assert!((a.unconfined_yield_strength_standard_error / own - 1.0).abs() < 1e-12);
     }
 }

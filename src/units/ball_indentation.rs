@@ -11,7 +11,7 @@
 use super::scene_params;
 use super::variables::{Value, VarType, Variable};
 use super::{Model, UnitError, UnitInfo};
-use crate::bed::file;
+use crate::bed::{constraint_factor, file};
 use crate::bed::indentation::{DepthOrigin, Indentation, Motion, Setup, TestState, FAST, PLATEAU};
 use crate::bed::replicas::{over_beds, Replicas};
 use crate::bed::{BedError, BedScene};
@@ -129,8 +129,10 @@ variable_table! {
     projected_area: Variable::output("projected_area", VarType::Real, "m2", "A(h) = pi (d h - h^2) (004 Eq. 2.9)"),
     hardness: Variable::output("hardness", VarType::Real, "Pa", "while loading F / A(h); after the turn F_max / A(h_c) (004 Sec. 2.3.5), F_max = force_at_turn (the loading curve's force at h_max, not its largest sample) and h_c = contact_depth"),
     hardness_standard_error: Variable::output("hardness_standard_error", VarType::Real, "Pa", "after the turn, the standard error of hardness from the fluctuations of the force it reads: A(h_max) / A(h_c) times the error of the mean F/A(h) behind force_at_turn, sqrt(sigma^2 min(1, tau / m)) over its m samples, with the variance sigma^2 and the correlation time tau of F/A(h) over the loading's deeper half (the estimator of plateau_hardness_standard_error): the last tenth of the depth holds less than one correlation time, so its own scatter would understate the error; 0 while loading (hardness is then one sample) and where fewer than 8 samples lie in the last tenth of the loading depth. It holds neither the uncertainty of contact_depth nor the bed-to-bed scatter; with replicas, the beds' own errors combined as independent"),
-    unconfined_yield_strength: Variable::output("unconfined_yield_strength", VarType::Real, "Pa", "hardness / constraint_factor (004 Eq. 2.10)"),
-    unconfined_yield_strength_standard_error: Variable::output("unconfined_yield_strength_standard_error", VarType::Real, "Pa", "hardness_standard_error / constraint_factor (the constraint factor taken as exact)"),
+    unconfined_yield_strength: Variable::output("unconfined_yield_strength", VarType::Real, "Pa", "hardness / C (004 Eq. 2.10), C the constraint_factor_used"),
+    unconfined_yield_strength_standard_error: Variable::output("unconfined_yield_strength_standard_error", VarType::Real, "Pa", "from hardness_standard_error / C and C's own standard error, added in quadrature (a constant constraint_factor taken as exact; a measured C's error is common to the replicas' beds)"),
+    constraint_factor_used: Variable::output("constraint_factor_used", VarType::Real, "", "C the unconfined_yield_strength is divided by: constraint_factor, or with constraint_factor_source = measured the C(sigma_1) measured for the 004 Ch. 6 material at the bed's consolidation stress (the mean over the replicas' beds)"),
+    constraint_factor_used_standard_error: Variable::output("constraint_factor_used_standard_error", VarType::Real, "", "the standard error of constraint_factor_used: 0 for the constant, the measured table's for C(sigma_1) (its fill-to-fill scatter, docs/data/constraint_factor_ch6.csv)"),
     hydrostatic_stress: Variable::output("hydrostatic_stress", VarType::Real, "Pa", "Bagi's hydrostatic stress in the dynamic bin under the indenter (004 Eqs. 5.1-5.2, Sec. 5.2), compression positive"),
     deviatoric_stress: Variable::output("deviatoric_stress", VarType::Real, "Pa", "Bagi's deviatoric stress in the dynamic bin under the indenter (004 Eq. 5.3)"),
     indenter_contacts: Variable::output("indenter_contacts", VarType::Integer, "", "spheres touching the indenter (on a quarter bed, with their mirror images: four per sphere)"),
@@ -151,8 +153,9 @@ variable_table! {
         .with_range(Some(0.0), None),
     max_penetration: Variable::parameter("max_penetration", Value::Real(0.0016), "m", "depth at which the prescribed indenter turns (default h/r = 0.2)")
         .with_range(Some(0.0), None),
-    constraint_factor: Variable::parameter("constraint_factor", Value::Real(3.0), "", "C = hardness / yield strength (004 Eq. 2.10)")
+    constraint_factor: Variable::parameter("constraint_factor", Value::Real(3.0), "", "C = hardness / yield strength (004 Eq. 2.10) with constraint_factor_source = constant")
         .with_range(Some(0.0), None),
+    constraint_factor_source: Variable::parameter("constraint_factor_source", Value::String("constant".into()), "", "constant (constraint_factor, taken as exact) or measured: C(sigma_1) = H / sigma_c measured for the 004 Ch. 6 material with this unit's default test and UnconfinedCompression's at 1, 3, 10 and 20 kPa, interpolated in ln sigma_1 at the bed's consolidation stress, with its standard error (docs/data/constraint_factor_ch6.csv); refused for a bed of another material or outside 1-20 kPa"),
     plateau_start: Variable::parameter("plateau_start", Value::Real(PLATEAU.0), "", "h/r where the plateau window of plateau_hardness starts, in [0, plateau_end); a window beyond max_penetration / r gets no samples (default 0.1: 004's minimum depth, Secs. 5.2-5.3)")
         .with_range(Some(0.0), None),
     plateau_end: Variable::parameter("plateau_end", Value::Real(PLATEAU.1), "", "h/r where the plateau window ends, above plateau_start (default 0.2, the default max_penetration)")
@@ -280,6 +283,32 @@ impl BallIndentation {
         super::engine_threads(values[REFS.threads].as_real())
     }
 
+    /// Whether `constraint_factor_source` asks for the measured C(sigma_1).
+    fn measured_constraint_factor(values: &[Value]) -> Result<bool, UnitError> {
+        match values[REFS.constraint_factor_source].as_str() {
+            "constant" => Ok(false),
+            "measured" => Ok(true),
+            other => Err(variable(
+                "constraint_factor_source",
+                format!("parameter `constraint_factor_source` = \"{other}\" is not known: allowed constant, measured"),
+            )),
+        }
+    }
+
+    /// The measured C(sigma_1) and its standard error for a bed (`bed::constraint_factor`): of its
+    /// material, at its consolidation stress.
+    fn measured_for(scene: &BedScene, path: &Path) -> Result<(f64, f64), UnitError> {
+        let refuse = |why: String| variable("constraint_factor_source", format!("parameter `constraint_factor_source` = \"measured\": {why}"));
+        let reference = BedScene::from_json(QUARTER_BED_SCENE).expect("the shipped quarter bed's scene is valid");
+        if let Some(key) = constraint_factor::other_material(scene, &reference) {
+            return Err(refuse(format!(
+                "C was measured for the 004 Ch. 6 material only, and bed_file {} differs from it in {key}; give constraint_factor with constraint_factor_source = constant",
+                path.display()
+            )));
+        }
+        constraint_factor::at(constraint_factor::points(), scene.consolidation_stress).map_err(|why| refuse(format!("bed_file {}: {why}", path.display())))
+    }
+
     fn setup(values: &[Value]) -> Result<Setup, UnitError> {
         let motion = match values[REFS.indenter_motion].as_str() {
             "prescribed" => Motion::Prescribed,
@@ -308,6 +337,7 @@ impl BallIndentation {
             indentation_speed: values[REFS.indentation_speed].as_real(),
             max_penetration: values[REFS.max_penetration].as_real(),
             constraint_factor: values[REFS.constraint_factor].as_real(),
+            constraint_factor_standard_error: 0.0,
             motion,
             shortcut,
             plateau: (values[REFS.plateau_start].as_real(), values[REFS.plateau_end].as_real()),
@@ -370,6 +400,7 @@ impl BallIndentation {
 impl Model for BallIndentation {
     fn initialize(&mut self, values: &[Value], _t0: f64, _model_exchange: bool) -> Result<(), UnitError> {
         let setup = Self::setup(values)?;
+        let measured = Self::measured_constraint_factor(values)?;
         let threads = Self::threads(values)?;
         let paths = self.bed_paths(values)?;
         let start = match setup.motion {
@@ -393,6 +424,14 @@ impl Model for BallIndentation {
             })?;
             self.check_bed(values, &scene, path)?;
             let indenter = self.indenter_pair(values, &scene)?;
+            let mut setup = setup;
+            if measured {
+                (setup.constraint_factor, setup.constraint_factor_standard_error) = Self::measured_for(&scene, path)?;
+                self.events.push(format!(
+                    "constraint factor measured for the 004 Ch. 6 material at the bed's consolidation stress {:e} Pa: C = {:.3} +- {:.3} (docs/data/constraint_factor_ch6.csv)",
+                    scene.consolidation_stress, setup.constraint_factor, setup.constraint_factor_standard_error
+                ));
+            }
             let mut test = Indentation::new(engine, scene, setup, start, Some(&indenter))?;
             let dt = values[REFS.time_step].as_real();
             if dt != 0.0 {
@@ -450,6 +489,8 @@ impl Model for BallIndentation {
             (REFS.hardness_standard_error, r.hardness_standard_error),
             (REFS.unconfined_yield_strength, r.unconfined_yield_strength),
             (REFS.unconfined_yield_strength_standard_error, r.unconfined_yield_strength_standard_error),
+            (REFS.constraint_factor_used, r.constraint_factor),
+            (REFS.constraint_factor_used_standard_error, r.constraint_factor_standard_error),
             (REFS.hydrostatic_stress, r.hydrostatic_stress),
             (REFS.deviatoric_stress, r.deviatoric_stress),
             (REFS.kinetic_energy, r.kinetic_energy),

@@ -238,3 +238,51 @@ def test_the_depth_from_the_mean_surface_is_the_depth_from_the_first_touch_less_
     n = len(r)
     assert np.allclose(r["penetration_depth"], default_run["penetration_depth"][:n] - offset, rtol=0, atol=1e-15)
     assert np.array_equal(r["indenter_force"], default_run["indenter_force"][:n])
+
+
+def _table_c_at_10_kpa():
+    """C and its standard error at 10 kPa from the committed table (docs/data/constraint_factor_ch6.csv)."""
+    import csv
+
+    from fmu_support import REPO
+
+    with open(REPO / "docs" / "data" / "constraint_factor_ch6.csv") as f:
+        rows = [r for r in csv.DictReader(line for line in f if not line.startswith("#"))]
+    row = next(r for r in rows if float(r["consolidation_stress_Pa"]) == 1e4)
+    return float(row["constraint_factor"]), float(row["constraint_factor_standard_error"])
+
+
+def test_a_measured_constraint_factor_divides_the_yield_strength_with_its_error(shipped_indentation):
+    """`constraint_factor_source` = measured on the seed's material (the shipped quarter bed, consolidated
+    to 10 kPa): the unit divides by the table's C(10 kPa) and adds its error; the constant stays exact."""
+    c, c_error = _table_c_at_10_kpa()
+    u = shipped_indentation
+    read = ["hardness", "hardness_standard_error", "unconfined_yield_strength", "unconfined_yield_strength_standard_error", "constraint_factor_used", "constraint_factor_used_standard_error"]
+    got = {}
+    for source in ["measured", "constant"]:
+        fmu = u.slave(source)
+        u.initialize(fmu, {"constraint_factor_source": source})
+        t, h = 0.0, 1e-3
+        for _ in range(6):  # 6 ms of loading: the indenter is in the bed
+            fmu.doStep(t, h)
+            t += h
+        got[source] = dict(zip(read, fmu.getReal([u.vr[n] for n in read])))
+        fmu.terminate()
+        fmu.freeInstance()
+    m, k = got["measured"], got["constant"]
+    assert m["hardness"] > 0 and m["hardness"] == k["hardness"], "the same test either way"
+    assert m["constraint_factor_used"] == pytest.approx(c, rel=1e-12) and m["constraint_factor_used_standard_error"] == pytest.approx(c_error, rel=1e-12)
+    assert m["unconfined_yield_strength"] == pytest.approx(m["hardness"] / c, rel=1e-12)
+    # While loading the hardness is one sample (its error 0): the yield strength's error is C's alone.
+    assert m["hardness_standard_error"] == 0.0
+    assert m["unconfined_yield_strength_standard_error"] == pytest.approx(m["unconfined_yield_strength"] * c_error / c, rel=1e-12)
+    assert (k["constraint_factor_used"], k["constraint_factor_used_standard_error"]) == (3.0, 0.0)
+    assert k["unconfined_yield_strength"] == pytest.approx(k["hardness"] / 3.0, rel=1e-15) and k["unconfined_yield_strength_standard_error"] == 0.0
+
+
+def test_a_measured_constraint_factor_is_refused_for_another_material_or_source(indentation):
+    # The suite's stand-in bed is another powder than the one C was measured on: refused, by name.
+    messages = refused(indentation, {"constraint_factor_source": "measured"}, "constraint_factor_source")
+    assert any("004 Ch. 6 material" in m and "differs from it in particle_particle." in m for m in messages), messages
+    messages = refused(indentation, {"constraint_factor_source": "table"}, "constraint_factor_source")
+    assert any("allowed constant, measured" in m for m in messages), messages
