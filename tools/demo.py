@@ -278,6 +278,18 @@ def indentation(fmu, out):
     return path, float(last["plateau_hardness"])
 
 
+def measured_constraint_factor(sigma_1):
+    """C and its standard error at sigma_1 from docs/data/constraint_factor_ch6.csv (None where the table
+    has no row at that stress)."""
+    import csv
+
+    with open(os.path.join(ROOT, "docs", "data", "constraint_factor_ch6.csv")) as f:
+        for row in csv.DictReader(line for line in f if not line.startswith("#")):
+            if float(row["consolidation_stress_Pa"]) == sigma_1:
+                return float(row["constraint_factor"]), float(row["constraint_factor_standard_error"])
+    return None, None
+
+
 def compression(fmu, out, plateau):
     """The UnconfinedCompression FMU's default test through fmpy with no arguments: the stress-strain curve,
     sigma_c with its standard error, ff_c; and H / sigma_c with the indentation's plateau on the same material."""
@@ -293,7 +305,7 @@ def compression(fmu, out, plateau):
           f"its own weight {last['self_weight_stress']:.0f} Pa on its base; consolidated to sigma_1 = {last['consolidation_stress']:.0f} Pa")
     state = "failed" if last["failed"] else "not failed by max_strain: a lower bound"
     print(f"  sigma_c (the largest mean stress over 0.05 % strain, read from 0.05 % on, past the platen's arrival) {sigma_c:.4g} +- {se:.2g} Pa "
-          f"(standard error of this run; two other fills of the same scene read 787 and 819 Pa: 12 % from fill to fill, this fill the strongest; 0.1/s reads 6.7 % lower: docs/units/UnconfinedCompression.md) "
+          f"(standard error of this run; two other fills of the same scene read 787 and 819 Pa: 12 % from fill to fill, this fill the strongest; quasi-static rates, 0.03-0.3/s, read 7 % lower: docs/units/UnconfinedCompression.md) "
           f"at strain {last['strain_at_failure']:.4f}, {state}; ff_c = sigma_1 / sigma_c = {last['flow_function']:.3g} "
           f"(004 Table 2.1: free flowing above 10)")
     if not last["failed"]:
@@ -301,6 +313,10 @@ def compression(fmu, out, plateau):
               f"factor C (004 Eq. 2.10; BallIndentation divides by C = 3): sigma_c here is a lower bound, and the two beds and rates differ")
     else:
         print(f"  with the indentation's plateau above on the same material: H / sigma_c = {plateau / sigma_c:.3g} (004 Eq. 2.10's C; BallIndentation divides by C = 3)")
+    c, c_se = measured_constraint_factor(last["consolidation_stress"])
+    if c is not None:
+        print(f"  the constraint factor measured over several beds and specimens at this stress: C = {c:.3g} +- {c_se:.2g} "
+              f"(docs/data/constraint_factor_ch6.csv; BallIndentation divides by it with constraint_factor_source = measured)")
     fig, ax = plt.subplots(figsize=(6.5, 4.2))
     loaded = r["axial_strain"] > 0
     ax.plot(r["axial_strain"][loaded] * 100, r["axial_stress"][loaded], lw=0.8, label="axial stress (mean over 100 engine steps)")
