@@ -41,6 +41,17 @@ def summary(values, scatter):
     return mean, scatter * mean / math.sqrt(len(values))
 
 
+def upper_tail(k, x):
+    """P(chi^2 with k degrees of freedom >= x), by the series of the lower regularized gamma function (no
+    scipy in the project's environment)."""
+    a, term, total, n = k / 2, 1.0, 1.0, 1
+    while term > 1e-15 * total:
+        term *= (x / 2) / (a + n)
+        total += term
+        n += 1
+    return 1 - (math.exp(a * math.log(x / 2) - x / 2 - math.lgamma(a + 1)) * total if x > 0 else 0.0)
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     p.add_argument("--compression", nargs="+", required=True, help="the compression sweep's CSVs (consolidation_stress per row)")
@@ -119,18 +130,6 @@ def main():
         mean = sum(wi * r[key] for wi, r in zip(w, table)) / sum(w)
         chi2 = sum(wi * (r[key] - mean) ** 2 for wi, r in zip(w, table))
         dof = len(table) - 1
-        # P(chi^2_dof >= chi2) by the regularized upper gamma function's series (dof/2 may be half-integer).
-        from math import exp, lgamma, log
-
-        def upper_tail(k, x):
-            a, term, total, n = k / 2, 1.0, 1.0, 1
-            while term > 1e-15 * total:
-                term *= (x / 2) / (a + n)
-                total += term
-                n += 1
-            lower = exp(a * log(x / 2) - x / 2 - lgamma(a + 1)) * total if x > 0 else 0.0
-            return 1 - lower
-
         print(f"{key}: a constant C fits as {mean:.2f} +- {sum(w) ** -0.5:.2f}, chi^2 {chi2:.1f} on {dof} degrees of freedom (p = {upper_tail(dof, chi2):.3f})")
 
     import matplotlib

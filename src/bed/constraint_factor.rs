@@ -9,7 +9,6 @@
 //! extrapolation). Its standard error is the table's, which holds the fill-to-fill scatter of both tests
 //! (three fills at 10 kPa).
 
-use super::BedScene;
 use std::sync::OnceLock;
 
 /// The measurements, as committed.
@@ -62,24 +61,6 @@ pub fn at(points: &[Point], sigma_1: f64) -> Result<(f64, f64), String> {
     let t = (sigma_1.ln() - a.consolidation_stress.ln()) / (b.consolidation_stress.ln() - a.consolidation_stress.ln());
     let lerp = |x: f64, y: f64| x + t * (y - x);
     Ok((lerp(a.constraint_factor, b.constraint_factor), lerp(a.standard_error, b.standard_error)))
-}
-
-/// Whether a bed is of the material the table was measured on: the particle contact, the rolling
-/// friction and the sizes of `reference` (the shipped bed's scene). None where it is, else the first
-/// difference.
-pub fn other_material(bed: &BedScene, reference: &BedScene) -> Option<String> {
-    if bed.particle_particle != reference.particle_particle {
-        let key = reference.particle_particle.iter().find(|(k, v)| bed.particle_particle.get(*k) != Some(*v)).map(|(k, _)| k.clone());
-        let key = key.or_else(|| bed.particle_particle.keys().find(|k| !reference.particle_particle.contains_key(*k)).cloned());
-        return Some(format!("particle_particle.{}", key.unwrap_or_default()));
-    }
-    if bed.rolling_friction != reference.rolling_friction {
-        return Some("rolling_friction".into());
-    }
-    if bed.size_distribution != reference.size_distribution {
-        return Some("size_distribution".into());
-    }
-    None
 }
 
 #[cfg(test)]

@@ -106,6 +106,12 @@ fn resolved(key: &Key, map: &Map<String, Json>) -> Option<Json> {
     }
 }
 
+/// The first of a contact's keys whose values differ between two maps, as the parameters hold them
+/// (`resolved`: 0 and 0.0 are one value, an absent key its default).
+fn first_difference(contact: &str, a: &Map<String, Json>, b: &Map<String, Json>) -> Option<&'static Key> {
+    KEYS.iter().filter(|k| contact_key(contact, k)).find(|key| resolved(key, a) != resolved(key, b))
+}
+
 /// The contact parameters that make the unit accept a bed made with `bed`, as start values for an
 /// importer (`powderfmu bed params`): its two contacts, and the particle-indenter contact the bed's
 /// `indenter_material` gives (as `powderfmu bed indent` takes it); a derived key left to derive is 0.
@@ -300,7 +306,11 @@ impl BallIndentation {
     fn measured_for(scene: &BedScene, path: &Path) -> Result<(f64, f64), UnitError> {
         let refuse = |why: String| variable("constraint_factor_source", format!("parameter `constraint_factor_source` = \"measured\": {why}"));
         let reference = BedScene::from_json(QUARTER_BED_SCENE).expect("the shipped quarter bed's scene is valid");
-        if let Some(key) = constraint_factor::other_material(scene, &reference) {
+        let other = first_difference("particle_particle", &scene.particle_particle, &reference.particle_particle)
+            .map(|key| format!("particle_particle.{}", key.name))
+            .or_else(|| (scene.rolling_friction != reference.rolling_friction).then(|| "rolling_friction".into()))
+            .or_else(|| (scene.size_distribution != reference.size_distribution).then(|| "size_distribution".into()));
+        if let Some(key) = other {
             return Err(refuse(format!(
                 "C was measured for the 004 Ch. 6 material only, and bed_file {} differs from it in {key}; give constraint_factor with constraint_factor_source = constant",
                 path.display()
@@ -351,21 +361,19 @@ impl BallIndentation {
         let vars = &self.variables;
         for (contact, bed_map) in [("particle_particle", &bed.particle_particle), ("particle_wall", &bed.particle_wall)] {
             let given = scene_params::group_map(contact, vars, values)?;
-            for key in KEYS.iter().filter(|k| contact_key(contact, k)) {
+            if let Some(key) = first_difference(contact, &given, bed_map) {
                 let (ours, theirs) = (resolved(key, &given), resolved(key, bed_map));
-                if ours != theirs {
-                    let show = |v: &Option<Json>| v.as_ref().map_or("derived (0)".to_string(), |v| v.to_string());
-                    return Err(variable(
-                        "bed_file",
-                        format!(
-                            "bed_file {} was prepared with {contact}.{} = {}, but the parameter is {}: set the parameter to the bed's value, or prepare a bed with yours (`powderfmu bed prepare`)",
-                            path.display(),
-                            key.name,
-                            show(&theirs),
-                            show(&ours)
-                        ),
-                    ));
-                }
+                let show = |v: &Option<Json>| v.as_ref().map_or("derived (0)".to_string(), |v| v.to_string());
+                return Err(variable(
+                    "bed_file",
+                    format!(
+                        "bed_file {} was prepared with {contact}.{} = {}, but the parameter is {}: set the parameter to the bed's value, or prepare a bed with yours (`powderfmu bed prepare`)",
+                        path.display(),
+                        key.name,
+                        show(&theirs),
+                        show(&ours)
+                    ),
+                ));
             }
         }
         Ok(())

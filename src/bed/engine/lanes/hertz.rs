@@ -15,7 +15,7 @@ impl LaneLaw for Hertz {
     }
 
     #[inline(always)]
-    unsafe fn evaluate_lanes<V: Simd>(p: &[V; LAW_PARAMS], alpha: V, h: &History<V>, _laws: &[&Self], _guess: V) -> Eval<V> {
+    unsafe fn evaluate_lanes<'l, V: Simd>(p: &[V; LAW_PARAMS], alpha: V, h: &History<V>, _law: &dyn Fn(usize) -> &'l Self, _guess: V) -> Eval<V> {
         // SAFETY: the caller runs with the width's instruction set (the trait's contract).
         unsafe {
             let (radius, youngs, zero) = (p[0], p[1], V::splat(0.0));

@@ -20,9 +20,10 @@ fn params(curve: &JkrCurve, detach_at: f64, repulsive: bool) -> [f64; LAW_PARAMS
 }
 
 /// The contact radius of the lanes in `need` (others give anything), `JkrCurve::contact_radius_from`
-/// with the same operations in the same order.
+/// with the same operations in the same order; `curve(k)` the scalar curve of lane k, read only for the
+/// lanes left to the closed form (not on every block).
 #[inline(always)]
-unsafe fn contact_radius<V: Simd>(p: &[V; LAW_PARAMS], alpha: V, guess: V, need: V::Mask, curves: &[&JkrCurve]) -> V {
+unsafe fn contact_radius<'a, V: Simd>(p: &[V; LAW_PARAMS], alpha: V, guess: V, need: V::Mask, curve: impl Fn(usize) -> &'a JkrCurve) -> V {
     // SAFETY: the caller runs with the width's instruction set (the trait's contract).
     unsafe {
         let (r, b, wf, alpha_detach) = (p[0], p[3], p[4], p[5]);
@@ -56,9 +57,9 @@ unsafe fn contact_radius<V: Simd>(p: &[V; LAW_PARAMS], alpha: V, guess: V, need:
         let lanes = closed_form.bits();
         if lanes != 0 {
             let (a, mut out) = (alpha.to_array(), result.to_array());
-            for (k, curve) in curves.iter().enumerate() {
+            for k in 0..V::N {
                 if lanes & (1 << k) != 0 {
-                    out.as_mut()[k] = curve.contact_radius(a.as_ref()[k]);
+                    out.as_mut()[k] = curve(k).contact_radius(a.as_ref()[k]);
                 }
             }
             result = V::load(out.as_ref());
@@ -136,13 +137,12 @@ impl LaneLaw for JkrModified {
     }
 
     #[inline(always)]
-    unsafe fn evaluate_lanes<V: Simd>(p: &[V; LAW_PARAMS], alpha: V, h: &History<V>, laws: &[&Self], guess: V) -> Eval<V> {
+    unsafe fn evaluate_lanes<'l, V: Simd>(p: &[V; LAW_PARAMS], alpha: V, h: &History<V>, law: &dyn Fn(usize) -> &'l Self, guess: V) -> Eval<V> {
         // SAFETY: the caller runs with the width's instruction set (the trait's contract).
         unsafe {
             // `alpha <= 0` separates; its negation (true for NaN, as the scalar `else`) touches.
             let in_contact = alpha.nle(V::splat(0.0));
-            let curves: [&JkrCurve; 8] = std::array::from_fn(|k| &laws[k.min(laws.len() - 1)].curve);
-            let a = contact_radius(p, alpha, guess, in_contact, &curves[..laws.len()]);
+            let a = contact_radius(p, alpha, guess, in_contact, |k| &law(k).curve);
             evaluation(p, in_contact, a, *h)
         }
     }
@@ -181,15 +181,14 @@ impl LaneLaw for Jkr {
     }
 
     #[inline(always)]
-    unsafe fn evaluate_lanes<V: Simd>(p: &[V; LAW_PARAMS], alpha: V, h: &History<V>, laws: &[&Self], guess: V) -> Eval<V> {
+    unsafe fn evaluate_lanes<'l, V: Simd>(p: &[V; LAW_PARAMS], alpha: V, h: &History<V>, law: &dyn Fn(usize) -> &'l Self, guess: V) -> Eval<V> {
         // SAFETY: the caller runs with the width's instruction set (the trait's contract).
         unsafe {
             let zero = V::splat(0.0);
             // `Jkr::separated`: (!established && alpha < 0) || alpha < detach_at.
             let separated = alpha.lt(zero).and_not(h.established) | alpha.lt(p[6]);
             let in_contact = !separated;
-            let curves: [&JkrCurve; 8] = std::array::from_fn(|k| &laws[k.min(laws.len() - 1)].curve);
-            let a = contact_radius(p, alpha, guess, in_contact, &curves[..laws.len()]);
+            let a = contact_radius(p, alpha, guess, in_contact, |k| &law(k).curve);
             evaluation(p, in_contact, a, History { established: in_contact, value: zero })
         }
     }

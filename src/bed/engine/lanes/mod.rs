@@ -146,12 +146,12 @@ mod x86 {
             unsafe { V::mask_from_fn(|_| false) }
         }
 
-        /// The law on lanes: `p` its `lane_params`, `laws` the pairs' laws (for what is left to the scalar
+        /// The law on lanes: `p` its `lane_params`, `law(k)` lane k's pair's law (for what is left to the scalar
         /// law, such as a closed form without a guess), `guess` the slots' remembered contact radii.
         ///
         /// # Safety
         /// The CPU runs the width's instruction set.
-        unsafe fn evaluate_lanes<V: Simd>(_p: &[V; LAW_PARAMS], _alpha: V, _h: &History<V>, _laws: &[&Self], _guess: V) -> Eval<V> {
+        unsafe fn evaluate_lanes<'l, V: Simd>(_p: &[V; LAW_PARAMS], _alpha: V, _h: &History<V>, _law: &dyn Fn(usize) -> &'l Self, _guess: V) -> Eval<V> {
             unreachable!("no lanes for this law")
         }
     }
@@ -413,9 +413,8 @@ mod x86 {
                     for (q, p) in law_params.iter_mut().enumerate() {
                         *p = param(COMMON + q);
                     }
-                    let laws: [&L; 8] = std::array::from_fn(|k| &e.pairs[pair[k]].law);
                     let guess = V::load(&radius_memory[m..m + w]);
-                    let ev = L::evaluate_lanes(&law_params, alpha, &h, &laws[..w], guess);
+                    let ev = L::evaluate_lanes(&law_params, alpha, &h, &|k| &e.pairs[pair[k]].law, guess);
                     L::store_history(&mut normal[m..m + w], &ev.history, visit_bits);
                     ev
                 } else {
