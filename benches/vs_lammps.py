@@ -18,9 +18,12 @@ Results go to docs/figures/vs_lammps.csv; docs/benchmarks.md quotes them.
 
 --compare BIN times a second powderfmu binary (an earlier build, kept aside) in the same alternation, on
 the same bed, so a change of the engine is measured against the code it replaces and against LAMMPS in
-one run; its rates go to the CSV's `compared_particle_steps_per_s` column.
+one run; its rates go to the CSV's `compared_particle_steps_per_s` column. A build older than the bed's
+scene keys reads the same bed rewritten without them (--compare-bed, made by
+benches/bed_for_older_build.py); a build without `bed bench --skin` runs at its built-in skin, a tenth
+of the mean diameter (1e-4 m here), and is refused with any other --skin.
 
-Usage: bash benches/vs_lammps.sh [--steps N] [--repeats K] [--compare BIN] [--skin M] [--out CSV]
+Usage: bash benches/vs_lammps.sh [--steps N] [--repeats K] [--compare BIN [--compare-bed BED]] [--skin M] [--out CSV]
 """
 
 import argparse
@@ -87,10 +90,11 @@ ADHESIVE = {"jkr", "jkr_modified", "nan", "pasha_simplified"}
 CONTACTS = {}  # force-carrying particle contacts per particle at the end of the last run of each model
 
 
-def powderfmu(model, steps, threads=1, binary=BIN):
+def powderfmu(model, steps, threads=1, binary=BIN, bed=None, skin=True):
     gamma = GAMMA if model in ADHESIVE else 0.0
-    out = run([str(binary), "bed", "bench", str(BED), "--model", model, "--steps", str(steps), "--threads", str(threads),
-               "--stiffness", str(KN), "--surface-energy", str(gamma), "--rolling-friction", "0", "--skin", str(SKIN)]).stdout
+    cmd = [str(binary), "bed", "bench", str(bed or BED), "--model", model, "--steps", str(steps), "--threads", str(threads),
+           "--stiffness", str(KN), "--surface-energy", str(gamma), "--rolling-friction", "0"]
+    out = run(cmd + (["--skin", str(SKIN)] if skin else [])).stdout
     fields = dict(kv.split("=", 1) for kv in out.split())
     CONTACTS[model] = float(fields["contacts_per_particle"])
     return float(fields["particle_steps_per_s"]), float(fields["dt"]), float(fields["bytes_per_particle"]), int(fields["particles"])
@@ -128,12 +132,16 @@ def main():
     ap.add_argument("--steps", type=int, default=2000)
     ap.add_argument("--repeats", type=int, default=3)
     ap.add_argument("--compare", type=Path, help="a second powderfmu binary, timed alongside this build")
+    ap.add_argument("--compare-bed", type=Path, help="the bed the --compare build reads (default: the same bed)")
     ap.add_argument("--skin", type=float, default=SKIN, help="the Verlet skin of both codes [m] (default 1e-4, a tenth of the mean diameter)")
     ap.add_argument("--out", type=Path, default=ROOT / "docs" / "figures" / "vs_lammps.csv", help="the CSV to write")
     args = ap.parse_args()
     SKIN = args.skin
     if args.compare is not None and not os.access(args.compare, os.X_OK):
         sys.exit(f"vs_lammps: --compare {args.compare}: not an executable file")
+    compare_skin = args.compare is not None and "--skin" in run([str(args.compare), "bed", "bench", "--help"]).stdout
+    if args.compare is not None and not compare_skin and SKIN != 1e-4:
+        sys.exit(f"vs_lammps: --compare {args.compare} has no `bed bench --skin` (it runs at 1e-4 m); --skin {SKIN:g} cannot be compared")
     lmp = ensure_lammps()
     ensure_bed()
     version = run([lmp, "-h"]).stdout.splitlines()[1].strip() if run([lmp, "-h"]).stdout else "?"
@@ -150,7 +158,7 @@ def main():
             rate, dt, bytes_ours, n = powderfmu(ours, args.steps)
             mine.append(rate)
             if args.compare is not None:
-                other.append(powderfmu(ours, args.steps, binary=args.compare)[0])
+                other.append(powderfmu(ours, args.steps, binary=args.compare, bed=args.compare_bed, skin=compare_skin)[0])
             for t in theirs:
                 rate_l, bytes_lammps, atoms = lammps(lmp, t, args.steps, dt, 200)
                 assert atoms == n, f"LAMMPS read {atoms} atoms, the bed has {n}"
