@@ -85,6 +85,12 @@ fn prepare_then_info_snapshot_render_export_and_bench() {
     let (code, _, err) = indent("medium");
     assert_eq!(code, 2);
     assert!(err.contains("--fidelity") && err.contains("fast, full"), "{err}");
+    // The shear cell refuses a normal stress at or above the preshear's by name, and writes nothing.
+    let sheared = d.join("shear.csv");
+    let (code, _, err) = run(&["bed", "shear", bed.to_str().unwrap(), "--normal-fractions", "0.5,1.2", "--out", sheared.to_str().unwrap()]);
+    assert_eq!(code, 2);
+    assert!(err.contains("normal_stresses") && err.contains("preshear_stress"), "{err}");
+    assert!(!sheared.exists());
     std::fs::remove_dir_all(&d).unwrap();
 }
 

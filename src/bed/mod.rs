@@ -6,7 +6,7 @@
 //! - `psd`: the size distribution of `004` Table 5.1 (the species are its size classes);
 //! - `interaction`: the law, damping, tangential and rolling parameters of each pair of species;
 //! - `neighbors`: linked cells and the Verlet list with its skin, and the per-contact memory across rebuilds;
-//! - `walls`: plane, cylinder (the die), sphere (the indenter) and piston, with motion and reaction force;
+//! - `walls`: plane, cylinder (the die), sphere (the indenter), piston, mirror planes and a split die's rings, with motion and reaction force;
 //! - `kernel`: the force of one contact (normal law, damping, tangential spring, Coulomb, rolling);
 //! - `engine`: the time step (velocity Verlet), the thread pool and the force reduction;
 //! - `any`: `AnyEngine`, the engine compiled for the law of a scene (generated from `law_table!`);
@@ -17,6 +17,8 @@
 //! - `stress`: Bagi's stress tensor (`004` Eqs. 5.1-5.3) in a cylinder or a box;
 //! - `indentation`: the ball indentation test on a prepared bed (`004` Sec. 2.3.5, Chs. 5-7);
 //! - `compression`: the unconfined compression test on a prepared bed (`004` Sec. 2.1): sigma_c and ff_c;
+//! - `shear`: the translational (Jenike) shear cell on a prepared bed (`003` Sec. 5.1): the yield locus;
+//! - `yield_locus`: the straight yield locus and its Mohr circles (sigma_c, sigma_1; `004` Sec. 2.2);
 //! - `series`: the mean of an autocorrelated series with its standard error;
 //! - `file`: the versioned bed file; `export`: VTK/CSV output; `render`: the PNG cross-section;
 //! - `lammps`: the LAMMPS data file export for the side-by-side benchmark.
@@ -42,8 +44,10 @@ pub mod render;
 pub mod replicas;
 mod scene;
 pub mod series;
+pub mod shear;
 pub mod stress;
 pub mod walls;
+pub mod yield_locus;
 
 pub use any::{AnyEngine, BedError};
 pub use engine::{Engine, Isa};

@@ -1,6 +1,7 @@
 //! Walls: a plane (the die's floor), a cylinder (the die), a sphere (the indenter), the piston (a
-//! plane that moves) and the mirror planes of a die sector. Each has a prescribed velocity, set by
-//! whoever drives the bed, and measures the force the particles exert on it.
+//! plane that moves), the mirror planes of a die sector, and the rings of a split die (the shear
+//! cell's). Each has a prescribed velocity, set by whoever drives the bed, and measures the force the
+//! particles exert on it.
 
 use super::{Vec3, ZERO};
 
@@ -28,6 +29,20 @@ pub enum Shape {
     Mirror {
         /// Unit normal, pointing into the sector.
         normal: Vec3,
+    },
+    /// A ring of a split die (`shear`): the solid between the radii `radius` and `radius + thickness`
+    /// around the vertical axis through `position`, from `position.z` up `height`. Particles stay inside;
+    /// a sphere meets the ring's inner face, its top or bottom face, or an edge: the nearest point of the
+    /// ring's cross-section in the sphere's meridian plane. So a sphere of the upper ring's powder that
+    /// the shear has carried over the lower ring's wall rests on that wall's top face (the Jenike cell's
+    /// rings: 003 Sec. 5.1, Fig. 13) instead of meeting an infinite cylinder from outside.
+    Ring {
+        /// Inner radius [m].
+        radius: f64,
+        /// Height [m].
+        height: f64,
+        /// Wall thickness [m].
+        thickness: f64,
     },
 }
 
@@ -79,6 +94,12 @@ impl Wall {
         matches!(self.shape, Shape::Mirror { .. })
     }
 
+    /// A ring named `name` (`Shape::Ring`) around the vertical axis through `base` (the ring's bottom), of
+    /// inner `radius`, `height` and `thickness` [m]; at rest.
+    pub fn ring(name: &str, base: Vec3, radius: f64, height: f64, thickness: f64) -> Wall {
+        Wall { name: name.into(), shape: Shape::Ring { radius, height, thickness }, position: base, velocity: ZERO, force: ZERO }
+    }
+
     /// A sphere named `name` centred at `centre` of `radius` [m] (the indenter); at rest.
     pub fn sphere(name: &str, centre: Vec3, radius: f64) -> Wall {
         Wall { name: name.into(), shape: Shape::Sphere { radius }, position: centre, velocity: ZERO, force: ZERO }
@@ -103,6 +124,20 @@ impl Wall {
                 let rho = d.xy().norm();
                 let n = if rho > 0.0 { Vec3::new(d.x / rho, d.y / rho, 0.0) } else { Vec3::x() };
                 WallTouch { overlap: r - (radius - rho), normal: n }
+            }
+            Shape::Ring { radius, height, thickness } => {
+                let rho = d.xy().norm();
+                let out = if rho > 0.0 { Vec3::new(d.x / rho, d.y / rho, 0.0) } else { Vec3::x() };
+                // The nearest point of the cross-section [radius, radius + thickness] x [0, height].
+                let (q_rho, q_z) = (rho.clamp(radius, radius + thickness), d.z.clamp(0.0, height));
+                let (g_rho, g_z) = (q_rho - rho, q_z - d.z);
+                let dist = (g_rho * g_rho + g_z * g_z).sqrt();
+                if dist == 0.0 {
+                    // A centre inside the ring's solid: pushed back through the inner face.
+                    WallTouch { overlap: r + (rho - radius), normal: out }
+                } else {
+                    WallTouch { overlap: r - dist, normal: Vec3::new(out.x * g_rho / dist, out.y * g_rho / dist, g_z / dist) }
+                }
             }
             Shape::Sphere { radius } => {
                 let dist = d.norm();
@@ -136,5 +171,32 @@ mod tests {
         let t = m.touch(Vec3::new(0.9e-3, 0.004, 0.01), 1e-3);
         assert!((t.overlap - 0.2e-3).abs() < 1e-15);
         assert_eq!(t.normal, -Vec3::x());
+    }
+
+    #[test]
+    fn a_ring_is_its_cylinder_inside_and_a_solid_at_its_faces_and_edges() {
+        let (radius, height, thickness, r) = (0.01, 0.005, 0.002, 1e-3);
+        let ring = Wall::ring("upper_ring", Vec3::new(0.0, 0.0, 0.002), radius, height, thickness);
+        let die = Wall::cylinder("die", ZERO, radius);
+        // Within its height: the die's cylinder, to the bit.
+        for x in [Vec3::new(0.0095, 0.0, 0.004), Vec3::new(-0.003, 0.0093, 0.0069)] {
+            let (a, b) = (ring.touch(x, r), die.touch(x, r));
+            assert_eq!((a.overlap, a.normal), (b.overlap, b.normal));
+        }
+        // Below it, beside the inner face: no contact; a sphere resting on its top face at (0.0105, 0).
+        assert!(ring.touch(Vec3::new(0.0095, 0.0, 0.0005), r).overlap < 0.0);
+        let t = ring.touch(Vec3::new(0.0105, 0.0, 0.007 + 0.9e-3), r);
+        assert!((t.overlap - 0.1e-3).abs() < 1e-15, "{t:?}");
+        assert_eq!(t.normal, -Vec3::z());
+        // Under its bottom face, and at its inner lower edge (45 degrees).
+        let t = ring.touch(Vec3::new(0.0, 0.011, 0.002 - 0.5e-3), r);
+        assert!((t.overlap - 0.5e-3).abs() < 1e-15 && t.normal == Vec3::z(), "{t:?}");
+        let s = 0.5e-3;
+        let t = ring.touch(Vec3::new(radius - s, 0.0, 0.002 - s), r);
+        assert!((t.overlap - (r - s * 2f64.sqrt())).abs() < 1e-15, "{t:?}");
+        assert!((t.normal - Vec3::new(1.0, 0.0, 1.0) / 2f64.sqrt()).norm() < 1e-15);
+        // A centre inside the solid is pushed back through the inner face.
+        let t = ring.touch(Vec3::new(0.0, -0.0102, 0.004), r);
+        assert!((t.overlap - 1.2e-3).abs() < 1e-15 && (t.normal + Vec3::y()).norm() < 1e-15, "{t:?}");
     }
 }

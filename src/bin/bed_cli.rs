@@ -86,6 +86,9 @@ pub enum BedCommand {
     /// Unconfined compression (`004` Sec. 2.1): the die removed, the platen down at a strain rate until the
     /// specimen fails; stress-strain CSV, sigma_c and ff_c = sigma_1 / sigma_c
     Compress(crate::bed_compress::CompressArgs),
+    /// Translational shear cell (`003` Sec. 5.1, `004` Sec. 2.2): the die split into two rings, preshear at
+    /// sigma_pre, shears to failure at lower normal stresses; the yield locus, phi_i, c, sigma_c, sigma_1
+    Shear(crate::bed_shear::ShearArgs),
 }
 
 #[derive(clap::Args)]
@@ -213,6 +216,7 @@ pub fn run(command: BedCommand) -> Result<(), String> {
         BedCommand::Bench(a) => bench_cmd(a),
         BedCommand::Indent(a) => indent_cmd(a),
         BedCommand::Compress(a) => crate::bed_compress::compress_cmd(a),
+        BedCommand::Shear(a) => crate::bed_shear::shear_cmd(a),
     }
 }
 

@@ -11,6 +11,7 @@ use std::process::ExitCode;
 
 mod bed_cli;
 mod bed_compress;
+mod bed_shear;
 mod options;
 
 #[derive(Parser)]

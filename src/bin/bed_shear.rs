@@ -1,0 +1,163 @@
+//! `powderfmu bed shear`: the translational shear cell (`003` Sec. 5.1; `004` Sec. 2.2) on a prepared bed:
+//! preshear, the shears to failure, the yield locus with its Mohr circles (`powderfmu::bed::shear`).
+
+use crate::bed_cli::{load, Bar};
+use crate::options;
+use powderfmu::bed::file;
+use powderfmu::bed::series::MeanEstimate;
+use powderfmu::bed::shear::{self, Setup};
+use std::path::PathBuf;
+use std::time::Instant;
+
+#[derive(clap::Args)]
+pub struct ShearArgs {
+    /// A prepared bed file (a whole die or a half: the shear runs along the half's mirror plane)
+    bed: PathBuf,
+    /// Normal stress of the preshear, sigma_pre [Pa] (default: the bed's consolidation_stress)
+    #[arg(long, value_name = "PA", value_parser = options::positive("Pa"))]
+    preshear_stress: Option<f64>,
+    /// Normal stresses of the shears to failure, as fractions of sigma_pre, comma-separated (003 Sec. 6's 0.25, 0.4, 0.6, 0.8)
+    #[arg(long, value_name = "F,F,...", value_delimiter = ',', default_values_t = [0.25, 0.4, 0.6, 0.8])]
+    normal_fractions: Vec<f64>,
+    /// Speed of the drive [m/s]
+    #[arg(long, value_name = "M_PER_S", default_value_t = 0.005, value_parser = options::positive("m/s"))]
+    shear_speed: f64,
+    /// Height of the rings' meeting, a fraction of the bed's height
+    #[arg(long, value_name = "F", default_value_t = 0.5, value_parser = options::in_range(0.1, 0.9, false, "-"))]
+    split: f64,
+    /// Travel of the preshear, in mean sphere diameters
+    #[arg(long, value_name = "D", default_value_t = 2.0, value_parser = options::positive("mean diameters"))]
+    preshear_travel: f64,
+    /// Fraction of the preshear's travel over which tau_pre is averaged
+    #[arg(long, value_name = "F", default_value_t = 0.3, value_parser = options::in_range(0.0, 1.0, false, "-"))]
+    steady_fraction: f64,
+    /// Largest travel of each shear to failure, in mean sphere diameters
+    #[arg(long, value_name = "D", default_value_t = 0.5, value_parser = options::positive("mean diameters"))]
+    shear_travel: f64,
+    /// Travel window of the mean for tau_peak, in mean sphere diameters
+    #[arg(long, value_name = "D", default_value_t = 0.05, value_parser = options::positive("mean diameters"))]
+    window: f64,
+    /// The lid's largest vertical speed under its servo [m/s] (default: half the drive's)
+    #[arg(long, value_name = "M_PER_S", value_parser = options::positive("m/s"))]
+    servo_speed: Option<f64>,
+    /// Time allowed to each loading or unloading of the lid [s]
+    #[arg(long, value_name = "S", default_value_t = 0.5, value_parser = options::positive("s"))]
+    servo_time: f64,
+    /// A fixed time step [s] (refused above the bed's stability limit; default: the bed's)
+    #[arg(long, value_name = "S", value_parser = options::positive("s"))]
+    time_step: Option<f64>,
+    /// Threads of the force loop (default: the bed scene's)
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..=256))]
+    threads: Option<u16>,
+    /// The CSV to write (default: stdout): one row per sample (100 engine steps) of every phase
+    #[arg(long, value_name = "CSV")]
+    out: Option<PathBuf>,
+}
+
+fn pm(x: &MeanEstimate) -> String {
+    format!("{:.4e} +- {:.1e}", x.mean, x.standard_error)
+}
+
+pub fn shear_cmd(a: ShearArgs) -> Result<(), String> {
+    let threads = a.threads.map(usize::from);
+    let (mut engine, scene) = load(&a.bed, threads)?;
+    if let Some(dt) = a.time_step {
+        engine.set_time_step(&scene, dt).map_err(|e| format!("--time-step: {e}"))?;
+    }
+    let d = scene.size_distribution.mean_diameter();
+    let pre = a.preshear_stress.unwrap_or(scene.consolidation_stress);
+    let setup = Setup {
+        preshear_stress: pre,
+        normal_stresses: a.normal_fractions.iter().map(|f| f * pre).collect(),
+        shear_speed: a.shear_speed,
+        split: a.split,
+        preshear_displacement: a.preshear_travel * d,
+        steady_fraction: a.steady_fraction,
+        shear_displacement: a.shear_travel * d,
+        window: a.window * d,
+        servo_speed: a.servo_speed.unwrap_or(0.5 * a.shear_speed),
+        servo_time: a.servo_time,
+    };
+    eprintln!(
+        "shear cell: die {:.4e} m split at {} of the bed's height; preshear at {pre:.4e} Pa over {:.3e} m, shears at {:?} Pa over up to {:.3e} m each, drive {} m/s",
+        scene.die_diameter, setup.split, setup.preshear_displacement, setup.normal_stresses, setup.shear_displacement, setup.shear_speed
+    );
+    let started = Instant::now();
+    let mut bar = Bar::new();
+    let reading = shear::run(&mut engine, &scene, &setup, threads, |p| {
+        let s = p.sample;
+        bar.show_phase(p.phase, p.fraction, s.time, &format!("target {:.3e} Pa  lid {:.4e} Pa  travel {:.3e} m  sigma {:.4e} Pa  tau {:.4e} Pa  drive {:.4e} Pa", p.target, s.lid_stress, s.displacement, s.normal_stress, s.shear_stress, s.drive_stress));
+        if std::env::var_os("POWDERFMU_SHEAR_TRACE").is_some() {
+            eprintln!("{} {:.6e} {:.4e} {:.4e} {:.6e}", p.phase, s.time, s.lid_stress, s.drive_stress, s.lid);
+        }
+    })
+    .map_err(|e| e.to_string())?;
+    bar.finish();
+    let wall = started.elapsed().as_secs_f64();
+    eprintln!(
+        "shear cell: solid fraction {:.4} under sigma_pre; preshear steady state on the plane sigma {} Pa, tau {} Pa; its largest principal stress {} Pa",
+        reading.solid_fraction,
+        pm(&reading.preshear_normal),
+        pm(&reading.preshear_shear),
+        pm(&reading.preshear_major)
+    );
+    for f in &reading.failures {
+        eprintln!(
+            "shear cell: sigma_n {:.4e} Pa: on the plane sigma {} Pa, tau_peak {} Pa at travel {:.3e} m ({})",
+            f.target,
+            pm(&f.normal_stress),
+            pm(&f.shear_stress),
+            f.displacement,
+            if f.failed { "failed: fell to 0.9 of the peak" } else { "no fall to 0.9 of the peak within the travel: the largest mean of a plateau or a rise, a lower bound" }
+        );
+    }
+    match &reading.locus {
+        Some(yl) => {
+            let (sc, sc_e) = yl.unconfined_yield_strength();
+            eprintln!(
+                "shear cell: yield locus tau = c + sigma tan(phi_i): c = {:.4e} +- {:.1e} Pa, phi_i = {:.2} +- {:.2} deg (chi^2 {:.1} for {} degrees of freedom)",
+                yl.cohesion,
+                yl.cohesion_error,
+                yl.internal_friction_angle().to_degrees(),
+                yl.internal_friction_angle_error().to_degrees(),
+                yl.chi2,
+                yl.dof
+            );
+            let (on, on_e) = yl.at(reading.preshear_normal.mean);
+            let gap = (reading.preshear_shear.mean - on) / (on_e.powi(2) + reading.preshear_shear.standard_error.powi(2)).sqrt();
+            eprintln!("shear cell: the preshear point against the locus extended to it: tau_pre {:.4e} Pa, locus {on:.4e} +- {on_e:.1e} Pa ({gap:+.1} standard errors)", reading.preshear_shear.mean);
+            match yl.major_consolidation_stress(reading.preshear_normal.mean, reading.preshear_shear.mean) {
+                Some((s1, s1_e)) => eprintln!(
+                    "shear cell: sigma_c = {sc:.4e} +- {sc_e:.1e} Pa, sigma_1 = {s1:.4e} +- {s1_e:.1e} Pa (Mohr circles, 004 Fig. 2.5), ff_c = {:.3}; {wall:.1} s wall time",
+                    s1 / sc
+                ),
+                None => eprintln!("shear cell: sigma_c = {sc:.4e} +- {sc_e:.1e} Pa; no Mohr circle through the preshear point is tangent to the locus (the point lies above it): no sigma_1 by construction; {wall:.1} s wall time"),
+            }
+        }
+        None => eprintln!("shear cell: the points give no yield locus"),
+    }
+    if let Some(yl) = &reading.locus {
+        let (sc, _) = yl.unconfined_yield_strength();
+        eprintln!("shear cell: with sigma_1 as measured (the slab's principal stress in the preshear), ff_c = {:.3}", reading.preshear_major.mean / sc);
+    }
+    let mut csv = String::from("phase,normal_stress_target_Pa,time_s,displacement_m,normal_stress_Pa,shear_stress_Pa,major_principal_stress_Pa,lid_stress_Pa,drive_stress_Pa,lid_height_m\n");
+    let mut rows = |phase: &str, target: f64, samples: &[shear::Sample]| {
+        for s in samples {
+            csv += &format!(
+                "{phase},{target:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e}\n",
+                s.time, s.displacement, s.normal_stress, s.shear_stress, s.major_principal_stress, s.lid_stress, s.drive_stress, s.lid
+            );
+        }
+    };
+    rows("preshear", pre, &reading.preshear);
+    for f in &reading.failures {
+        rows("shear", f.target, &f.samples);
+    }
+    match &a.out {
+        Some(path) => file::write_atomic(path, csv.as_bytes()).map_err(|e| format!("cannot write {}: {e}", path.display())),
+        None => {
+            print!("{csv}");
+            Ok(())
+        }
+    }
+}
