@@ -285,6 +285,7 @@ fn every_subcommand_has_help_and_errors_name_the_option() {
         &["bed", "indent", "--help"],
         &["bed", "bench", "--help"],
         &["bed", "compress", "--help"],
+        &["bed", "shear", "--help"],
     ] {
         let (code, out, err) = run(args);
         assert_eq!(code, 0, "{args:?}: {err}");
@@ -296,6 +297,9 @@ fn every_subcommand_has_help_and_errors_name_the_option() {
     let (code, _, err) = run(&["bed", "compress", "x.bed", "--strain-rate", "0"]);
     assert_eq!(code, 2);
     assert!(err.contains("--strain-rate"), "{err}");
+    let (code, _, err) = run(&["bed", "shear", "x.bed", "--split", "0.95"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("--split") && err.contains("0.1"), "{err}");
     let (code, _, err) = run(&["bed", "render", "x.bed", "y.png", "--width", "wide"]);
     assert_eq!(code, 2);
     assert!(err.contains("--width"), "{err}");
