@@ -122,6 +122,10 @@ fn a_quarter_bed_a_bed_without_its_die_and_bad_settings_are_refused_by_name() {
     let narrow = Setup { window: 1e-7, ..setup() };
     let err = shear::run(&mut e, &scene, &narrow, None, |_| {}).unwrap_err().to_string();
     assert!(err.contains("window"), "{err}");
+    // A quarter's mirror plane x = 0 lies across the shear (the scene read as a quarter's).
+    let quarter = BedScene { die_sector: 0.25, ..scene.clone() };
+    let err = shear::run(&mut e, &quarter, &setup(), None, |_| {}).unwrap_err().to_string();
+    assert!(err.contains("die_sector") && err.contains("not a quarter"), "{err}");
     e.walls_mut()[DIE].shape = Shape::Cylinder { radius: f64::INFINITY };
     let err = shear::run(&mut e, &scene, &setup(), None, |_| {}).unwrap_err().to_string();
     assert!(err.contains("not a prepared bed in a die"), "{err}");
