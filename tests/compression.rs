@@ -75,6 +75,28 @@ fn a_cohesionless_specimen_has_no_strength_within_its_fluctuation() {
     assert!(d.mean < 0.05 * w.mean, "dry {} Pa against cohesive {} Pa", d.mean, w.mean);
 }
 
+/// Twice the cohesive beds' interface energy. (At half of it, 0.25 J/m^2, the specimen does not stand
+/// under its own weight, 276 Pa, and reads sigma_c = 0 as the cohesionless one does.)
+fn more_cohesive() -> &'static (BedFile, BedScene) {
+    static BED: OnceLock<(BedFile, BedScene)> = OnceLock::new();
+    BED.get_or_init(|| prepared(1.0))
+}
+
+#[test]
+fn sigma_c_rises_with_the_interface_energy() {
+    // Issue 34's physical check: at one consolidation stress, sigma_c grows with the spheres' interface
+    // energy (0, 0.5, 1 J/m^2), each step by more than three standard errors of the difference.
+    let readings: Vec<_> = [cohesionless(), cohesive(), more_cohesive()]
+        .into_iter()
+        .map(|bed| run(bed).1.reading().unwrap().unconfined_yield_strength)
+        .collect();
+    for pair in readings.windows(2) {
+        let (lo, hi) = (pair[0], pair[1]);
+        let se = lo.standard_error.hypot(hi.standard_error);
+        assert!(hi.mean - lo.mean > 3.0 * se, "sigma_c {} +- {} Pa, then {} +- {} Pa", lo.mean, lo.standard_error, hi.mean, hi.standard_error);
+    }
+}
+
 #[test]
 fn a_bed_without_its_die_and_bad_settings_are_refused_by_name() {
     let (mut e, scene) = AnyEngine::from_file(&cohesive().0, None).unwrap();
