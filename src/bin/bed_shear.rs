@@ -25,8 +25,9 @@ pub struct ShearArgs {
     /// Height of the rings' meeting, a fraction of the bed's height
     #[arg(long, value_name = "F", default_value_t = 0.5, value_parser = options::in_range(0.1, 0.9, false, "-"))]
     split: f64,
-    /// Travel of the preshear, in mean sphere diameters
-    #[arg(long, value_name = "D", default_value_t = 2.0, value_parser = options::positive("mean diameters"))]
+    /// Travel of the preshear, in mean sphere diameters (on the Ch. 6 specimen 2 were not enough for steady
+    /// flow and 5 were: docs/bed.md "The shear cell")
+    #[arg(long, value_name = "D", default_value_t = 5.0, value_parser = options::positive("mean diameters"))]
     preshear_travel: f64,
     /// Fraction of the preshear's travel over which tau_pre is averaged
     #[arg(long, value_name = "F", default_value_t = 0.3, value_parser = options::in_range(0.0, 1.0, false, "-"))]
