@@ -121,7 +121,7 @@ fn bad_input_fails_by_name_and_writes_nothing() {
     std::fs::remove_dir_all(&d).unwrap();
 }
 
-/// Every bed scene shipped in `scenes/` loads and fills as its comment says: the sphere count, the
+/// Every bed scene shipped in `scenes/` (beds, compression specimens, shear cells) loads and fills as its comment says: the sphere count, the
 /// die, and (for the seed's Ch. 5 scenes) the glass beads' time step at E = 55 GPa, which the cost
 /// estimates of docs/indentation.md are built on.
 #[test]
@@ -131,7 +131,8 @@ fn every_shipped_bed_scene_fills() {
     for entry in std::fs::read_dir("scenes").unwrap() {
         let path = entry.unwrap().path();
         let name = path.file_name().unwrap().to_string_lossy().to_string();
-        if !(name.starts_with("bed_") && name.ends_with(".json")) {
+        let bed_scene = ["bed_", "uct_", "shear_"].iter().any(|p| name.starts_with(p));
+        if !(bed_scene && name.ends_with(".json")) {
             continue;
         }
         let scene: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
@@ -148,7 +149,7 @@ fn every_shipped_bed_scene_fills() {
         }
         seen += 1;
     }
-    assert!(seen >= 10, "{seen} bed scenes found");
+    assert!(seen >= 22, "{seen} bed scenes found");
 }
 
 /// `bed indent --change`: a one-change experiment on the same prepared bed. The bed's own value changes
