@@ -50,7 +50,7 @@ def main():
     if len(sys.argv) < 3:
         sys.exit(__doc__)
     out, runs = sys.argv[1], sys.argv[2:]
-    fig, (left, right) = plt.subplots(1, 2, figsize=(12, 4.8))
+    fig, (left, right) = plt.subplots(1, 2, figsize=(14, 5.2))
     colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
     for k, run in enumerate(runs):
         parts = run.split(":")
@@ -63,10 +63,13 @@ def main():
         for row in rows:
             groups.setdefault((row["phase"], row["normal_stress_target_Pa"]), []).append(row)
         for g, ((phase, target), rs) in enumerate(groups.items()):
-            c = colours[g % len(colours)]
+            # One run: a colour per phase. Several: a colour per run, so the runs can be told apart.
+            c = colours[g % len(colours)] if len(runs) == 1 else colours[k % len(colours)]
             name = f"preshear {float(target) / 1e3:.1f} kPa" if phase == "preshear" else f"shear {float(target) / 1e3:.1f} kPa"
-            left.plot([float(x["displacement_m"]) * 1e3 for x in rs], [float(x["shear_stress_Pa"]) / 1e3 for x in rs], style, color=c, lw=1,
-                      label=f"{name} ({label})" if k == 0 or g == 0 else None)
+            if len(runs) > 1:
+                name = "preshear and shears"
+            left.plot([float(x["displacement_m"]) * 1e3 for x in rs], [float(x["shear_stress_Pa"]) / 1e3 for x in rs], "-", color=c, lw=1,
+                      label=f"{name} ({label})" if len(runs) == 1 or g == 0 else None)
         c = colours[k % len(colours)]
         sig = [p[0] / 1e3 for p in r["points"]]
         right.errorbar(sig, [p[2] / 1e3 for p in r["points"]], xerr=[p[1] / 1e3 for p in r["points"]], yerr=[p[3] / 1e3 for p in r["points"]],
@@ -94,7 +97,7 @@ def main():
     right.set_xlim(left=0)
     right.set_ylim(bottom=0)
     right.set_aspect("equal", adjustable="datalim")
-    right.legend(fontsize=7)
+    right.legend(fontsize=7, loc="center left", bbox_to_anchor=(1.02, 0.5))
     fig.tight_layout()
     fig.savefig(out, dpi=120)
     print(f"written {out}")
