@@ -249,30 +249,11 @@ impl Compression {
 
     /// The largest window mean: (first sample index in `loaded`, mean).
     fn peak(&self, w: usize) -> Option<(usize, f64)> {
-        let s = self.loaded();
-        if s.len() < w {
-            return None;
-        }
-        let mut sum: f64 = s[..w].iter().map(|x| x.stress).sum();
-        let mut best = (0, sum / w as f64);
-        for i in 1..=s.len() - w {
-            sum += s[i + w - 1].stress - s[i - 1].stress;
-            if sum / w as f64 > best.1 {
-                best = (i, sum / w as f64);
-            }
-        }
-        Some(best)
+        series::largest_window_mean(self.loaded(), w, |x| x.stress)
     }
 
     fn has_failed(&self) -> bool {
-        let s = self.loaded();
-        let w = self.window_samples();
-        let Some((i, peak)) = self.peak(w) else { return false };
-        if peak <= 0.0 || s.len() < i + 2 * w {
-            return false;
-        }
-        let last: f64 = s[s.len() - w..].iter().map(|x| x.stress).sum::<f64>() / w as f64;
-        last < SOFTENING * peak
+        series::has_softened(self.loaded(), self.window_samples(), |x| x.stress, SOFTENING)
     }
 
     /// sigma_c, the strain at failure, whether it failed, ff_c (module docs). None before a window of

@@ -46,6 +46,35 @@ impl MeanEstimate {
 /// Fewer samples than this give the mean alone.
 pub const MIN_SAMPLES: usize = 8;
 
+/// The largest mean of `value` over `w` consecutive items, as (first item, mean): the peak of a test's
+/// curve read over a window (the uniaxial test's sigma_c, the shear cell's tau_peak). None when fewer
+/// than `w` items.
+pub fn largest_window_mean<T>(items: &[T], w: usize, value: impl Fn(&T) -> f64) -> Option<(usize, f64)> {
+    if items.len() < w {
+        return None;
+    }
+    let mut sum: f64 = items[..w].iter().map(&value).sum();
+    let mut best = (0, sum / w as f64);
+    for i in 1..=items.len() - w {
+        sum += value(&items[i + w - 1]) - value(&items[i - 1]);
+        if sum / w as f64 > best.1 {
+            best = (i, sum / w as f64);
+        }
+    }
+    Some(best)
+}
+
+/// Whether the curve has softened: a positive window peak followed by at least one whole window, and the
+/// last window's mean below `fraction` of the peak.
+pub fn has_softened<T>(items: &[T], w: usize, value: impl Fn(&T) -> f64, fraction: f64) -> bool {
+    let Some((i, peak)) = largest_window_mean(items, w, &value) else { return false };
+    if peak <= 0.0 || items.len() < i + 2 * w {
+        return false;
+    }
+    let last = items[items.len() - w..].iter().map(&value).sum::<f64>() / w as f64;
+    last < fraction * peak
+}
+
 /// The mean of `values` (in the order taken) and its standard error (module docs).
 pub fn mean_with_error(values: &[f64]) -> MeanEstimate {
     let n = values.len();

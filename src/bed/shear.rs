@@ -360,27 +360,11 @@ fn window_samples(setup: &Setup, dt: f64) -> usize {
 
 /// The largest window mean of the shear stress: (first sample, mean).
 fn peak(samples: &[Sample], w: usize) -> Option<(usize, f64)> {
-    if samples.len() < w {
-        return None;
-    }
-    let mut sum: f64 = samples[..w].iter().map(|s| s.shear_stress).sum();
-    let mut best = (0, sum / w as f64);
-    for i in 1..=samples.len() - w {
-        sum += samples[i + w - 1].shear_stress - samples[i - 1].shear_stress;
-        if sum / w as f64 > best.1 {
-            best = (i, sum / w as f64);
-        }
-    }
-    Some(best)
+    series::largest_window_mean(samples, w, |s| s.shear_stress)
 }
 
 fn has_failed(samples: &[Sample], w: usize) -> bool {
-    let Some((i, top)) = peak(samples, w) else { return false };
-    if top <= 0.0 || samples.len() < i + 2 * w {
-        return false;
-    }
-    let last = samples[samples.len() - w..].iter().map(|s| s.shear_stress).sum::<f64>() / w as f64;
-    last < SOFTENING * top
+    series::has_softened(samples, w, |s| s.shear_stress, SOFTENING)
 }
 
 /// The engine's whole state, to start each shear from the preshear's end: the bed file's bytes and the
