@@ -47,6 +47,10 @@ pub trait Simd: Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = Se
     unsafe fn from_fn(f: impl FnMut(usize) -> f64) -> Self;
     unsafe fn mask_from_fn(f: impl FnMut(usize) -> bool) -> Self::Mask;
     /// The x, y and z lanes of the 3-vectors `v[idx[k]]` (nothing read past a vector).
+    ///
+    /// # Safety
+    /// As the constructors, and every `idx[k] < v.len()` (not checked here: the pair loop checks its
+    /// indices once per block).
     unsafe fn gather3(v: &[Vec3], idx: &[usize]) -> [Self; 3];
 
     fn to_array(self) -> Self::Array;
@@ -93,12 +97,15 @@ pub unsafe fn transpose(a: __m256d, b: __m256d, c: __m256d, d: __m256d) -> [__m2
 }
 
 /// Four 3-vectors as x, y and z lanes (masked loads: nothing read past the vector).
+///
+/// # Safety
+/// AVX, and `idx[k] < v.len()` for k < 4 (the caller's check).
 #[inline(always)]
 unsafe fn gather3_256(v: &[Vec3], idx: &[usize]) -> [__m256d; 3] {
-    // SAFETY: AVX (the caller's); every index is checked against `v`.
+    // SAFETY: AVX and the indices (the caller's).
     unsafe {
         let three = _mm256_set_epi64x(0, -1, -1, -1);
-        let row = |k: usize| _mm256_maskload_pd(v[idx[k]].as_ptr(), three);
+        let row = |k: usize| _mm256_maskload_pd(v.get_unchecked(*idx.get_unchecked(k)).as_ptr(), three);
         let (r0, r1, r2, r3) = (row(0), row(1), row(2), row(3));
         let t0 = _mm256_unpacklo_pd(r0, r1); // x0 x1 z0 z1
         let t1 = _mm256_unpackhi_pd(r0, r1); // y0 y1 0 0
