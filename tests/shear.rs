@@ -14,13 +14,13 @@ use std::sync::OnceLock;
 /// interface energy `gamma` [J/m^2]: 20 s to prepare. The suite's 800-sphere beds (tests/compression.rs)
 /// make a cell 7 diameters wide, where a preshear of two diameters moves the upper ring by a third of
 /// the die's radius and the slab reads twice the lid's stress: no yield locus there.
-fn prepared(gamma: f64) -> (BedFile, BedScene) {
+fn prepared(gamma: f64) -> BedFile {
     let scene = BedScene::from_json(&format!(
         r#"{{"particle_particle": {{"particle_youngs_modulus": 55e6, "surface_energy": {gamma}, "jkr_friction_limit": "pull_off"}}, "indenter_material": "wall", "particle_count": 3000, "die_diameter": 0.015}}"#
     ))
     .unwrap();
     let (engine, _) = prepare::prepare(&scene, &mut |_| {}).unwrap();
-    (file::decode(&file::encode(&engine.to_file(&scene).unwrap()).unwrap()).unwrap(), scene)
+    file::decode(&file::encode(&engine.to_file(&scene).unwrap()).unwrap()).unwrap()
 }
 
 /// A short Jenike test: preshear at the bed's 10 kPa over 1.5 mean diameters, shears at 003 Sec. 6's
@@ -42,20 +42,25 @@ fn setup() -> Setup {
     }
 }
 
-fn tested(gamma: f64) -> Reading {
-    let (bed, _) = prepared(gamma);
-    let (mut e, scene) = AnyEngine::from_file(&bed, None).unwrap();
+/// The cohesionless bed, prepared once for the locus and for the refusals.
+fn dry_bed() -> &'static BedFile {
+    static B: OnceLock<BedFile> = OnceLock::new();
+    B.get_or_init(|| prepared(0.0))
+}
+
+fn tested(bed: &BedFile) -> Reading {
+    let (mut e, scene) = AnyEngine::from_file(bed, None).unwrap();
     shear::run(&mut e, &scene, &setup(), None, |_| {}).unwrap()
 }
 
 fn cohesive() -> &'static Reading {
     static R: OnceLock<Reading> = OnceLock::new();
-    R.get_or_init(|| tested(0.5))
+    R.get_or_init(|| tested(&prepared(0.5)))
 }
 
 fn cohesionless() -> &'static Reading {
     static R: OnceLock<Reading> = OnceLock::new();
-    R.get_or_init(|| tested(0.0))
+    R.get_or_init(|| tested(dry_bed()))
 }
 
 fn mean(x: impl Iterator<Item = f64>) -> f64 {
@@ -112,8 +117,7 @@ fn a_cohesionless_locus_runs_through_the_origin_and_a_cohesive_one_above_it() {
 
 #[test]
 fn a_quarter_bed_a_bed_without_its_die_and_bad_settings_are_refused_by_name() {
-    let (bed, _) = prepared(0.0);
-    let (mut e, scene) = AnyEngine::from_file(&bed, None).unwrap();
+    let (mut e, scene) = AnyEngine::from_file(dry_bed(), None).unwrap();
     let bad = Setup { normal_stresses: vec![3e3, 2e4], ..setup() };
     let err = shear::run(&mut e, &scene, &bad, None, |_| {}).unwrap_err().to_string();
     assert!(err.contains("normal_stresses"), "{err}");
