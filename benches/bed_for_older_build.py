@@ -8,6 +8,10 @@ The keys removed must not matter to what is measured (`bed bench` sets the law, 
 energy and rolling friction itself).
 
 Usage: python3 benches/bed_for_older_build.py IN.bed OUT.bed KEY [KEY ...]
+
+For issue 30's first binary (842bdd8) and a bench bed a current build prepared: `indenter_material
+jkr_friction_limit forgetting_distance` (the last is a scene key since issue 30's twelfth round; that
+build forgets a contact at its skin, as it always did).
 """
 
 import json
