@@ -700,7 +700,7 @@ impl Indentation {
         let bottom = self.indenter().position[2] - 0.5 * d;
         let bin = Cuboid { width_x: BIN[0] * mean, width_y: BIN[1] * mean, z_low: bottom - BIN[2] * mean, z_high: bottom };
         let stress = bagi(&mut self.engine, &bin).of_whole_die(self.scene.die_sector);
-        debug_assert!(bin.volume() > 0.0);
+        assert!(bin.volume() > 0.0);
         Reading {
             force: f,
             depth: h,

@@ -290,7 +290,8 @@ macro_rules! define_any_law {
                     $((AnyLaw::$variant($d law), AnyHistory::$variant($d hist)) => $d wrap(AnyHistory::$variant, $d body),)*
                     _ => {
                         // A history of another law is a programming error (restored states are checked
-                        // by `Contact::remember`): loud in debug builds, a fresh history in release ones.
+                        // by `Contact::remember`): loud with debug assertions, a fresh history without
+                        // (the library's tests run without them: Cargo.toml).
                         debug_assert!(false, "a history of another law than {:?}", $d self_.model());
                         $d mismatch
                     }

@@ -127,7 +127,7 @@ impl<L: BedLaw> Engine<L> {
                 *ss = s_rest;
                 *rs = r_rest;
             }
-            debug_assert!(!record || sink.dipole.len() == sink.load.len());
+            assert!(!record || sink.dipole.len() == sink.load.len());
             parts.push(Part { rows: (a, b), slot0: consumed, normal: mine_n, spring: mine_s, radius: mine_r, walls, sink });
             consumed += take;
         }
