@@ -65,9 +65,10 @@ def main():
         for g, ((phase, target), rs) in enumerate(groups.items()):
             # One run: a colour per phase. Several: a colour per run, so the runs can be told apart.
             c = colours[g % len(colours)] if len(runs) == 1 else colours[k % len(colours)]
-            name = f"preshear {float(target) / 1e3:.1f} kPa" if phase == "preshear" else f"shear {float(target) / 1e3:.1f} kPa"
             if len(runs) > 1:
                 name = "preshear and shears"
+            else:
+                name = f"{phase} {float(target) / 1e3:.1f} kPa"
             left.plot([float(x["displacement_m"]) * 1e3 for x in rs], [float(x["shear_stress_Pa"]) / 1e3 for x in rs], "-", color=c, lw=1,
                       label=f"{name} ({label})" if len(runs) == 1 or g == 0 else None)
         c = colours[k % len(colours)]

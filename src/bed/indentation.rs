@@ -699,8 +699,8 @@ impl Indentation {
         let mean = self.scene.size_distribution.mean_diameter();
         let bottom = self.indenter().position[2] - 0.5 * d;
         let bin = Cuboid { width_x: BIN[0] * mean, width_y: BIN[1] * mean, z_low: bottom - BIN[2] * mean, z_high: bottom };
-        let stress = bagi(&mut self.engine, &bin).of_whole_die(self.scene.die_sector);
         assert!(bin.volume() > 0.0);
+        let stress = bagi(&mut self.engine, &bin).of_whole_die(self.scene.die_sector);
         Reading {
             force: f,
             depth: h,
