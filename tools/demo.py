@@ -115,7 +115,7 @@ def main():
     for s in speeds:
         r = impact(fmu, s, interval=1e-8, stop=4e-7)
         e.append(max(r["sphere_velocity"][-1], 0.0) / s if r["overlap"][-1] < 0 else 0.0)
-    print("\nrestitution through the FMU:")
+    print("\nrestitution through the FMU (impact velocity [m/s]: coefficient of restitution [-], 0 where the sphere sticks):")
     print("  " + "  ".join(f"{s:.2f}:{x:.3f}" for s, x in zip(speeds, e)))
 
     fig, ax = plt.subplots(1, 3, figsize=(15, 4.4))
@@ -136,8 +136,8 @@ def main():
     path = os.path.join(a.out, "impact.png")
     fig.savefig(path, dpi=110)
     paths = [path, sieve_demo(a.fmu_dir, a.out)]
-    indentation_plot, plateau = indentation(os.path.join(a.fmu_dir, "BallIndentation.fmu"), a.out)
-    paths += [indentation_plot, compression(os.path.join(a.fmu_dir, "UnconfinedCompression.fmu"), a.out, plateau)]
+    indentation_plot, plateau, plateau_se = indentation(os.path.join(a.fmu_dir, "BallIndentation.fmu"), a.out)
+    paths += [indentation_plot, compression(os.path.join(a.fmu_dir, "UnconfinedCompression.fmu"), a.out, plateau, plateau_se)]
     print("\nplots: " + ", ".join(paths))
     return 0
 
@@ -275,7 +275,7 @@ def indentation(fmu, out):
     fig.tight_layout()
     path = os.path.join(out, "indentation.png")
     fig.savefig(path, dpi=110)
-    return path, float(last["plateau_hardness"])
+    return path, float(last["plateau_hardness"]), float(last["plateau_hardness_standard_error"])
 
 
 def measured_constraint_factor(sigma_1):
@@ -290,7 +290,7 @@ def measured_constraint_factor(sigma_1):
     return None, None
 
 
-def compression(fmu, out, plateau):
+def compression(fmu, out, plateau, plateau_se):
     """The UnconfinedCompression FMU's default test through fmpy with no arguments: the stress-strain curve,
     sigma_c with its standard error, ff_c; and H / sigma_c with the indentation's plateau on the same material."""
     print(f"\nunconfined compression: {fmu}")
@@ -307,12 +307,16 @@ def compression(fmu, out, plateau):
     print(f"  sigma_c (the largest mean stress over 0.05 % strain, read from 0.05 % on, past the platen's arrival) {sigma_c:.4g} +- {se:.2g} Pa "
           f"(standard error of this run; two other fills of the same scene read 787 and 819 Pa: 12 % from fill to fill, this fill the strongest; quasi-static rates, 0.03-0.3/s, read 7 % lower: docs/units/UnconfinedCompression.md) "
           f"at strain {last['strain_at_failure']:.4f}, {state}; ff_c = sigma_1 / sigma_c = {last['flow_function']:.3g} "
+          f"+- {last['flow_function'] * se / sigma_c:.1g} (sigma_c's standard error; sigma_1 is set; the fills' 12 % carries to ff_c too) "
           f"(004 Table 2.1: free flowing above 10)")
+    ratio = plateau / sigma_c
+    # Both runs' own standard errors in quadrature (independent runs); the beds' scatter is not in it.
+    ratio_se = ratio * ((plateau_se / plateau) ** 2 + (se / sigma_c) ** 2) ** 0.5
     if not last["failed"]:
-        print(f"  with the indentation's plateau above on the same material: H / sigma_c = {plateau / sigma_c:.3g}, an upper bound of the constraint "
+        print(f"  with the indentation's plateau above on the same material: H / sigma_c = {ratio:.3g} +- {ratio_se:.2g}, an upper bound of the constraint "
               f"factor C (004 Eq. 2.10; BallIndentation divides by C = 3): sigma_c here is a lower bound, and the two beds and rates differ")
     else:
-        print(f"  with the indentation's plateau above on the same material: H / sigma_c = {plateau / sigma_c:.3g} (004 Eq. 2.10's C; BallIndentation divides by C = 3)")
+        print(f"  with the indentation's plateau above on the same material: H / sigma_c = {ratio:.3g} +- {ratio_se:.2g} (the two runs' standard errors; 004 Eq. 2.10's C; BallIndentation divides by C = 3)")
     c, c_se = measured_constraint_factor(last["consolidation_stress"])
     if c is not None:
         print(f"  the constraint factor measured over several beds and specimens at this stress: C = {c:.3g} +- {c_se:.2g} "
