@@ -65,7 +65,7 @@ fn every_law_steps_to_the_same_bits_with_avx512_avx2_and_the_baseline() {
                 // The lanes ran (so the comparison compared them): on lanes the laws that have them, the law
                 // per lane for the others whose tangential damping has a fixed ratio to the normal one.
                 let lanes = match law {
-                    "pasha_simplified" | "hertz" | "hooke" | "jkr" | "jkr_modified" => "vector",
+                    "pasha_simplified" | "hertz" | "hooke" | "jkr" | "jkr_modified" | "nan" => "vector",
                     "tomas" => "scalar",
                     _ => "per_lane",
                 };

@@ -48,6 +48,7 @@ macro_rules! no_lanes {
     (Hertz, $ty:ty) => {};
     (Jkr, $ty:ty) => {};
     (JkrModified, $ty:ty) => {};
+    (Nan, $ty:ty) => {};
     ($variant:ident, $ty:ty) => {
         #[cfg(target_arch = "x86_64")]
         impl LaneLaw for $ty {}

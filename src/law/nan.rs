@@ -130,7 +130,9 @@ impl Nan {
         }
     }
 
-    fn points_after_yield(&self, alpha_max: f64) -> NanPoints {
+    /// Branch points for alpha_max > alpha_y (the plastic branch's new history; the lanes call it per lane).
+    #[inline(never)]
+    pub fn points_after_yield(&self, alpha_max: f64) -> NanPoints {
         let p = &self.p;
         let k_e = p.k_e(alpha_max);
         let k_c = k_e * p.k_cl / p.k_el; // k_e/k_c = k_el/k_cl (000 Sec. 3.2)

@@ -160,7 +160,7 @@ impl LaneLaw for Jkr {
     #[inline(always)]
     unsafe fn load_history<V: Simd>(h: &[JkrHistory]) -> History<V> {
         // SAFETY: the caller's (the trait's contract).
-        unsafe { History { established: V::mask_from_fn(|k| h[k].established), value: V::splat(0.0) } }
+        unsafe { History { established: V::mask_from_fn(|k| h[k].established), ..History::none() } }
     }
 
     #[inline(always)]
@@ -176,7 +176,7 @@ impl LaneLaw for Jkr {
     /// The initial history is not established, and an established contact holds at negative overlap
     /// down to its end: only an established contact must be visited.
     #[inline(always)]
-    unsafe fn must_visit<V: Simd>(h: &History<V>) -> V::Mask {
+    unsafe fn must_visit<V: Simd>(h: &History<V>, _param: impl Fn(usize) -> V) -> V::Mask {
         h.established
     }
 
@@ -189,7 +189,7 @@ impl LaneLaw for Jkr {
             let separated = alpha.lt(zero).and_not(h.established) | alpha.lt(p[6]);
             let in_contact = !separated;
             let a = contact_radius(p, alpha, guess, in_contact, |k| &law(k).curve);
-            evaluation(p, in_contact, a, History { established: in_contact, value: zero })
+            evaluation(p, in_contact, a, History { established: in_contact, ..History::none() })
         }
     }
 }

@@ -10,10 +10,11 @@
 //! run in one. The loop and the laws are written once against `simd::Simd`, and compiled per width.
 //!
 //! A law joins by implementing `LaneLaw` (its evaluation on lanes: `lanes/pasha_simplified.rs`,
-//! `lanes/linear.rs`, `lanes/hertz.rs`, `lanes/jkr.rs` for the full and the modified JKR laws). The other
-//! laws, a bed whose pairs the lanes do not cover (a tangential model other than the law's own, a
-//! load-dependent Pasha stiffness, no fixed ratio of the tangential to the normal damping stiffness), and
-//! a force loop with held spheres or recorded dipoles stay on the scalar loop.
+//! `lanes/linear.rs`, `lanes/hertz.rs`, `lanes/nan.rs`, `lanes/jkr.rs` for the full and the modified JKR
+//! laws). The other laws run once per lane inside the lane loop. A bed whose pairs the lanes do not cover
+//! (a tangential model other than the law's own, a load-dependent Pasha stiffness, no fixed ratio of the
+//! tangential to the normal damping stiffness) and a force loop with held spheres or recorded dipoles stay
+//! on the scalar loop.
 
 #[cfg(target_arch = "x86_64")]
 mod hertz;
@@ -23,6 +24,8 @@ mod jkr;
 mod kick;
 #[cfg(target_arch = "x86_64")]
 mod linear;
+#[cfg(target_arch = "x86_64")]
+mod nan;
 #[cfg(target_arch = "x86_64")]
 mod pasha_simplified;
 #[cfg(target_arch = "x86_64")]
@@ -54,11 +57,14 @@ mod x86 {
     use crate::law::NormalLaw;
     use std::arch::x86_64::*;
 
-    /// A law's history on lanes: a mask and a value (their meaning is the law's).
+    /// A law's history on lanes: a mask, a value and the values that follow from it (their meaning is
+    /// the law's; a law that uses fewer leaves the rest at zero, and the compiler drops them).
     #[derive(Clone, Copy)]
     pub struct History<V: Simd> {
         pub established: V::Mask,
         pub value: V,
+        /// Nan's branch points (`NanPoints`, computed from alpha_max and kept in the history).
+        pub points: [V; 7],
     }
 
     impl<V: Simd> History<V> {
@@ -69,7 +75,7 @@ mod x86 {
         #[inline(always)]
         pub unsafe fn none() -> History<V> {
             // SAFETY: the caller's.
-            unsafe { History { established: V::mask_from_fn(|_| false), value: V::splat(0.0) } }
+            unsafe { History { established: V::mask_from_fn(|_| false), value: V::splat(0.0), points: [V::splat(0.0); 7] } }
         }
     }
 
@@ -136,12 +142,13 @@ mod x86 {
         fn store_history<V: Simd>(_h: &mut [Self::History], _v: &History<V>, _mask: u32) {}
 
         /// Lanes whose history forbids skipping the pair while it is beyond reach with no spring: neither
-        /// the initial history nor one the law `rests_apart` with.
+        /// the initial history nor one the law `rests_apart` with. `param(q)` reads the law's lane
+        /// parameter q (a table gather, so only a law that needs it calls it).
         ///
         /// # Safety
         /// The CPU runs the width's instruction set.
         #[inline(always)]
-        unsafe fn must_visit<V: Simd>(_h: &History<V>) -> V::Mask {
+        unsafe fn must_visit<V: Simd>(_h: &History<V>, _param: impl Fn(usize) -> V) -> V::Mask {
             // SAFETY: the caller's.
             unsafe { V::mask_from_fn(|_| false) }
         }
@@ -378,7 +385,7 @@ mod x86 {
                 let interactions = |k: usize| &e.pairs[pair[k]];
                 let (h, must_visit) = if vector {
                     let h = L::load_history::<V>(&normal[m..m + w]);
-                    (h, L::must_visit(&h))
+                    (h, L::must_visit(&h, |q| param(COMMON + q)))
                 } else {
                     let must = V::mask_from_fn(|k| {
                         let (h, it) = (&normal[m + k], interactions(k));

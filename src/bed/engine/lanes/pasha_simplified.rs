@@ -18,7 +18,7 @@ impl LaneLaw for PashaSimplified {
     #[inline(always)]
     unsafe fn load_history<V: Simd>(h: &[PashaHistory]) -> History<V> {
         // SAFETY: the caller's (the trait's contract).
-        unsafe { History { established: V::mask_from_fn(|k| h[k].established), value: V::from_fn(|k| h[k].alpha_max) } }
+        unsafe { History { established: V::mask_from_fn(|k| h[k].established), value: V::from_fn(|k| h[k].alpha_max), ..History::none() } }
     }
 
     #[inline(always)]
@@ -34,7 +34,7 @@ impl LaneLaw for PashaSimplified {
     /// The initial history is not established and a detached one rests apart (`rests_apart`): only an
     /// established contact must be visited.
     #[inline(always)]
-    unsafe fn must_visit<V: Simd>(h: &History<V>) -> V::Mask {
+    unsafe fn must_visit<V: Simd>(h: &History<V>, _param: impl Fn(usize) -> V) -> V::Mask {
         h.established
     }
 
@@ -68,7 +68,7 @@ impl LaneLaw for PashaSimplified {
                 force,
                 stiffness,
                 in_contact,
-                history: History { established: in_contact, value: new_max },
+                history: History { established: in_contact, value: new_max, ..*h },
                 yielded: new_max.gt(zero),
                 // 004 Eq. 4.28: F_n + k_cp alpha + f_0p - f_ce
                 sliding_normal_force: force + k_cp * alpha + f_0p - f_ce,
