@@ -4,7 +4,7 @@
 
 use powderfmu::bed::{file, BedScene};
 use powderfmu::units::ball_indentation::{DEFAULT_BED_SCENE, QUARTER_BED_SCENE, QUARTER_REPLICAS, SHIPPED_BED, SHIPPED_QUARTER_BED};
-use powderfmu::units::unconfined_compression::{SHIPPED_SPECIMEN, SPECIMEN_SCENE};
+use powderfmu::units::unconfined_compression::{SHIPPED_SPECIMEN, SPECIMEN_REPLICAS, SPECIMEN_SCENE};
 use serde_json::Value;
 use std::path::Path;
 
@@ -27,6 +27,11 @@ pub fn shipped_quarter_replicas(root: &Path) -> Result<Vec<(&'static str, Vec<u8
 /// The bytes of the specimen UnconfinedCompression ships, checked against `SPECIMEN_SCENE`.
 pub fn shipped_specimen(root: &Path) -> Result<Vec<u8>, String> {
     shipped_bed(root, SHIPPED_SPECIMEN, SPECIMEN_SCENE)
+}
+
+/// The specimens `replicas` adds (resource name, bytes), each checked against its own scene.
+pub fn shipped_specimen_replicas(root: &Path) -> Result<Vec<(&'static str, Vec<u8>)>, String> {
+    SPECIMEN_REPLICAS.iter().map(|&(name, scene, bed)| Ok((name, shipped_bed(root, bed, scene)?))).collect()
 }
 
 fn shipped_bed(root: &Path, bed: &str, scene: &str) -> Result<Vec<u8>, String> {
@@ -112,6 +117,25 @@ mod tests {
         seeds.sort_by_key(|s| s.to_string());
         seeds.dedup();
         assert_eq!(seeds.len(), 1 + QUARTER_REPLICAS.len(), "every bed its own fill seed");
+    }
+
+    #[test]
+    fn the_replica_specimens_are_the_specimen_prepared_again_with_other_seeds() {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR")).parent().expect("the workspace root");
+        let replicas = shipped_specimen_replicas(root).expect("the replica specimens are accepted");
+        let first = BedScene::from_json(SPECIMEN_SCENE).unwrap().to_json();
+        let mut seeds = vec![first["seed"].clone()];
+        for ((name, bytes), (_, scene, _)) in replicas.iter().zip(SPECIMEN_REPLICAS) {
+            let scene = BedScene::from_json(scene).unwrap().to_json();
+            assert_eq!(first_difference("", &first, &scene).as_deref(), Some("seed"), "{name}: only the fill seed differs");
+            seeds.push(scene["seed"].clone());
+            let bed = file::decode(bytes).unwrap();
+            let (engine, scene) = powderfmu::bed::AnyEngine::from_file(&bed, Some(1)).unwrap();
+            assert_eq!((engine.particles().len(), scene.consolidation_stress), (4000, 10e3), "{name}");
+        }
+        seeds.sort_by_key(|s| s.to_string());
+        seeds.dedup();
+        assert_eq!(seeds.len(), 1 + SPECIMEN_REPLICAS.len(), "every specimen its own fill seed");
     }
 
     #[test]

@@ -183,6 +183,9 @@ fn entries(unit: &UnitInfo, binaries: &Binaries, root: &Path, version: Version) 
     } else if id == units::unconfined_compression::MODEL_IDENTIFIER {
         let specimen = beds::shipped_specimen(root)?;
         entries.push(Entry { name: format!("resources/{}", units::unconfined_compression::RESOURCE_SPECIMEN), data: specimen });
+        for (name, data) in beds::shipped_specimen_replicas(root)? {
+            entries.push(Entry { name: format!("resources/{name}"), data });
+        }
         entries.push(Entry { name: "resources/specimen_scene.json".into(), data: units::unconfined_compression::SPECIMEN_SCENE.as_bytes().to_vec() });
         entries.push(Entry { name: "documentation/bed.md".into(), data: read(root, "docs/bed.md")? });
     } else {
