@@ -53,38 +53,12 @@ fn shipped_bed(root: &Path, bed: &str, scene: &str) -> Result<Vec<u8>, String> {
 /// The path of the first key whose values differ, ignoring what does not change the bed (`threads`:
 /// results differ by round-off only; `comment`).
 fn first_difference(at: &str, a: &Value, b: &Value) -> Option<String> {
-    match (a, b) {
-        (Value::Object(x), Value::Object(y)) => {
-            let mut keys: Vec<&String> = x.keys().chain(y.keys()).filter(|k| !["threads", "comment"].contains(&k.as_str())).collect();
-            keys.sort();
-            keys.dedup();
-            keys.into_iter().find_map(|k| {
-                let path = if at.is_empty() { k.clone() } else { format!("{at}.{k}") };
-                match (x.get(k), y.get(k)) {
-                    (Some(u), Some(v)) => first_difference(&path, u, v),
-                    _ => Some(path),
-                }
-            })
-        }
-        _ if a == b => None,
-        (Value::Number(x), Value::Number(y)) if x.as_f64() == y.as_f64() => None,
-        _ => Some(at.to_string()),
-    }
+    powderfmu::bed::scene_difference(at, a, b, &["threads", "comment"])
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn the_first_difference_is_named_by_its_path() {
-        let a = serde_json::json!({"threads": 1, "particle_particle": {"surface_energy": 2.0, "friction_coefficient": 0.15}});
-        let b = serde_json::json!({"threads": 2, "particle_particle": {"surface_energy": 2, "friction_coefficient": 0.3}});
-        assert_eq!(first_difference("", &a, &b).as_deref(), Some("particle_particle.friction_coefficient"));
-        assert_eq!(first_difference("", &a, &a), None);
-        let c = serde_json::json!({"particle_particle": {"surface_energy": 2.0, "friction_coefficient": 0.15}, "particle_count": 5});
-        assert_eq!(first_difference("", &a, &c).as_deref(), Some("particle_count"));
-    }
 
     #[test]
     fn the_shipped_bed_is_the_units_bed() {

@@ -51,7 +51,7 @@ pub mod yield_locus;
 
 pub use any::{AnyEngine, BedError};
 pub use engine::{Engine, Isa};
-pub use scene::{keys_help as scene_keys_help, BedKeys, BedScene, IndenterMaterial, STRUCTURED_KEYS};
+pub use scene::{first_difference as scene_difference, keys_help as scene_keys_help, replica_difference, BedKeys, BedScene, IndenterMaterial, STRUCTURED_KEYS};
 
 /// A 3-vector [m], [m/s], [N], ...: nalgebra's, so the geometry reads as vector algebra (`x - wall.position`,
 /// `d.dot(&normal)`, `n * lever`, Bagi's `n F^T`). The engine still stores them structure-of-arrays

@@ -13,7 +13,7 @@
 
 use super::indentation::{yield_strength_error, Indentation, Reading, TestState};
 use super::series::MeanEstimate;
-use super::BedError;
+use super::{replica_difference, BedError, BedScene};
 
 /// The plateau hardness over the beds: the mean of their plateaus and its standard error from their
 /// spread [Pa].
@@ -35,6 +35,18 @@ pub fn over_beds(plateaus: &[f64]) -> OverBeds {
     let mean = plateaus.iter().sum::<f64>() / n.max(1) as f64;
     let standard_deviation = if n < 2 { 0.0 } else { (plateaus.iter().map(|p| (p - mean).powi(2)).sum::<f64>() / (n - 1) as f64).sqrt() };
     OverBeds { mean, standard_deviation, standard_error: standard_deviation / (n.max(1) as f64).sqrt(), beds: n }
+}
+
+/// Refuses a replica bed that is not a fill of the first bed's scene (`replica_difference`): the message
+/// names the key that differs. A mean over beds of two powders, two stresses or two dies measures
+/// nothing.
+pub fn check_replica(first: &BedScene, other: &BedScene) -> Result<(), String> {
+    match replica_difference(first, other) {
+        None => Ok(()),
+        Some(key) => Err(format!(
+            "it was prepared from another scene than replica 1: `{key}` differs; replicas are fills of one scene (prepared with other `seed`s only)"
+        )),
+    }
 }
 
 /// One reading from the beds' readings: every quantity the mean over the beds; the state the least

@@ -395,9 +395,58 @@ impl BedScene {
     }
 }
 
+/// The path of the first key whose values differ between two scenes as JSON (`BedScene::to_json`), keys
+/// in `ignored` left out at every level; numbers compare by value (2 and 2.0 are one). For the checks
+/// that a bed was made with a given scene (`fmu_build`) and that replicas are fills of one scene.
+pub fn first_difference(at: &str, a: &Value, b: &Value, ignored: &[&str]) -> Option<String> {
+    match (a, b) {
+        (Value::Object(x), Value::Object(y)) => {
+            let mut keys: Vec<&String> = x.keys().chain(y.keys()).filter(|k| !ignored.contains(&k.as_str())).collect();
+            keys.sort();
+            keys.dedup();
+            keys.into_iter().find_map(|k| {
+                let path = if at.is_empty() { k.clone() } else { format!("{at}.{k}") };
+                match (x.get(k), y.get(k)) {
+                    (Some(u), Some(v)) => first_difference(&path, u, v, ignored),
+                    _ => Some(path),
+                }
+            })
+        }
+        _ if a == b => None,
+        (Value::Number(x), Value::Number(y)) if x.as_f64() == y.as_f64() => None,
+        _ => Some(at.to_string()),
+    }
+}
+
+/// The first key in which a replica's scene differs from the first bed's, or None where the two are fills
+/// of one scene: only the fill `seed` may differ (and `threads` and `comment`, which change no bed).
+pub fn replica_difference(first: &BedScene, other: &BedScene) -> Option<String> {
+    first_difference("", &first.to_json(), &other.to_json(), &["threads", "comment", "seed"])
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_first_difference_is_named_by_its_path() {
+        let ignored = ["threads", "comment"];
+        let a = json!({"threads": 1, "particle_particle": {"surface_energy": 2.0, "friction_coefficient": 0.15}});
+        let b = json!({"threads": 2, "particle_particle": {"surface_energy": 2, "friction_coefficient": 0.3}});
+        assert_eq!(first_difference("", &a, &b, &ignored).as_deref(), Some("particle_particle.friction_coefficient"));
+        assert_eq!(first_difference("", &a, &a, &ignored), None);
+        let c = json!({"particle_particle": {"surface_energy": 2.0, "friction_coefficient": 0.15}, "particle_count": 5});
+        assert_eq!(first_difference("", &a, &c, &ignored).as_deref(), Some("particle_count"));
+    }
+
+    #[test]
+    fn replicas_may_differ_in_their_fill_seed_only() {
+        let first = BedScene::default();
+        let other = BedScene { seed: first.seed + 1, threads: first.threads + 1, ..first.clone() };
+        assert_eq!(replica_difference(&first, &other), None);
+        let stronger = BedScene { consolidation_stress: 2.0 * first.consolidation_stress, ..other };
+        assert_eq!(replica_difference(&first, &stronger).as_deref(), Some("consolidation_stress"));
+    }
 
     #[test]
     fn to_json_writes_every_declared_key_and_reads_back_the_same_scene() {

@@ -13,7 +13,7 @@ use super::variables::{Value, VarType, Variable};
 use super::{Model, UnitError, UnitInfo};
 use crate::bed::{constraint_factor, file};
 use crate::bed::indentation::{DepthOrigin, Indentation, Motion, Setup, TestState, FAST, PLATEAU};
-use crate::bed::replicas::{over_beds, Replicas};
+use crate::bed::replicas::{check_replica, over_beds, Replicas};
 use crate::bed::{BedError, BedScene};
 use crate::scene::{Key, KeyDefault, KEYS};
 use serde_json::{Map, Value as Json};
@@ -169,7 +169,7 @@ variable_table! {
     depth_origin: Variable::parameter("depth_origin", Value::String("first_touch".into()), "", "where h is measured from: first_touch (the indenter's lowest point when it first touches a sphere, lowered along the die axis) or mean_surface (the bed's mean surface under the footprint of max_penetration, probed before the test with a sphere of the mean particle radius on a grid of a quarter mean diameter); depth_origin_offset gives the difference"),
     bed_file: Variable::parameter("bed_file", Value::String(String::new()), "", "a bed file of `powderfmu bed prepare`, or several separated by ';' (one per replica, as many as replicas); empty: the beds in the FMU's resources"),
     threads: Variable::parameter("threads", Value::Integer(2), "", "threads of the bed engine's force loop, in [1, 256] (results differ from one thread's by round-off, which the bed's dynamics then grow); with replicas, every bed steps on all of them, one bed after the other"),
-    replicas: Variable::parameter("replicas", Value::Integer(1), "", "how many independently prepared beds the test runs on, stepped one after the other within each step (the same indenter motion in each): the FMU's quarter beds (fidelity = quarter: 1 to 3, fill seeds 1-3; fast and full: 1), or the beds bed_file lists. Every output is then the mean over the beds, and plateau_hardness_standard_error_over_beds their spread; the first bed reads what it reads alone, to the bit; the cost is replicas times one bed's"),
+    replicas: Variable::parameter("replicas", Value::Integer(1), "", "how many independently prepared beds the test runs on, stepped one after the other within each step (the same indenter motion in each): the FMU's quarter beds (fidelity = quarter: 1 to 3, fill seeds 1-3; fast and full: 1), or the beds bed_file lists, which must be fills of one scene (only `seed` may differ; another is refused, naming the key). Every output is then the mean over the beds, and plateau_hardness_standard_error_over_beds their spread; the first bed reads what it reads alone, to the bit; the cost is replicas times one bed's"),
     time_step: Variable::parameter("time_step", Value::Real(DEFAULT_TIME_STEP), "s", "the bed engine's time step, refused above the bed's stability limit; the default is half the shipped bed's limit (its error is in docs/indentation.md); 0 = the bed's own (its scene's time_step or rayleigh_fraction of its stability limit)")
         .with_range(Some(0.0), None),
     fidelity: Variable::parameter("fidelity", Value::String("quarter".into()), "", "quarter (the FMU's quarter of the seed's die, 7250 spheres between two mirror planes, every sphere moving; with a bed_file, that bed with every sphere moving), fast (the whole bed; the spheres farther than 3 contact radii a_max from the deepest indentation are held where the bed left them until the force on one changes by 0.1 consolidation_stress x d^2) or full (the whole bed, every sphere moving); their errors are measured in docs/indentation.md"),
@@ -424,12 +424,15 @@ impl Model for BallIndentation {
                 Some(u)
             }
         };
-        let mut tests = Vec::with_capacity(paths.len());
+        let mut tests: Vec<Indentation> = Vec::with_capacity(paths.len());
         for (k, path) in paths.iter().enumerate() {
             let (engine, scene) = file::load(path, Some(threads)).map_err(|e| match e {
                 BedError::Setup(why) => variable("bed_file", format!("bed_file {}: {why}", path.display())),
                 other => UnitError::from(other),
             })?;
+            if let Some(first) = tests.first() {
+                check_replica(&first.scene, &scene).map_err(|why| variable("bed_file", format!("replica {} of {}: bed_file {}: {why}", k + 1, paths.len(), path.display())))?;
+            }
             self.check_bed(values, &scene, path)?;
             let indenter = self.indenter_pair(values, &scene)?;
             let mut setup = setup;

@@ -13,7 +13,7 @@
 use super::variables::{Value, VarType, Variable};
 use super::{Model, UnitError, UnitInfo};
 use crate::bed::compression::{Setup, Specimen};
-use crate::bed::replicas::over_beds;
+use crate::bed::replicas::{check_replica, over_beds};
 use crate::bed::{file, BedError};
 use crate::error::ParamError;
 use std::path::{Path, PathBuf};
@@ -67,7 +67,7 @@ variable_table! {
     time_step: Variable::parameter("time_step", Value::Real(0.0), "s", "the bed engine's time step, refused above the bed's stability limit; 0 = the bed's own (its scene's time_step or rayleigh_fraction of its stability limit)")
         .with_range(Some(0.0), None),
     unconfined_yield_strength_standard_error_over_specimens: Variable::output("unconfined_yield_strength_standard_error_over_specimens", VarType::Real, "Pa", "with replicas > 1: the standard error of unconfined_yield_strength from the specimens' spread, s / sqrt(replicas) with s the sample standard deviation of their sigma_c; it holds the specimen-to-specimen scatter one specimen cannot show. 0 with one replica, and until every specimen has a window"),
-    replicas: Variable::parameter("replicas", Value::Integer(1), "", "how many independently prepared specimens the test runs on, one after the other within each step, each with the same settings: the FMU's specimens (1 to 3: the shipped specimen's scene with fill seeds 1-3), or the beds bed_file lists. Every output is then the mean over the specimens (kinetic_energy too) and unconfined_yield_strength_standard_error_over_specimens their spread; the first specimen reads what it reads alone, to the bit; the cost is replicas times one specimen's"),
+    replicas: Variable::parameter("replicas", Value::Integer(1), "", "how many independently prepared specimens the test runs on, one after the other within each step, each with the same settings: the FMU's specimens (1 to 3: the shipped specimen's scene with fill seeds 1-3), or the beds bed_file lists, which must be fills of one scene (only `seed` may differ; another is refused, naming the key). Every output is then the mean over the specimens (kinetic_energy too) and unconfined_yield_strength_standard_error_over_specimens their spread; the first specimen reads what it reads alone, to the bit; the cost is replicas times one specimen's"),
 }
 
 /// The unit (Co-Simulation only): its variables and time.
@@ -293,13 +293,16 @@ impl Model for UnconfinedCompression {
         let threads = Self::threads(values)?;
         let paths = self.bed_paths(values)?;
         let dt = values[REFS.time_step].as_real();
-        let mut specimens = Vec::with_capacity(paths.len());
+        let mut specimens: Vec<Specimen> = Vec::with_capacity(paths.len());
         for (k, path) in paths.iter().enumerate() {
             let which = if paths.len() > 1 { format!("replica {} of {}: ", k + 1, paths.len()) } else { String::new() };
             let (engine, scene) = file::load(path, Some(threads)).map_err(|e| match e {
                 BedError::Setup(why) => variable("bed_file", format!("{which}bed_file {}: {why}", path.display())),
                 other => UnitError::from(other),
             })?;
+            if let Some(first) = specimens.first() {
+                check_replica(&first.scene, &scene).map_err(|why| variable("bed_file", format!("{which}bed_file {}: {why}", path.display())))?;
+            }
             let specimen = Specimen::new(engine, scene, setup, (dt != 0.0).then_some(dt)).map_err(|e| match e {
                 // A bed not prepared in a die is the file's fault; the settings and time_step name themselves.
                 BedError::Param(p @ ParamError::Inconsistent { name: "bed", .. }) => variable("bed_file", format!("{which}bed_file {}: {p}", path.display())),

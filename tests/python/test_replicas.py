@@ -102,6 +102,10 @@ def test_replicas_the_beds_cannot_give_are_refused_by_name(indentation, shipped_
     assert any("`replicas` = 4" in m and "allowed [1, 3]" in m for m in messages), messages
     messages = _refused(shipped_indentation, {"replicas": 2, "fidelity": "full"})
     assert any("`replicas` = 2" in m and "allowed [1, 1]" in m for m in messages), messages
+    # A replica must be a fill of the first bed's scene: the shipped quarter is another powder and die.
+    quarter = Path(shipped_indentation.unzipdir) / "resources" / "bed_quarter.pfbed"
+    messages = _refused(indentation, {"replicas": 2, "bed_file": f"{quick_bed['bed_file']};{quarter}"})
+    assert any("replica 2 of 2" in m and "another scene than replica 1" in m and "differs" in m for m in messages), messages
 
 
 def test_the_fmu_ships_three_quarter_beds(shipped_indentation):
@@ -194,6 +198,9 @@ def test_compression_replicas_the_specimens_cannot_give_are_refused_by_name(comp
     assert any("`replicas` = 65" in m and "[1, 64]" in m for m in messages), messages
     messages = _refused(shipped_compression, {"replicas": 4})
     assert any("`replicas` = 4" in m and "allowed [1, 3]" in m for m in messages), messages
+    specimen = Path(shipped_compression.unzipdir) / "resources" / "specimen.pfbed"
+    messages = _refused(compression, {"replicas": 2, "bed_file": f"{compression.defaults['bed_file']};{specimen}"})
+    assert any("replica 2 of 2" in m and "another scene than replica 1" in m and "differs" in m for m in messages), messages
 
 
 def test_the_fmu_ships_three_specimens(shipped_compression, cli):
