@@ -3,21 +3,18 @@
 //! is refused by name.
 
 use powderfmu::bed::compression::{Compression, Setup};
-use powderfmu::bed::file::{self, BedFile};
-use powderfmu::bed::prepare::{self, DIE};
+use powderfmu::bed::file::BedFile;
+use powderfmu::bed::prepare::DIE;
 use powderfmu::bed::walls::Shape;
 use powderfmu::bed::{AnyEngine, BedScene};
 use std::sync::OnceLock;
 
+mod common;
+
 /// 800 soft spheres (E = 55 MPa) in a 7 mm die consolidated to 10 kPa, with interface energy `gamma`
 /// [J/m^2]: the suite's quick bed (tests/indentation.rs), prepared once per energy.
 fn prepared(gamma: f64) -> (BedFile, BedScene) {
-    let scene = BedScene::from_json(&format!(
-        r#"{{"particle_particle": {{"particle_youngs_modulus": 55e6, "surface_energy": {gamma}, "jkr_friction_limit": "pull_off"}}, "indenter_material": "wall", "particle_count": 800, "die_diameter": 0.007}}"#
-    ))
-    .unwrap();
-    let (engine, _) = prepare::prepare(&scene, &mut |_| {}).unwrap();
-    (file::decode(&file::encode(&engine.to_file(&scene).unwrap()).unwrap()).unwrap(), scene)
+    common::soft_die_bed(gamma, 800, 0.007)
 }
 
 fn cohesive() -> &'static (BedFile, BedScene) {

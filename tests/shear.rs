@@ -3,24 +3,21 @@
 //! bed's yield locus runs through the origin within its error, a cohesive one's does not, and its Mohr
 //! circles give sigma_c and sigma_1; bad input is refused by name.
 
-use powderfmu::bed::file::{self, BedFile};
-use powderfmu::bed::prepare::{self, DIE, PISTON};
+use powderfmu::bed::file::BedFile;
+use powderfmu::bed::prepare::{DIE, PISTON};
 use powderfmu::bed::shear::{self, Reading, Setup};
 use powderfmu::bed::walls::Shape;
 use powderfmu::bed::{AnyEngine, BedScene};
 use std::sync::OnceLock;
+
+mod common;
 
 /// 3000 soft spheres (E = 55 MPa) in a 15 mm die (15 mean diameters) consolidated to 10 kPa with
 /// interface energy `gamma` [J/m^2]: 20 s to prepare. The suite's 800-sphere beds (tests/compression.rs)
 /// make a cell 7 diameters wide, where a preshear of two diameters moves the upper ring by a third of
 /// the die's radius and the slab reads twice the lid's stress: no yield locus there.
 fn prepared(gamma: f64) -> BedFile {
-    let scene = BedScene::from_json(&format!(
-        r#"{{"particle_particle": {{"particle_youngs_modulus": 55e6, "surface_energy": {gamma}, "jkr_friction_limit": "pull_off"}}, "indenter_material": "wall", "particle_count": 3000, "die_diameter": 0.015}}"#
-    ))
-    .unwrap();
-    let (engine, _) = prepare::prepare(&scene, &mut |_| {}).unwrap();
-    file::decode(&file::encode(&engine.to_file(&scene).unwrap()).unwrap()).unwrap()
+    common::soft_die_bed(gamma, 3000, 0.015).0
 }
 
 /// A short Jenike test: preshear at the bed's 10 kPa over 1.5 mean diameters, shears at 003 Sec. 6's

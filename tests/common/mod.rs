@@ -1,7 +1,21 @@
-//! Scenes from the seed papers' tables, shared by the integration tests.
+//! Scenes from the seed papers' tables and the small soft beds, shared by the integration tests.
 #![allow(dead_code)]
 
+use powderfmu::bed::file::{self, BedFile};
+use powderfmu::bed::{prepare, BedScene};
 use powderfmu::scene::{ModelKind, Scene};
+
+/// `count` soft spheres (E = 55 MPa, `jkr_friction_limit` pull_off, the bed scene's defaults otherwise) in
+/// a die `die_diameter` [m] wide, consolidated to 10 kPa with interface energy `gamma` [J/m^2], as a bed
+/// file read back from its bytes (what a unit loads): the compression and shear tests' beds.
+pub fn soft_die_bed(gamma: f64, count: usize, die_diameter: f64) -> (BedFile, BedScene) {
+    let scene = BedScene::from_json(&format!(
+        r#"{{"particle_particle": {{"particle_youngs_modulus": 55e6, "surface_energy": {gamma}, "jkr_friction_limit": "pull_off"}}, "indenter_material": "wall", "particle_count": {count}, "die_diameter": {die_diameter}}}"#
+    ))
+    .unwrap();
+    let (engine, _) = prepare::prepare(&scene, &mut |_| {}).unwrap();
+    (file::decode(&file::encode(&engine.to_file(&scene).unwrap()).unwrap()).unwrap(), scene)
+}
 
 /// 000 Table 5: ammonium fluorescein on silicon, Gamma = 0.24 J/m^2 (docs/models.md's reading of "0.2 | 24").
 pub fn table5(model: ModelKind, radius: f64, yield_pressure: f64) -> Scene {
