@@ -74,42 +74,39 @@ mod tests {
         assert_eq!((specimen.particles().len(), scene.consolidation_stress), (4000, 10e3));
     }
 
+    /// Each replica differs from `first_scene` in its fill seed only, every seed is its own, and each bed
+    /// holds `particles` spheres.
+    fn assert_fills(first_scene: &str, replicas: &[(&str, Vec<u8>)], scenes: &[(&str, &str, &str)], particles: usize) {
+        let first = BedScene::from_json(first_scene).unwrap().to_json();
+        let mut seeds = vec![first["seed"].clone()];
+        for ((name, bytes), (_, scene, _)) in replicas.iter().zip(scenes) {
+            let scene = BedScene::from_json(scene).unwrap().to_json();
+            assert_eq!(first_difference("", &first, &scene).as_deref(), Some("seed"), "{name}: only the fill seed differs");
+            seeds.push(scene["seed"].clone());
+            let (engine, _) = powderfmu::bed::AnyEngine::from_file(&file::decode(bytes).unwrap(), Some(1)).unwrap();
+            assert_eq!(engine.particles().len(), particles, "{name}");
+        }
+        seeds.sort_by_key(|s| s.to_string());
+        seeds.dedup();
+        assert_eq!(seeds.len(), 1 + scenes.len(), "every bed its own fill seed");
+    }
+
     #[test]
     fn the_replica_beds_are_the_quarter_prepared_again_with_other_seeds() {
         let root = Path::new(env!("CARGO_MANIFEST_DIR")).parent().expect("the workspace root");
         let replicas = shipped_quarter_replicas(root).expect("the replica beds are accepted");
-        let first = BedScene::from_json(QUARTER_BED_SCENE).unwrap().to_json();
-        let mut seeds = vec![first["seed"].clone()];
-        for ((name, bytes), (_, scene, _)) in replicas.iter().zip(QUARTER_REPLICAS) {
-            let scene = BedScene::from_json(scene).unwrap().to_json();
-            assert_eq!(first_difference("", &first, &scene).as_deref(), Some("seed"), "{name}: only the fill seed differs");
-            seeds.push(scene["seed"].clone());
-            let bed = file::decode(bytes).unwrap();
-            let (engine, _) = powderfmu::bed::AnyEngine::from_file(&bed, Some(1)).unwrap();
-            assert_eq!(engine.particles().len(), 7250, "{name}");
-        }
-        seeds.sort_by_key(|s| s.to_string());
-        seeds.dedup();
-        assert_eq!(seeds.len(), 1 + QUARTER_REPLICAS.len(), "every bed its own fill seed");
+        assert_fills(QUARTER_BED_SCENE, &replicas, &QUARTER_REPLICAS, 7250);
     }
 
     #[test]
     fn the_replica_specimens_are_the_specimen_prepared_again_with_other_seeds() {
         let root = Path::new(env!("CARGO_MANIFEST_DIR")).parent().expect("the workspace root");
         let replicas = shipped_specimen_replicas(root).expect("the replica specimens are accepted");
-        let first = BedScene::from_json(SPECIMEN_SCENE).unwrap().to_json();
-        let mut seeds = vec![first["seed"].clone()];
-        for ((name, bytes), (_, scene, _)) in replicas.iter().zip(SPECIMEN_REPLICAS) {
-            let scene = BedScene::from_json(scene).unwrap().to_json();
-            assert_eq!(first_difference("", &first, &scene).as_deref(), Some("seed"), "{name}: only the fill seed differs");
-            seeds.push(scene["seed"].clone());
-            let bed = file::decode(bytes).unwrap();
-            let (engine, scene) = powderfmu::bed::AnyEngine::from_file(&bed, Some(1)).unwrap();
-            assert_eq!((engine.particles().len(), scene.consolidation_stress), (4000, 10e3), "{name}");
+        assert_fills(SPECIMEN_SCENE, &replicas, &SPECIMEN_REPLICAS, 4000);
+        for (name, bytes) in &replicas {
+            let (_, scene) = powderfmu::bed::AnyEngine::from_file(&file::decode(bytes).unwrap(), Some(1)).unwrap();
+            assert_eq!(scene.consolidation_stress, 10e3, "{name}");
         }
-        seeds.sort_by_key(|s| s.to_string());
-        seeds.dedup();
-        assert_eq!(seeds.len(), 1 + SPECIMEN_REPLICAS.len(), "every specimen its own fill seed");
     }
 
     #[test]

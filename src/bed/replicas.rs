@@ -89,7 +89,7 @@ pub fn mean_reading(readings: &[Reading]) -> Reading {
 }
 
 /// The standard error of the mean of n independent readings from their own: sqrt(sum se^2) / n.
-fn independent(errors: impl ExactSizeIterator<Item = f64>) -> f64 {
+pub fn independent(errors: impl ExactSizeIterator<Item = f64>) -> f64 {
     let n = errors.len() as f64;
     errors.map(|e| e * e).sum::<f64>().sqrt() / n
 }

@@ -241,17 +241,9 @@ impl BallIndentation {
     /// one's own bed is prepared with die_sector 0.25), or the FMU's own, its quarters for `fidelity =
     /// quarter`.
     fn bed_paths(&self, values: &[Value]) -> Result<Vec<PathBuf>, UnitError> {
-        let replicas = Self::replicas(values)?;
-        let given = values[REFS.bed_file].as_str();
+        let replicas = super::replica_count(values[REFS.replicas].as_real())?;
         let quarter = values[REFS.fidelity].as_str() == "quarter";
-        if !given.is_empty() {
-            let paths: Vec<PathBuf> = given.split(';').map(str::trim).filter(|p| !p.is_empty()).map(PathBuf::from).collect();
-            if paths.len() != replicas {
-                return Err(variable(
-                    "replicas",
-                    format!("parameter `replicas` = {replicas}, but bed_file lists {} bed(s): list one bed per replica, separated by ';'", paths.len()),
-                ));
-            }
+        if let Some(paths) = super::listed_beds(values[REFS.bed_file].as_str(), replicas)? {
             return Ok(paths);
         }
         let shipped = if quarter { 1 + QUARTER_REPLICAS.len() } else { 1 };
@@ -275,14 +267,6 @@ impl BallIndentation {
                 "no bed_file given and the host named no resources folder (fmuResourceLocation) holding the FMU's bed".into(),
             )),
         }
-    }
-
-    fn replicas(values: &[Value]) -> Result<usize, UnitError> {
-        let n = values[REFS.replicas].as_real();
-        if !(1.0..=64.0).contains(&n) {
-            return Err(variable("replicas", format!("parameter `replicas` = {n} is out of range: allowed [1, 64]")));
-        }
-        Ok(n as usize)
     }
 
     fn threads(values: &[Value]) -> Result<usize, UnitError> {

@@ -186,6 +186,30 @@ pub fn by_identifier(id: &str) -> Option<&'static UnitInfo> {
     all().iter().find(|u| u.model_identifier == id)
 }
 
+/// The DEM units' `replicas` parameter: how many beds the test runs on, in [1, 64].
+pub(crate) fn replica_count(n: f64) -> Result<usize, UnitError> {
+    if !(1.0..=64.0).contains(&n) {
+        return Err(UnitError::Variable { name: "replicas", why: format!("parameter `replicas` = {n} is out of range: allowed [1, 64]") });
+    }
+    Ok(n as usize)
+}
+
+/// The beds a DEM unit's `bed_file` lists (';'-separated, one per replica), or None where it is empty (the
+/// FMU's own beds then); a count other than `replicas` is refused, naming `replicas`.
+pub(crate) fn listed_beds(bed_file: &str, replicas: usize) -> Result<Option<Vec<std::path::PathBuf>>, UnitError> {
+    let paths: Vec<std::path::PathBuf> = bed_file.split(';').map(str::trim).filter(|p| !p.is_empty()).map(Into::into).collect();
+    if paths.is_empty() {
+        return Ok(None);
+    }
+    if paths.len() != replicas {
+        return Err(UnitError::Variable {
+            name: "replicas",
+            why: format!("parameter `replicas` = {replicas}, but bed_file lists {} bed(s): list one bed per replica, separated by ';'", paths.len()),
+        });
+    }
+    Ok(Some(paths))
+}
+
 /// The DEM units' `threads` parameter: the bed engine's threads, in [1, 256].
 pub(crate) fn engine_threads(t: f64) -> Result<usize, UnitError> {
     if !(1.0..=256.0).contains(&t) {

@@ -13,7 +13,7 @@
 use super::variables::{Value, VarType, Variable};
 use super::{Model, UnitError, UnitInfo};
 use crate::bed::compression::{Setup, Specimen};
-use crate::bed::replicas::{check_replica, over_beds};
+use crate::bed::replicas::{check_replica, independent, over_beds};
 use crate::bed::{file, BedError};
 use crate::error::ParamError;
 use std::path::{Path, PathBuf};
@@ -123,16 +123,8 @@ fn variable(name: &'static str, why: String) -> UnitError {
 impl UnconfinedCompression {
     /// The specimens' bed files, one per replica: `bed_file`'s, or the FMU's own.
     fn bed_paths(&self, values: &[Value]) -> Result<Vec<PathBuf>, UnitError> {
-        let replicas = Self::replicas(values)?;
-        let given = values[REFS.bed_file].as_str();
-        if !given.trim().is_empty() {
-            let paths: Vec<PathBuf> = given.split(';').map(str::trim).filter(|p| !p.is_empty()).map(PathBuf::from).collect();
-            if paths.len() != replicas {
-                return Err(variable(
-                    "replicas",
-                    format!("parameter `replicas` = {replicas}, but bed_file lists {} bed(s): list one bed per replica, separated by ';'", paths.len()),
-                ));
-            }
+        let replicas = super::replica_count(values[REFS.replicas].as_real())?;
+        if let Some(paths) = super::listed_beds(values[REFS.bed_file].as_str(), replicas)? {
             return Ok(paths);
         }
         let shipped = 1 + SPECIMEN_REPLICAS.len();
@@ -154,14 +146,6 @@ impl UnconfinedCompression {
                 "no bed_file given and the host named no resources folder (fmuResourceLocation) holding the FMU's specimen".into(),
             )),
         }
-    }
-
-    fn replicas(values: &[Value]) -> Result<usize, UnitError> {
-        let n = values[REFS.replicas].as_real();
-        if !(1.0..=64.0).contains(&n) {
-            return Err(variable("replicas", format!("parameter `replicas` = {n} is out of range: allowed [1, 64]")));
-        }
-        Ok(n as usize)
     }
 
     /// Whether every specimen's test has ended.
@@ -207,13 +191,20 @@ impl UnconfinedCompression {
         let sigma_1 = self.mean_of(|s| s.test.start.consolidation_stress);
         Some(Aggregate {
             sigma_c: over.mean,
-            standard_error: readings.iter().map(|r| r.unconfined_yield_strength.standard_error.powi(2)).sum::<f64>().sqrt() / n,
+            standard_error: independent(readings.iter().map(|r| r.unconfined_yield_strength.standard_error)),
             over_specimens: over.standard_error,
             strain_at_failure: readings.iter().map(|r| r.strain_at_failure).sum::<f64>() / n,
             failed: readings.iter().all(|r| r.failed),
             flow_function: if over.mean > 0.0 { sigma_1 / over.mean } else { f64::INFINITY },
             each,
         })
+    }
+
+    /// Tenths of max_strain the least advanced specimen has reached (the progress reports').
+    fn tenths(&self) -> u32 {
+        let Some(first) = self.specimens.first() else { return 0 };
+        let least = self.specimens.iter().map(|s| s.test.samples.last().map_or(0.0, |x| x.strain)).fold(f64::INFINITY, f64::min);
+        ((least / first.test.setup.max_strain) * 10.0).floor().clamp(0.0, 10.0) as u32
     }
 
     /// The mean over the specimens of `f` (one specimen's own value, to the bit).
@@ -226,9 +217,7 @@ impl UnconfinedCompression {
     fn report(&mut self) {
         let Some(first) = self.specimens.first() else { return };
         let max_strain = first.test.setup.max_strain;
-        let strain_of = |s: &Specimen| s.test.samples.last().map_or(0.0, |x| x.strain);
-        let least = self.specimens.iter().map(strain_of).fold(f64::INFINITY, f64::min);
-        let tenths = ((least / max_strain) * 10.0).floor().clamp(0.0, 10.0) as u32;
+        let tenths = self.tenths();
         let done = self.done();
         if tenths > self.reported_tenths && !done {
             self.reported_tenths = tenths;
@@ -244,7 +233,7 @@ impl UnconfinedCompression {
             return;
         }
         self.reported_done = true;
-        let last = strain_of(first);
+        let last = first.test.samples.last().map_or(0.0, |x| x.strain);
         let window = first.test.setup.window;
         let message = match (self.specimens.as_slice(), first.test.reading(), self.reading()) {
             ([_], Some(r), _) => format!(
@@ -408,8 +397,7 @@ impl Model for UnconfinedCompression {
         let specimens = states.iter().map(|b| Specimen::restore(b, Some(threads))).collect::<Result<Vec<_>, _>>().map_err(|e| UnitError::SavedState(e.to_string()))?;
         self.specimens = specimens;
         self.reported_done = self.done();
-        let least = self.specimens.iter().map(|s| s.test.samples.last().map_or(0.0, |x| x.strain)).fold(f64::INFINITY, f64::min);
-        self.reported_tenths = ((least / self.specimens[0].test.setup.max_strain) * 10.0).floor().clamp(0.0, 10.0) as u32;
+        self.reported_tenths = self.tenths();
         Ok(())
     }
 }

@@ -57,28 +57,35 @@ def test_the_replicas_outputs_are_the_means_of_the_single_runs(indentation, quic
     assert np.all(a["plateau_hardness_standard_error_over_beds"] == 0)
 
 
+def _continues_bit_for_bit(fmu, vrs, h: float, before: int, after: int, loaded=None):
+    """Steps `before` steps of `h`, saves the state (serialized), steps `after` more, restores and steps them
+    again: the outputs `vrs` are the same to the bit. `loaded(outputs)` checks the state saved is mid-test."""
+    t = 0.0
+    for _ in range(before):
+        fmu.doStep(t, h)
+        t += h
+    if loaded is not None:
+        loaded(fmu.getReal(vrs))
+    serialized = fmu.serializeFMUstate(fmu.getFMUstate())
+    runs = []
+    for restore in (False, True):
+        if restore:
+            fmu.setFMUstate(fmu.deSerializeFMUstate(serialized))
+        outputs = []
+        for k in range(after):
+            fmu.doStep(t + k * h, h)
+            outputs.append(fmu.getReal(vrs))
+        runs.append(outputs)
+    assert runs[1] == runs[0]
+    fmu.terminate()
+    fmu.freeInstance()
+
+
 def test_a_saved_state_of_replicas_continues_bit_for_bit(indentation, quick_bed, second_bed):
     fmu = indentation.slave("replicas-saved")
     indentation.initialize(fmu, {"bed_file": f"{quick_bed['bed_file']};{second_bed}", "replicas": 2, "threads": 2})
     names = ["indenter_force", "plateau_hardness", "plateau_hardness_standard_error_over_beds", "kinetic_energy"]
-    vrs = [indentation.vr[n] for n in names]
-    t, h = 0.0, 1e-3
-    for _ in range(6):
-        fmu.doStep(t, h)
-        t += h
-    serialized = fmu.serializeFMUstate(fmu.getFMUstate())
-    ahead = []
-    for k in range(6):
-        fmu.doStep(t + k * h, h)
-        ahead.append(fmu.getReal(vrs))
-    fmu.setFMUstate(fmu.deSerializeFMUstate(serialized))
-    again = []
-    for k in range(6):
-        fmu.doStep(t + k * h, h)
-        again.append(fmu.getReal(vrs))
-    assert again == ahead
-    fmu.terminate()
-    fmu.freeInstance()
+    _continues_bit_for_bit(fmu, [indentation.vr[n] for n in names], 1e-3, 6, 6)
 
 
 def _refused(unit, start_values):
@@ -170,25 +177,11 @@ def test_a_saved_state_of_compression_replicas_continues_bit_for_bit(compression
     fmu = compression.slave("replicas-saved")
     compression.initialize(fmu, {"bed_file": f"{quick_bed['bed_file']};{second_bed}", "replicas": 2})
     names = ["axial_stress", "axial_strain", "unconfined_yield_strength", "unconfined_yield_strength_standard_error_over_specimens", "kinetic_energy"]
-    vrs = [compression.vr[n] for n in names]
-    t, h = 0.0, 5e-4
-    for _ in range(12):
-        fmu.doStep(t, h)
-        t += h
-    assert fmu.getReal(vrs)[1] > 0, "saved while the platen loads the specimens"
-    serialized = fmu.serializeFMUstate(fmu.getFMUstate())
-    ahead = []
-    for k in range(10):
-        fmu.doStep(t + k * h, h)
-        ahead.append(fmu.getReal(vrs))
-    fmu.setFMUstate(fmu.deSerializeFMUstate(serialized))
-    again = []
-    for k in range(10):
-        fmu.doStep(t + k * h, h)
-        again.append(fmu.getReal(vrs))
-    assert again == ahead
-    fmu.terminate()
-    fmu.freeInstance()
+
+    def loaded(outputs):
+        assert outputs[1] > 0, "saved while the platen loads the specimens"
+
+    _continues_bit_for_bit(fmu, [compression.vr[n] for n in names], 5e-4, 12, 10, loaded)
 
 
 def test_compression_replicas_the_specimens_cannot_give_are_refused_by_name(compression, shipped_compression):
