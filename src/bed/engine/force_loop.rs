@@ -14,6 +14,7 @@ use super::super::particles::Particles;
 use super::super::walls::Wall;
 use super::super::{cross, dot, sub, Vec3, ZERO};
 use super::isa::Isa;
+use super::lanes::record::{pack, Record};
 use super::lanes::LaneRow;
 use super::partition::Sink;
 use super::Engine;
@@ -35,6 +36,8 @@ struct Shared<'a, L: BedLaw> {
     isa: Isa,
     /// The species pairs' lane table when the pair loop runs on lanes (`lanes`), else None.
     lanes: Option<&'a [LaneRow]>,
+    /// The spheres' records for the lanes (`lanes::record`), packed this step; empty without lanes.
+    spheres: &'a [Record],
 }
 
 /// One part of the force loop: rows [rows.0, rows.1) and what it may write.
@@ -70,6 +73,9 @@ impl<L: BedLaw> Engine<L> {
         let lanes = self.lanes_allowed() && super::lanes::table(&self.pairs, &mut self.lane_table);
         #[cfg(not(target_arch = "x86_64"))]
         let lanes = false;
+        if lanes {
+            self.pack_spheres();
+        }
         let shared = Shared {
             p: &self.particles,
             list: &self.list,
@@ -82,6 +88,7 @@ impl<L: BedLaw> Engine<L> {
             any_held: self.any_held,
             isa: self.isa,
             lanes: lanes.then_some(&self.lane_table[..]),
+            spheres: if lanes { &self.spheres } else { &[] },
         };
         // Cut the contact memory into the parts' pieces; each part's sink is its buffer (one thread: the
         // totals).
@@ -143,6 +150,21 @@ impl<L: BedLaw> Engine<L> {
     }
 }
 
+impl<L: BedLaw> Engine<L> {
+    /// The spheres' records for the lane loop (`lanes::record`), each thread packing a chunk.
+    fn pack_spheres(&mut self) {
+        let n = self.particles.len();
+        self.spheres.resize(n, Record::default());
+        let p = &self.particles;
+        if self.threads == 1 {
+            pack(p, 0, &mut self.spheres);
+        } else {
+            let chunk = n.div_ceil(self.threads).max(1);
+            self.spheres.par_chunks_mut(chunk).enumerate().for_each(|(k, out)| pack(p, k * chunk, out));
+        }
+    }
+}
+
 /// The force loop of one part, with the engine's instruction set.
 fn run_part<L: BedLaw>(s: &Shared<L>, part: Part<L::History>) {
     // SAFETY: an engine takes an instruction set only where the CPU reports it (`Engine::set_isa`).
@@ -173,17 +195,12 @@ fn run_part_body<L: BedLaw>(s: &Shared<L>, part: Part<L::History>) {
     let Part { rows, slot0, normal, spring, radius, walls, mut sink } = part;
     sink.clear();
     let p = s.p;
-    let n = p.len();
     let dipoles = !sink.dipole.is_empty();
     let (first, last) = (s.list.start[rows.0] as usize, s.list.start[rows.1] as usize);
     #[cfg(target_arch = "x86_64")]
     if let Some(table) = s.lanes {
         let input = super::lanes::LaneInput {
-            position: &p.position[..n],
-            velocity: &p.velocity[..n],
-            spin: &p.angular_velocity[..n],
-            radius: &p.radius[..n],
-            species: &p.species[..n],
+            spheres: s.spheres,
             species_count: s.species,
             owner: &s.list.owner,
             partner: &s.list.partner,

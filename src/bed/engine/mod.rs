@@ -89,6 +89,8 @@ pub struct Engine<L: BedLaw> {
     /// The species pairs' parameters as the lane loop reads them, rebuilt by each force loop that runs on
     /// lanes (`lanes::table`).
     lane_table: Vec<lanes::LaneRow>,
+    /// The spheres as the lane loop reads them, packed before each force loop on lanes (`lanes::record`).
+    spheres: Vec<lanes::record::Record>,
 }
 
 impl<L: BedLaw> std::fmt::Debug for Engine<L> {
@@ -157,6 +159,7 @@ impl<L: BedLaw> Engine<L> {
             any_held: false,
             isa: Isa::detect(),
             lane_table: vec![],
+            spheres: vec![],
         };
         e.rebuild();
         e.compute_forces();

@@ -10,8 +10,8 @@ use super::Engine;
 use rayon::prelude::*;
 
 /// What the contacts of a step give one particle. One record per particle, so a contact's share is one
-/// index (and one cache line) per body, and the kick reads one record. Laid out as two rows of four f64,
-/// force and rolling load, torque and a pad, so the lane loop adds a share with two vector adds
+/// index (and one cache line) per body, and the kick reads one record. Laid out as eight f64 (force,
+/// rolling load, torque, a pad), so the lane loop adds a share with one 512-bit add or two 256-bit ones
 /// (`engine::lanes`).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 #[repr(C, align(64))]
@@ -74,6 +74,15 @@ pub(super) struct Sink<'a> {
     pub(super) load: &'a mut [Load],
     pub(super) dipole: &'a mut [Tensor],
     pub(super) wall_force: &'a mut [Vec3],
+}
+
+impl Load {
+    /// The records as rows of eight f64 (force, rolling load, torque, pad), as the lane loop adds them.
+    pub(super) fn as_rows(load: &mut [Load]) -> &mut [[f64; 8]] {
+        // SAFETY: a Load is eight f64 in this order with no padding (asserted above), and [f64; 8]'s
+        // alignment (8) divides Load's (64); the rows borrow the records mutably for their lifetime.
+        unsafe { std::slice::from_raw_parts_mut(load.as_mut_ptr() as *mut [f64; 8], load.len()) }
+    }
 }
 
 impl Sink<'_> {

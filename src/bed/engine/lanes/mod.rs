@@ -28,6 +28,7 @@ mod linear;
 mod nan;
 #[cfg(target_arch = "x86_64")]
 mod pasha_simplified;
+pub mod record;
 #[cfg(target_arch = "x86_64")]
 pub mod simd;
 
@@ -48,6 +49,7 @@ impl<T> LaneLaw for T {}
 
 #[cfg(target_arch = "x86_64")]
 mod x86 {
+    use super::record::Record;
     use super::simd::{F64x4, F64x8, Mask, Simd};
     use super::{LaneRow, COMMON, LAW_PARAMS};
     use crate::bed::engine::partition::{Load, Sink};
@@ -55,7 +57,6 @@ mod x86 {
     use crate::bed::Vec3;
     use crate::law::tangential::TangentialStiffness;
     use crate::law::NormalLaw;
-    use std::arch::x86_64::*;
 
     /// A law's history on lanes: a mask, a value and the values that follow from it (their meaning is
     /// the law's; a law that uses fewer leaves the rest at zero, and the compiler drops them).
@@ -193,21 +194,10 @@ mod x86 {
         a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
     }
 
-    /// Adds `row` to a `Load`'s first four f64 (force and rolling load) or its last four (torque and pad).
-    #[inline(always)]
-    unsafe fn add4(load: &mut Load, upper: bool, row: __m256d) {
-        let p = (load as *mut Load as *mut f64).wrapping_add(if upper { 4 } else { 0 });
-        // A Load is eight f64 (asserted in `partition`), so both halves are inside it.
-        unsafe { _mm256_storeu_pd(p, _mm256_add_pd(_mm256_loadu_pd(p), row)) }
-    }
-
     /// What the lane loop reads of the engine.
     pub struct LaneInput<'a, L: BedLaw> {
-        pub position: &'a [Vec3],
-        pub velocity: &'a [Vec3],
-        pub spin: &'a [Vec3],
-        pub radius: &'a [f64],
-        pub species: &'a [u16],
+        /// Each sphere's position, radius, velocity, species and spin in one record (`pack`).
+        pub spheres: &'a [Record],
         pub species_count: usize,
         pub owner: &'a [u32],
         pub partner: &'a [u32],
@@ -332,20 +322,16 @@ mod x86 {
         // against their arrays once per block (below), every other slice access is checked, and the raw
         // loads and stores stay inside their vectors and records.
         unsafe {
-            let n = e.position.len();
-            // Every per-sphere array has n entries; each block then checks its 2w indices against n once,
-            // and the table row of each lane once, and reads without a bounds test per access (the index
+            let n = e.spheres.len();
+            // Each block checks its 2w indices against the records' n once, and the table row of each lane once, and reads without a bounds test per access (the index
             // work was 29 % of the linear loop's samples, issue 30's fourteenth round; without the tests
             // the seed's test ran 1.23x faster, its fifteenth).
-            assert!(e.velocity.len() == n && e.spin.len() == n && e.radius.len() == n && e.species.len() == n);
             assert!(last <= e.owner.len() && last <= e.partner.len());
             let w = V::N;
             let zero = V::splat(0.0);
             let (one, half) = (V::splat(1.0), V::splat(0.5));
             let dt = V::splat(e.dt);
             let forget = V::splat(e.forget);
-            // The partner's share: force and its sign flipped (a - b is a + (-b) to the bit), rolling load added.
-            let flip = _mm256_set_pd(0.0, -0.0, -0.0, -0.0);
             let base = sink.base;
             let mut slot = first;
             let (mut ii, mut jj, mut pair) = ([0usize; 8], [0usize; 8], [0usize; 8]);
@@ -356,17 +342,21 @@ mod x86 {
                 }
                 assert!(ii[..w].iter().chain(&jj[..w]).all(|&p| p < n));
                 let m = slot - slot0;
+                // Both spheres of each lane from their records (two cache lines each, not one per array).
+                let si = V::gather_sphere(e.spheres, &ii);
+                let sj = V::gather_sphere(e.spheres, &jj);
+                // The species pair's row; the species are small integers, exact in f64.
+                let row = (si[7] * V::splat(e.species_count as f64) + sj[7]).to_array();
                 for k in 0..w {
-                    pair[k] = *e.species.get_unchecked(ii[k]) as usize * e.species_count + *e.species.get_unchecked(jj[k]) as usize;
+                    pair[k] = row.as_ref()[k] as usize;
                 }
                 assert!(pair[..w].iter().all(|&p| p < e.table.len()));
                 let param = |q: usize| V::from_fn(|k| e.table.get_unchecked(pair[k])[q]);
-                let xi = V::gather3(e.position, &ii);
-                let xj = V::gather3(e.position, &jj);
+                let xi = [si[0], si[1], si[2]];
+                let xj = [sj[0], sj[1], sj[2]];
                 let d = [xj[0] - xi[0], xj[1] - xi[1], xj[2] - xi[2]];
                 let dist2 = dot3(d, d);
-                let ri = V::from_fn(|k| *e.radius.get_unchecked(ii[k]));
-                let rj = V::from_fn(|k| *e.radius.get_unchecked(jj[k]));
+                let (ri, rj) = (si[3], sj[3]);
                 let sum_r = ri + rj;
                 let range = sum_r + param(0);
                 // Beyond the forgetting distance a contact forgets (as the scalar loop's `pair`), before its
@@ -410,10 +400,8 @@ mod x86 {
                 let half_alpha = half * alpha;
                 let (li, lj) = (ri - half_alpha, rj - half_alpha);
                 // The surface velocity of i relative to j (kernel::surface_velocity).
-                let vi = V::gather3(e.velocity, &ii);
-                let vj = V::gather3(e.velocity, &jj);
-                let wi = V::gather3(e.spin, &ii);
-                let wj = V::gather3(e.spin, &jj);
+                let (vi, vj) = ([si[4], si[5], si[6]], [sj[4], sj[5], sj[6]]);
+                let (wi, wj) = ([si[8], si[9], si[10]], [sj[8], sj[9], sj[10]]);
                 let om: [V; 3] = std::array::from_fn(|c| wi[c] * li + wj[c] * lj);
                 let v = [
                     (vi[0] - vj[0]) + (om[1] * nrm[2] - om[2] * nrm[1]),
@@ -501,18 +489,12 @@ mod x86 {
                 ];
                 let (li, lj) = (li.keep(acts), lj.keep(acts));
                 let rolling = (param(6) * ev.force.abs()).keep(touch);
-                let share = V::rows(force[0], force[1], force[2], rolling);
-                let torque_i = V::rows(turn[0] * li, turn[1] * li, turn[2] * li, zero);
-                let torque_j = V::rows(turn[0] * lj, turn[1] * lj, turn[2] * lj, zero);
-                let (share, torque_i, torque_j) = (share.as_ref(), torque_i.as_ref(), torque_j.as_ref());
-                for k in 0..w {
-                    let a = &mut sink.load[ii[k] - base];
-                    add4(a, false, share[k]);
-                    add4(a, true, torque_i[k]);
-                    let b = &mut sink.load[jj[k] - base];
-                    add4(b, false, _mm256_xor_pd(share[k], flip));
-                    add4(b, true, torque_j[k]);
-                }
+                let torque_i = [turn[0] * li, turn[1] * li, turn[2] * li];
+                let torque_j = [turn[0] * lj, turn[1] * lj, turn[2] * lj];
+                // Each sphere of the block is in this part's sink (the same check as the scalar loop's index).
+                let (ai, aj): ([usize; 8], [usize; 8]) = (std::array::from_fn(|k| ii[k].wrapping_sub(base)), std::array::from_fn(|k| jj[k].wrapping_sub(base)));
+                assert!(ai[..w].iter().chain(&aj[..w]).all(|&p| p < sink.load.len()));
+                V::add_shares(Load::as_rows(sink.load), &ai[..w], &aj[..w], force, rolling, torque_i, torque_j);
                 slot += w;
             }
             slot

@@ -14,7 +14,7 @@
 //! Safety: a value of these types is made only by the unsafe constructors (`splat`, `load`, ...), whose
 //! contract is that the CPU runs the width's instruction set; the safe methods then rely on it.
 
-use crate::bed::Vec3;
+use super::record::Record;
 use std::arch::x86_64::*;
 use std::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
 
@@ -36,8 +36,6 @@ pub trait Simd: Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = Se
     type Mask: Mask;
     /// The lanes as an array (`[f64; N]`).
     type Array: Copy + Default + AsRef<[f64]> + AsMut<[f64]>;
-    /// Per lane, a row of four f64 (a `Load` half): `[__m256d; N]`.
-    type Rows: AsRef<[__m256d]>;
 
     /// # Safety
     /// The CPU runs the width's instruction set (as for every constructor below).
@@ -46,12 +44,6 @@ pub trait Simd: Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = Se
     unsafe fn load(x: &[f64]) -> Self;
     unsafe fn from_fn(f: impl FnMut(usize) -> f64) -> Self;
     unsafe fn mask_from_fn(f: impl FnMut(usize) -> bool) -> Self::Mask;
-    /// The x, y and z lanes of the 3-vectors `v[idx[k]]` (nothing read past a vector).
-    ///
-    /// # Safety
-    /// As the constructors, and every `idx[k] < v.len()` (not checked here: the pair loop checks its
-    /// indices once per block).
-    unsafe fn gather3(v: &[Vec3], idx: &[usize]) -> [Self; 3];
 
     fn to_array(self) -> Self::Array;
     fn sqrt(self) -> Self;
@@ -74,8 +66,20 @@ pub trait Simd: Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = Se
     fn nle(self, o: Self) -> Self::Mask;
     fn nge(self, o: Self) -> Self::Mask;
     fn ne(self, o: Self) -> Self::Mask;
-    /// Lanes of four quantities to one row [a_k, b_k, c_k, d_k] per lane k.
-    fn rows(a: Self, b: Self, c: Self, d: Self) -> Self::Rows;
+    /// The records `spheres[idx[k]]` (`Record`) as lanes: x, y, z, r, vx, vy, vz, species, wx, wy, wz.
+    ///
+    /// # Safety
+    /// As the constructors, and every `idx[k] < spheres.len()` (not checked here: the pair loop checks its
+    /// indices once per block).
+    unsafe fn gather_sphere(spheres: &[Record], idx: &[usize]) -> [Self; 11];
+    /// Adds each lane's share of a contact to its two bodies' records of eight f64 (`Load`): to
+    /// `record[i[k]]` the row [force, rolling, torque_i, 0] of lane k, then to `record[j[k]]` the row
+    /// [-force, rolling, torque_j, 0]; lane by lane in order k = 0, 1, ..., so each sum is the scalar
+    /// loop's, added in its order.
+    ///
+    /// # Safety
+    /// As the constructors, and every `i[k]`, `j[k]` < `record.len()` (not checked here).
+    unsafe fn add_shares(record: &mut [[f64; 8]], i: &[usize], j: &[usize], force: [Self; 3], rolling: Self, torque_i: [Self; 3], torque_j: [Self; 3]);
 }
 
 /// Lanes a, b, c, d to four rows [a_k, b_k, c_k, d_k].
@@ -96,22 +100,51 @@ pub unsafe fn transpose(a: __m256d, b: __m256d, c: __m256d, d: __m256d) -> [__m2
     }
 }
 
-/// Four 3-vectors as x, y and z lanes (masked loads: nothing read past the vector).
+/// Eight lanes of eight quantities to one row per lane: row k is [q[0][k], q[1][k], ..., q[7][k]].
 ///
 /// # Safety
-/// AVX, and `idx[k] < v.len()` for k < 4 (the caller's check).
+/// AVX-512 F.
 #[inline(always)]
-unsafe fn gather3_256(v: &[Vec3], idx: &[usize]) -> [__m256d; 3] {
-    // SAFETY: AVX and the indices (the caller's).
+unsafe fn transpose8(q: [__m512d; 8]) -> [__m512d; 8] {
+    // SAFETY: AVX-512 F (the caller's).
     unsafe {
-        let three = _mm256_set_epi64x(0, -1, -1, -1);
-        let row = |k: usize| _mm256_maskload_pd(v.get_unchecked(*idx.get_unchecked(k)).as_ptr(), three);
-        let (r0, r1, r2, r3) = (row(0), row(1), row(2), row(3));
-        let t0 = _mm256_unpacklo_pd(r0, r1); // x0 x1 z0 z1
-        let t1 = _mm256_unpackhi_pd(r0, r1); // y0 y1 0 0
-        let t2 = _mm256_unpacklo_pd(r2, r3);
-        let t3 = _mm256_unpackhi_pd(r2, r3);
-        [_mm256_permute2f128_pd(t0, t2, 0x20), _mm256_permute2f128_pd(t1, t3, 0x20), _mm256_permute2f128_pd(t0, t2, 0x31)]
+        // Pairs of quantities per lane: t[2p] holds (q[2p], q[2p+1]) of the even lanes, t[2p+1] of the odd.
+        let t: [__m512d; 8] = [
+            _mm512_unpacklo_pd(q[0], q[1]),
+            _mm512_unpackhi_pd(q[0], q[1]),
+            _mm512_unpacklo_pd(q[2], q[3]),
+            _mm512_unpackhi_pd(q[2], q[3]),
+            _mm512_unpacklo_pd(q[4], q[5]),
+            _mm512_unpackhi_pd(q[4], q[5]),
+            _mm512_unpacklo_pd(q[6], q[7]),
+            _mm512_unpackhi_pd(q[6], q[7]),
+        ];
+        // Then 128-bit blocks: EVEN takes blocks 0 and 2 of each operand, ODD blocks 1 and 3; u[0] holds the
+        // pairs of q[0..4] of lanes 0 and 4, u[1] of lanes 2 and 6, u[2] of 1 and 5, u[3] of 3 and 7; v the same of q[4..8].
+        const EVEN: i32 = 0b10_00_10_00;
+        const ODD: i32 = 0b11_01_11_01;
+        let u = [
+            _mm512_shuffle_f64x2::<EVEN>(t[0], t[2]),
+            _mm512_shuffle_f64x2::<ODD>(t[0], t[2]),
+            _mm512_shuffle_f64x2::<EVEN>(t[1], t[3]),
+            _mm512_shuffle_f64x2::<ODD>(t[1], t[3]),
+        ];
+        let v = [
+            _mm512_shuffle_f64x2::<EVEN>(t[4], t[6]),
+            _mm512_shuffle_f64x2::<ODD>(t[4], t[6]),
+            _mm512_shuffle_f64x2::<EVEN>(t[5], t[7]),
+            _mm512_shuffle_f64x2::<ODD>(t[5], t[7]),
+        ];
+        [
+            _mm512_shuffle_f64x2::<EVEN>(u[0], v[0]),
+            _mm512_shuffle_f64x2::<EVEN>(u[2], v[2]),
+            _mm512_shuffle_f64x2::<EVEN>(u[1], v[1]),
+            _mm512_shuffle_f64x2::<EVEN>(u[3], v[3]),
+            _mm512_shuffle_f64x2::<ODD>(u[0], v[0]),
+            _mm512_shuffle_f64x2::<ODD>(u[2], v[2]),
+            _mm512_shuffle_f64x2::<ODD>(u[1], v[1]),
+            _mm512_shuffle_f64x2::<ODD>(u[3], v[3]),
+        ]
     }
 }
 
@@ -225,7 +258,6 @@ impl Simd for F64x4 {
     const N: usize = 4;
     type Mask = M4;
     type Array = [f64; 4];
-    type Rows = [__m256d; 4];
 
     #[inline(always)]
     unsafe fn splat(x: f64) -> F64x4 {
@@ -244,10 +276,6 @@ impl Simd for F64x4 {
     unsafe fn mask_from_fn(mut f: impl FnMut(usize) -> bool) -> M4 {
         let yes = f64::from_bits(u64::MAX);
         M4(unsafe { F64x4::from_fn(|k| if f(k) { yes } else { 0.0 }) }.0)
-    }
-    #[inline(always)]
-    unsafe fn gather3(v: &[Vec3], idx: &[usize]) -> [F64x4; 3] {
-        unsafe { gather3_256(v, idx).map(F64x4) }
     }
     #[inline(always)]
     fn to_array(self) -> [f64; 4] {
@@ -295,9 +323,36 @@ impl Simd for F64x4 {
     cmp4!(nge, _CMP_NGE_UQ);
     cmp4!(ne, _CMP_NEQ_UQ);
     #[inline(always)]
-    fn rows(a: F64x4, b: F64x4, c: F64x4, d: F64x4) -> [__m256d; 4] {
-        // SAFETY: as above.
-        unsafe { transpose(a.0, b.0, c.0, d.0) }
+    unsafe fn gather_sphere(spheres: &[Record], idx: &[usize]) -> [F64x4; 11] {
+        unsafe {
+            let r = |k: usize, o: usize| _mm256_loadu_pd(spheres.get_unchecked(*idx.get_unchecked(k)).0.as_ptr().add(o));
+            let a = transpose(r(0, 0), r(1, 0), r(2, 0), r(3, 0));
+            let b = transpose(r(0, 4), r(1, 4), r(2, 4), r(3, 4));
+            let c = transpose(r(0, 8), r(1, 8), r(2, 8), r(3, 8));
+            let f = F64x4;
+            [f(a[0]), f(a[1]), f(a[2]), f(a[3]), f(b[0]), f(b[1]), f(b[2]), f(b[3]), f(c[0]), f(c[1]), f(c[2])]
+        }
+    }
+    #[inline(always)]
+    unsafe fn add_shares(record: &mut [[f64; 8]], i: &[usize], j: &[usize], force: [F64x4; 3], rolling: F64x4, torque_i: [F64x4; 3], torque_j: [F64x4; 3]) {
+        // SAFETY: AVX (the caller's) and the indices (the caller's check); each record is eight f64.
+        unsafe {
+            let zero = _mm256_setzero_pd();
+            let share = transpose(force[0].0, force[1].0, force[2].0, rolling.0);
+            let ti = transpose(torque_i[0].0, torque_i[1].0, torque_i[2].0, zero);
+            let tj = transpose(torque_j[0].0, torque_j[1].0, torque_j[2].0, zero);
+            // The partner's force with its sign flipped (a - b is a + (-b) to the bit), the rolling load as is.
+            let flip = _mm256_set_pd(0.0, -0.0, -0.0, -0.0);
+            let add = |p: *mut f64, row: __m256d| _mm256_storeu_pd(p, _mm256_add_pd(_mm256_loadu_pd(p), row));
+            for k in 0..4 {
+                let a = record.get_unchecked_mut(*i.get_unchecked(k)).as_mut_ptr();
+                add(a, share[k]);
+                add(a.add(4), ti[k]);
+                let b = record.get_unchecked_mut(*j.get_unchecked(k)).as_mut_ptr();
+                add(b, _mm256_xor_pd(share[k], flip));
+                add(b.add(4), tj[k]);
+            }
+        }
     }
 }
 
@@ -365,7 +420,6 @@ impl Simd for F64x8 {
     const N: usize = 8;
     type Mask = M8;
     type Array = [f64; 8];
-    type Rows = [__m256d; 8];
 
     #[inline(always)]
     unsafe fn splat(x: f64) -> F64x8 {
@@ -383,16 +437,6 @@ impl Simd for F64x8 {
     #[inline(always)]
     unsafe fn mask_from_fn(mut f: impl FnMut(usize) -> bool) -> M8 {
         M8((0..8).fold(0u8, |m, k| if f(k) { m | 1 << k } else { m }))
-    }
-    #[inline(always)]
-    unsafe fn gather3(v: &[Vec3], idx: &[usize]) -> [F64x8; 3] {
-        // Two four-lane gathers joined: the hardware gather (three `vgatherqpd`) ran 15 % slower on the
-        // linear bench (issue 30's fourteenth round).
-        unsafe {
-            let (lo, hi) = (gather3_256(v, &idx[..4]), gather3_256(v, &idx[4..8]));
-            let join = |c: usize| F64x8(_mm512_insertf64x4::<1>(_mm512_castpd256_pd512(lo[c]), hi[c]));
-            [join(0), join(1), join(2)]
-        }
     }
     #[inline(always)]
     fn to_array(self) -> [f64; 8] {
@@ -440,14 +484,107 @@ impl Simd for F64x8 {
     cmp8!(nge, _CMP_NGE_UQ);
     cmp8!(ne, _CMP_NEQ_UQ);
     #[inline(always)]
-    fn rows(a: F64x8, b: F64x8, c: F64x8, d: F64x8) -> [__m256d; 8] {
-        // SAFETY: as above.
+    unsafe fn gather_sphere(spheres: &[Record], idx: &[usize]) -> [F64x8; 11] {
         unsafe {
-            let lo = |x: F64x8| _mm512_castpd512_pd256(x.0);
-            let hi = |x: F64x8| _mm512_extractf64x4_pd::<1>(x.0);
-            let l = transpose(lo(a), lo(b), lo(c), lo(d));
-            let h = transpose(hi(a), hi(b), hi(c), hi(d));
-            [l[0], l[1], l[2], l[3], h[0], h[1], h[2], h[3]]
+            let p = |k: usize| spheres.get_unchecked(*idx.get_unchecked(k)).0.as_ptr();
+            let l = |k: usize| _mm512_loadu_pd(p(k));
+            let a = transpose8([l(0), l(1), l(2), l(3), l(4), l(5), l(6), l(7)]);
+            let r = |k: usize| _mm256_loadu_pd(p(k).add(8));
+            let lo = transpose(r(0), r(1), r(2), r(3));
+            let hi = transpose(r(4), r(5), r(6), r(7));
+            let join = |c: usize| _mm512_insertf64x4::<1>(_mm512_castpd256_pd512(lo[c]), hi[c]);
+            let f = F64x8;
+            [f(a[0]), f(a[1]), f(a[2]), f(a[3]), f(a[4]), f(a[5]), f(a[6]), f(a[7]), f(join(0)), f(join(1)), f(join(2))]
         }
+    }
+    #[inline(always)]
+    unsafe fn add_shares(record: &mut [[f64; 8]], i: &[usize], j: &[usize], force: [F64x8; 3], rolling: F64x8, torque_i: [F64x8; 3], torque_j: [F64x8; 3]) {
+        // SAFETY: AVX-512 F (the caller's) and the indices (the caller's check); each record is eight f64.
+        // One 512-bit add per body and lane, not two 256-bit ones (the record is one row of eight).
+        unsafe {
+            let zero = _mm512_setzero_pd();
+            let minus = |x: F64x8| (-x).0;
+            let ri = transpose8([force[0].0, force[1].0, force[2].0, rolling.0, torque_i[0].0, torque_i[1].0, torque_i[2].0, zero]);
+            let rj = transpose8([minus(force[0]), minus(force[1]), minus(force[2]), rolling.0, torque_j[0].0, torque_j[1].0, torque_j[2].0, zero]);
+            let add = |p: *mut f64, row: __m512d| _mm512_storeu_pd(p, _mm512_add_pd(_mm512_loadu_pd(p), row));
+            for k in 0..8 {
+                add(record.get_unchecked_mut(*i.get_unchecked(k)).as_mut_ptr(), ri[k]);
+                add(record.get_unchecked_mut(*j.get_unchecked(k)).as_mut_ptr(), rj[k]);
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `gather_sphere` gives lane k the columns of `spheres[idx[k]]` (indices repeated and in any order),
+    /// and `add_shares` adds to each body the scalar loop's rows, lane by lane in order, to the bit.
+    #[inline(always)]
+    unsafe fn check<V: Simd>() {
+        let spheres: Vec<Record> = (0..20).map(|i| Record(std::array::from_fn(|c| (100 * i + c) as f64 + 0.25))).collect();
+        let idx = [3, 17, 3, 0, 19, 5, 5, 11];
+        // SAFETY: the width's instruction set (the caller's), every index < 20.
+        let lanes = unsafe { V::gather_sphere(&spheres, &idx[..V::N]) };
+        for (q, lane) in lanes.iter().enumerate() {
+            let a = lane.to_array();
+            for k in 0..V::N {
+                assert_eq!(a.as_ref()[k], spheres[idx[k]].0[q], "lane {k}, quantity {q}");
+            }
+        }
+        // Shares with sums that depend on the order of addition; bodies met by several lanes, as owner and partner.
+        let (i, j) = ([0, 1, 1, 2, 0, 3, 4, 5], [1, 2, 0, 3, 3, 5, 5, 0]);
+        let value = |q: usize, k: usize| (1.0 + 0.1 * k as f64) * [1.0e-3, 3.3, 0.7, 2.0e5, 1.1e-7, 9.0, 5.5, 1.0e-9, 0.3, 4.4][q];
+        // SAFETY: the width's instruction set (the caller's).
+        let lane = |q: usize| unsafe { V::from_fn(|k| value(q, k)) };
+        let mut got = vec![[1.0f64; 8]; 6];
+        let mut want = got.clone();
+        // SAFETY: as above, every index < 6.
+        unsafe {
+            V::add_shares(&mut got, &i[..V::N], &j[..V::N], [lane(0), lane(1), lane(2)], lane(3), [lane(4), lane(5), lane(6)], [lane(7), lane(8), lane(9)]);
+        }
+        for k in 0..V::N {
+            let v = |q: usize| value(q, k);
+            let own = [v(0), v(1), v(2), v(3), v(4), v(5), v(6), 0.0];
+            let partner = [-v(0), -v(1), -v(2), v(3), v(7), v(8), v(9), 0.0];
+            for c in 0..8 {
+                want[i[k]][c] += own[c];
+            }
+            for c in 0..8 {
+                want[j[k]][c] += partner[c];
+            }
+        }
+        for (b, (g, w)) in got.iter().zip(&want).enumerate() {
+            assert_eq!(g.map(f64::to_bits), w.map(f64::to_bits), "body {b}: {g:?} against {w:?}");
+        }
+    }
+
+    #[target_feature(enable = "avx2")]
+    unsafe fn four() {
+        // SAFETY: AVX2 (this function's).
+        unsafe { check::<F64x4>() }
+    }
+
+    #[target_feature(enable = "avx2,avx512f,avx512dq")]
+    unsafe fn eight() {
+        // SAFETY: AVX-512 (this function's).
+        unsafe { check::<F64x8>() }
+    }
+
+    #[test]
+    fn records_gather_and_shares_add_at_both_widths() {
+        if !std::arch::is_x86_feature_detected!("avx2") {
+            eprintln!("no AVX2 on this CPU: the lanes are not run");
+            return;
+        }
+        // SAFETY: AVX2 checked.
+        unsafe { four() };
+        if !(std::arch::is_x86_feature_detected!("avx512f") && std::arch::is_x86_feature_detected!("avx512dq")) {
+            eprintln!("no AVX-512 on this CPU: the eight lanes are not run");
+            return;
+        }
+        // SAFETY: AVX-512 F and DQ checked.
+        unsafe { eight() };
     }
 }
