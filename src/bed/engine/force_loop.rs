@@ -36,8 +36,8 @@ struct Shared<'a, L: BedLaw> {
     isa: Isa,
     /// The species pairs' lane table when the pair loop runs on lanes (`lanes`), else None.
     lanes: Option<&'a [LaneRow]>,
-    /// The spheres' records for the lanes (`lanes::record`), packed this step; empty without lanes.
-    spheres: &'a [Record],
+    /// The spheres' records for eight lanes (`lanes::record`), current this step; else empty.
+    records: &'a [Record],
 }
 
 /// One part of the force loop: rows [rows.0, rows.1) and what it may write.
@@ -63,6 +63,11 @@ impl<L: BedLaw> Engine<L> {
     }
 
     pub(super) fn forces_inner(&mut self) {
+        self.forces_after_kick(false);
+    }
+
+    /// The force loop; `packed`: the step's drifting kick has just written the spheres' records (`kick`).
+    pub(super) fn forces_after_kick(&mut self, packed: bool) {
         let n = self.particles.len();
         // The pair loop tests each partner once against n, and the compiler drops the other bounds tests
         // (see `run_part_body`); the list must be this bed's.
@@ -73,8 +78,9 @@ impl<L: BedLaw> Engine<L> {
         let lanes = self.lanes_allowed() && super::lanes::table(&self.pairs, &mut self.lane_table);
         #[cfg(not(target_arch = "x86_64"))]
         let lanes = false;
-        if lanes {
-            self.pack_spheres();
+        let records = lanes && self.records_used();
+        if records && !(packed && self.records.len() == n) {
+            self.pack_records();
         }
         let shared = Shared {
             p: &self.particles,
@@ -88,7 +94,7 @@ impl<L: BedLaw> Engine<L> {
             any_held: self.any_held,
             isa: self.isa,
             lanes: lanes.then_some(&self.lane_table[..]),
-            spheres: if lanes { &self.spheres } else { &[] },
+            records: if records { &self.records } else { &[] },
         };
         // Cut the contact memory into the parts' pieces; each part's sink is its buffer (one thread: the
         // totals).
@@ -152,15 +158,19 @@ impl<L: BedLaw> Engine<L> {
 
 impl<L: BedLaw> Engine<L> {
     /// The spheres' records for the lane loop (`lanes::record`), each thread packing a chunk.
-    fn pack_spheres(&mut self) {
+    fn pack_records(&mut self) {
         let n = self.particles.len();
-        self.spheres.resize(n, Record::default());
+        self.records.resize(n, Record::default());
         let p = &self.particles;
+        let pack_from = |first: usize, out: &mut [Record]| {
+            let at = first..n;
+            pack(&p.position[at.clone()], &p.velocity[at.clone()], &p.angular_velocity[at.clone()], &p.radius[at.clone()], &p.species[at], out);
+        };
         if self.threads == 1 {
-            pack(p, 0, &mut self.spheres);
+            pack_from(0, &mut self.records);
         } else {
             let chunk = n.div_ceil(self.threads).max(1);
-            self.spheres.par_chunks_mut(chunk).enumerate().for_each(|(k, out)| pack(p, k * chunk, out));
+            self.records.par_chunks_mut(chunk).enumerate().for_each(|(k, out)| pack_from(k * chunk, out));
         }
     }
 }
@@ -200,7 +210,14 @@ fn run_part_body<L: BedLaw>(s: &Shared<L>, part: Part<L::History>) {
     #[cfg(target_arch = "x86_64")]
     if let Some(table) = s.lanes {
         let input = super::lanes::LaneInput {
-            spheres: s.spheres,
+            spheres: super::lanes::simd::Spheres {
+                position: &p.position,
+                velocity: &p.velocity,
+                spin: &p.angular_velocity,
+                radius: &p.radius,
+                species: &p.species,
+                records: s.records,
+            },
             species_count: s.species,
             owner: &s.list.owner,
             partner: &s.list.partner,

@@ -89,8 +89,9 @@ pub struct Engine<L: BedLaw> {
     /// The species pairs' parameters as the lane loop reads them, rebuilt by each force loop that runs on
     /// lanes (`lanes::table`).
     lane_table: Vec<lanes::LaneRow>,
-    /// The spheres as the lane loop reads them, packed before each force loop on lanes (`lanes::record`).
-    spheres: Vec<lanes::record::Record>,
+    /// The spheres' records for the pair loop on eight lanes (`lanes::record`), written by each step's
+    /// drifting kick (else packed by the force loop); unused on four lanes and on the scalar loop.
+    records: Vec<lanes::record::Record>,
 }
 
 impl<L: BedLaw> std::fmt::Debug for Engine<L> {
@@ -159,7 +160,7 @@ impl<L: BedLaw> Engine<L> {
             any_held: false,
             isa: Isa::detect(),
             lane_table: vec![],
-            spheres: vec![],
+            records: vec![],
         };
         e.rebuild();
         e.compute_forces();
@@ -193,6 +194,11 @@ impl<L: BedLaw> Engine<L> {
     /// held spheres nor the dipole pass (both stay on the scalar loop).
     pub(super) fn lanes_allowed(&self) -> bool {
         self.isa != Isa::Baseline && !self.any_held && !self.record_dipoles
+    }
+
+    /// Whether the pair loop may run on eight lanes, which read the spheres' records (`lanes::record`).
+    pub(super) fn records_used(&self) -> bool {
+        self.isa == Isa::Avx512 && self.lanes_allowed()
     }
 
     /// Runs the hot loops with another instruction set (the same bits either way; for comparisons).
@@ -485,12 +491,13 @@ impl<L: BedLaw> Engine<L> {
         // closed the whole margin unseen.
         let limit = 0.5 * (self.list.skin - self.reach);
         let moved = self.kick(h, true, closed_before);
+        let packed = self.records_used();
         self.move_walls();
         let wall_moved = self.walls.iter().zip(&self.wall_reference).any(|(w, r)| (w.position - r).norm_squared() > limit * limit);
         if wall_moved || moved > limit * limit || self.list.rows() != self.particles.len() {
             self.rebuild();
         }
-        self.forces_inner();
+        self.forces_after_kick(packed);
         if !leave_open {
             self.kick(h, false, false);
         }
@@ -501,29 +508,41 @@ impl<L: BedLaw> Engine<L> {
     /// Half a kick: v += (F/m + g) h, w += T/I h, and rolling friction against the spin; with `drift`
     /// also x += v dt; with `twice`, two half kicks before the drift (the last step's closing one and
     /// this step's opening one). Returns the largest squared displacement since the last list build
-    /// (with drift).
+    /// (with drift). A drifting kick on an engine that may run its pairs on eight lanes also writes the
+    /// spheres' records for them (`lanes::record`), saving the force loop a pass over every sphere.
     fn kick(&mut self, h: f64, drift: bool, twice: bool) -> f64 {
         let threads = self.threads;
+        let write_records = drift && self.records_used();
         let load = &self.total.load[..];
         let p = &mut self.particles;
         let reference = self.list.reference();
         let dt = if drift { self.dt } else { 0.0 };
         let g = self.gravity;
         let any_held = self.any_held;
-        let body = Body { inv_mass: &p.inv_mass, inv_inertia: &p.inv_inertia, radius: &p.radius, held: if any_held { &p.held } else { &[] } };
+        let body = Body { inv_mass: &p.inv_mass, inv_inertia: &p.inv_inertia, radius: &p.radius, species: &p.species, held: if any_held { &p.held } else { &[] } };
+        let records: &mut [lanes::record::Record] = if write_records {
+            self.records.resize(p.len(), Default::default());
+            &mut self.records
+        } else {
+            &mut []
+        };
         let isa = self.isa;
         let halves = if twice { 2 } else { 1 };
         let kick = Kick { g, h, halves, dt };
         if threads == 1 {
-            return kick_range(isa, 0, &mut p.velocity, &mut p.angular_velocity, &mut p.position, body, load, reference, kick);
+            return kick_range(isa, 0, &mut p.velocity, &mut p.angular_velocity, &mut p.position, body, load, reference, kick, records);
         }
         let chunk = p.len().div_ceil(threads).max(1);
+        // The records cut as the spheres are (without records, an empty slice per chunk).
+        let mut record_chunks: Vec<&mut [lanes::record::Record]> = records.chunks_mut(chunk).collect();
+        record_chunks.resize_with(p.velocity.len().div_ceil(chunk), || &mut []);
         p.velocity
             .par_chunks_mut(chunk)
             .zip(p.angular_velocity.par_chunks_mut(chunk))
             .zip(p.position.par_chunks_mut(chunk))
+            .zip(record_chunks.into_par_iter())
             .enumerate()
-            .map(|(k, ((v, w), x))| kick_range(isa, k * chunk, v, w, x, body, load, reference, kick))
+            .map(|(k, (((v, w), x), out))| kick_range(isa, k * chunk, v, w, x, body, load, reference, kick, out))
             .reduce(|| 0.0, f64::max)
     }
 
@@ -607,28 +626,45 @@ struct Body<'a> {
     inv_mass: &'a [f64],
     inv_inertia: &'a [f64],
     radius: &'a [f64],
+    species: &'a [u16],
     held: &'a [bool],
 }
 
-/// `kick_body` with the engine's instruction set.
+/// `kick_body` with the engine's instruction set; with `records` (one per sphere of the range, else
+/// empty) it also writes the spheres' records after the drift (`lanes::record`).
 #[allow(clippy::too_many_arguments)]
-fn kick_range(isa: Isa, base: usize, v: &mut [Vec3], w: &mut [Vec3], x: &mut [Vec3], body: Body, load: &[Load], reference: &[Vec3], kick: Kick) -> f64 {
+fn kick_range(isa: Isa, base: usize, v: &mut [Vec3], w: &mut [Vec3], x: &mut [Vec3], body: Body, load: &[Load], reference: &[Vec3], kick: Kick, records: &mut [lanes::record::Record]) -> f64 {
+    let n = v.len();
+    assert!(records.is_empty() || records.len() == n, "one record per sphere of the range");
     #[cfg(target_arch = "x86_64")]
     if isa != Isa::Baseline {
-        let end = base + v.len();
+        let end = base + n;
         if body.held.is_empty() && reference.len() >= end {
             // Four spheres at a time on lanes, the last 0-3 one at a time (the same bits: `lanes::kick`).
             // SAFETY: an engine takes Isa::Avx2 or Isa::Avx512 (which includes AVX2) only where the CPU reports it (`Engine::set_isa`).
-            let moved = unsafe { lanes::kick4(base, v, w, x, body, load, reference, kick) };
-            let done = v.len() / 4 * 4;
+            let moved = unsafe { lanes::kick4(base, v, w, x, body, load, reference, kick, records) };
+            let done = n / 4 * 4;
             // SAFETY: as above.
             let rest = unsafe { kick_avx2(base + done, &mut v[done..], &mut w[done..], &mut x[done..], body, load, reference, kick) };
+            if !records.is_empty() {
+                pack_range(base + done, &v[done..], &w[done..], &x[done..], body, &mut records[done..]);
+            }
             return moved.max(rest);
         }
         // SAFETY: an engine takes Isa::Avx2 or Isa::Avx512 (which includes AVX2) only where the CPU reports it (`Engine::set_isa`).
-        return unsafe { kick_avx2(base, v, w, x, body, load, reference, kick) };
+        let moved = unsafe { kick_avx2(base, v, w, x, body, load, reference, kick) };
+        pack_range(base, v, w, x, body, records);
+        return moved;
     }
-    kick_body(base, v, w, x, body, load, reference, kick)
+    let moved = kick_body(base, v, w, x, body, load, reference, kick);
+    pack_range(base, v, w, x, body, records);
+    moved
+}
+
+/// The records of the spheres from `base` on (as many as `records` holds; none when it is empty).
+fn pack_range(base: usize, v: &[Vec3], w: &[Vec3], x: &[Vec3], body: Body, records: &mut [lanes::record::Record]) {
+    let end = base + records.len();
+    lanes::record::pack(x, v, w, &body.radius[base..end], &body.species[base..end], records);
 }
 
 #[cfg(target_arch = "x86_64")]

@@ -8,6 +8,7 @@
 //! thread). On lanes the branch is a select and four chains run in one (docs/benchmarks.md, issue 30's
 //! eleventh round).
 
+use super::record::Record;
 use super::simd::transpose;
 use crate::bed::engine::partition::Load;
 use crate::bed::engine::{Body, Kick};
@@ -59,20 +60,24 @@ unsafe fn store3(v: &mut [Vec3], q: usize, c: [__m256d; 3]) {
 /// `kick_body` (the same arguments) for the first 4 m spheres of the slices `v`, `w`, `x` (spheres
 /// `base` on), none held and every one with a reference position; returns the largest squared
 /// displacement from the reference (with a drift, `dt` > 0), else 0. The caller kicks the last 0-3.
+/// With a drift and `records` (one per sphere of the slices, else empty) it also writes the spheres'
+/// records for the pair loop (`record::Record`) from the lanes it holds.
 ///
 /// # Safety
 /// AVX2 must be available.
 #[target_feature(enable = "avx2")]
 #[allow(clippy::too_many_arguments)] // as `kick_body`
-pub unsafe fn kick4(base: usize, v: &mut [Vec3], w: &mut [Vec3], x: &mut [Vec3], body: Body, load: &[Load], reference: &[Vec3], kick: Kick) -> f64 {
+pub unsafe fn kick4(base: usize, v: &mut [Vec3], w: &mut [Vec3], x: &mut [Vec3], body: Body, load: &[Load], reference: &[Vec3], kick: Kick, records: &mut [Record]) -> f64 {
     let Kick { g, h, halves, dt } = kick;
     let end = base + v.len() / 4 * 4;
-    let (inv_mass, inv_inertia, radius) = (&body.inv_mass[base..end], &body.inv_inertia[base..end], &body.radius[base..end]);
+    let (inv_mass, inv_inertia, radius, species) = (&body.inv_mass[base..end], &body.inv_inertia[base..end], &body.radius[base..end], &body.species[base..end]);
     let (load, reference) = (&load[base..end], &reference[base..end]);
     // SAFETY: AVX2 is available (the contract); every slice access below is checked.
     unsafe {
         let n = v.len() / 4 * 4;
         assert!(w.len() >= n && x.len() >= n);
+        let write = !records.is_empty() && dt != 0.0;
+        assert!(!write || records.len() >= n);
         let (zero, one) = (_mm256_setzero_pd(), _mm256_set1_pd(1.0));
         let (gx, gy, gz, hv, dtv) = (_mm256_set1_pd(g.x), _mm256_set1_pd(g.y), _mm256_set1_pd(g.z), _mm256_set1_pd(h), _mm256_set1_pd(dt));
         let mut moved = zero;
@@ -121,6 +126,16 @@ pub unsafe fn kick4(base: usize, v: &mut [Vec3], w: &mut [Vec3], x: &mut [Vec3],
                 let d2 = _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy)), _mm256_mul_pd(dz, dz));
                 // max(d2, moved) keeps `moved` where d2 is NaN, as the scalar f64::max does.
                 moved = _mm256_max_pd(d2, moved);
+                if write {
+                    // The species (u16) as f64, exact.
+                    let s = _mm256_cvtepi32_pd(_mm_cvtepu16_epi32(_mm_loadl_epi64(species[q..q + 4].as_ptr() as *const __m128i)));
+                    let rows = [transpose(xx, xy, xz, r), transpose(vx, vy, vz, s), transpose(wx, wy, wz, zero)];
+                    for (k, rec) in records[q..q + 4].iter_mut().enumerate() {
+                        for (c, row) in rows.iter().enumerate() {
+                            _mm256_storeu_pd(rec.0[4 * c..4 * c + 4].as_mut_ptr(), row[k]);
+                        }
+                    }
+                }
             }
             q += 4;
         }

@@ -15,6 +15,7 @@
 //! contract is that the CPU runs the width's instruction set; the safe methods then rely on it.
 
 use super::record::Record;
+use crate::bed::Vec3;
 use std::arch::x86_64::*;
 use std::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
 
@@ -27,6 +28,28 @@ pub trait Mask: Copy + BitAnd<Output = Self> + BitOr<Output = Self> + Not<Output
     fn and_not(self, other: Self) -> Self {
         self & !other
     }
+}
+
+/// The spheres as the pair loop reads them: the engine's arrays (four lanes) or its records (eight lanes;
+/// empty on an engine running four).
+#[derive(Clone, Copy)]
+pub struct Spheres<'a> {
+    pub position: &'a [Vec3],
+    pub velocity: &'a [Vec3],
+    pub spin: &'a [Vec3],
+    pub radius: &'a [f64],
+    pub species: &'a [u16],
+    pub records: &'a [Record],
+}
+
+/// A block's contacts' shares: per lane the force on the owner [N], the rolling load [N] and the
+/// torques on owner and partner [N m] (the partner's force is the owner's negated).
+#[derive(Clone, Copy)]
+pub struct Share<V> {
+    pub force: [V; 3],
+    pub rolling: V,
+    pub torque_i: [V; 3],
+    pub torque_j: [V; 3],
 }
 
 /// Lanes of f64 of one width.
@@ -66,20 +89,23 @@ pub trait Simd: Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = Se
     fn nle(self, o: Self) -> Self::Mask;
     fn nge(self, o: Self) -> Self::Mask;
     fn ne(self, o: Self) -> Self::Mask;
-    /// The records `spheres[idx[k]]` (`Record`) as lanes: x, y, z, r, vx, vy, vz, species, wx, wy, wz.
+    /// Whether `gather_sphere` reads the records (else the arrays).
+    const RECORDS: bool;
+    /// Sphere `idx[k]` in lane k: x, y, z, r, vx, vy, vz, species (as f64, exact), wx, wy, wz.
     ///
     /// # Safety
-    /// As the constructors, and every `idx[k] < spheres.len()` (not checked here: the pair loop checks its
-    /// indices once per block).
-    unsafe fn gather_sphere(spheres: &[Record], idx: &[usize]) -> [Self; 11];
-    /// Adds each lane's share of a contact to its two bodies' records of eight f64 (`Load`): to
-    /// `record[i[k]]` the row [force, rolling, torque_i, 0] of lane k, then to `record[j[k]]` the row
-    /// [-force, rolling, torque_j, 0]; lane by lane in order k = 0, 1, ..., so each sum is the scalar
-    /// loop's, added in its order.
+    /// As the constructors, and every `idx[k]` < the length of what is read (not checked here: the pair
+    /// loop checks its indices once per block).
+    unsafe fn gather_sphere(spheres: &Spheres, idx: &[usize]) -> [Self; 11];
+    /// Adds each lane's share of a contact to its two bodies' records of eight f64 (`Load`, the part's
+    /// from sphere `base` on): to `record[i[k] - base]` the row [force, rolling, torque_i, 0] of lane k,
+    /// then to `record[j[k] - base]` the row [-force, rolling, torque_j, 0]; lane by lane in order
+    /// k = 0, 1, ..., so each sum is the scalar loop's, added in its order. A sphere outside the records
+    /// panics, as the scalar loop's index.
     ///
     /// # Safety
-    /// As the constructors, and every `i[k]`, `j[k]` < `record.len()` (not checked here).
-    unsafe fn add_shares(record: &mut [[f64; 8]], i: &[usize], j: &[usize], force: [Self; 3], rolling: Self, torque_i: [Self; 3], torque_j: [Self; 3]);
+    /// As the constructors.
+    unsafe fn add_shares(record: &mut [[f64; 8]], base: usize, i: &[usize], j: &[usize], share: Share<Self>);
 }
 
 /// Lanes a, b, c, d to four rows [a_k, b_k, c_k, d_k].
@@ -145,6 +171,25 @@ unsafe fn transpose8(q: [__m512d; 8]) -> [__m512d; 8] {
             _mm512_shuffle_f64x2::<ODD>(u[1], v[1]),
             _mm512_shuffle_f64x2::<ODD>(u[3], v[3]),
         ]
+    }
+}
+
+/// Four 3-vectors as x, y and z lanes (masked loads: nothing read past the vector).
+///
+/// # Safety
+/// AVX, and `idx[k] < v.len()` for k < 4 (the caller's check).
+#[inline(always)]
+unsafe fn gather3_256(v: &[Vec3], idx: &[usize]) -> [__m256d; 3] {
+    // SAFETY: AVX and the indices (the caller's).
+    unsafe {
+        let three = _mm256_set_epi64x(0, -1, -1, -1);
+        let row = |k: usize| _mm256_maskload_pd(v.get_unchecked(*idx.get_unchecked(k)).as_ptr(), three);
+        let (r0, r1, r2, r3) = (row(0), row(1), row(2), row(3));
+        let t0 = _mm256_unpacklo_pd(r0, r1); // x0 x1 z0 z1
+        let t1 = _mm256_unpackhi_pd(r0, r1); // y0 y1 0 0
+        let t2 = _mm256_unpacklo_pd(r2, r3);
+        let t3 = _mm256_unpackhi_pd(r2, r3);
+        [_mm256_permute2f128_pd(t0, t2, 0x20), _mm256_permute2f128_pd(t1, t3, 0x20), _mm256_permute2f128_pd(t0, t2, 0x31)]
     }
 }
 
@@ -322,20 +367,26 @@ impl Simd for F64x4 {
     cmp4!(nle, _CMP_NLE_UQ);
     cmp4!(nge, _CMP_NGE_UQ);
     cmp4!(ne, _CMP_NEQ_UQ);
+    // From the arrays: on four lanes the records ran 3-7 % slower than the arrays (the kick's writes
+    // and two cache lines per sphere, against three 3-vector gathers; issue 30's seventeenth round).
+    const RECORDS: bool = false;
     #[inline(always)]
-    unsafe fn gather_sphere(spheres: &[Record], idx: &[usize]) -> [F64x4; 11] {
+    unsafe fn gather_sphere(spheres: &Spheres, idx: &[usize]) -> [F64x4; 11] {
+        // SAFETY: AVX2 and the indices (the caller's).
         unsafe {
-            let r = |k: usize, o: usize| _mm256_loadu_pd(spheres.get_unchecked(*idx.get_unchecked(k)).0.as_ptr().add(o));
-            let a = transpose(r(0, 0), r(1, 0), r(2, 0), r(3, 0));
-            let b = transpose(r(0, 4), r(1, 4), r(2, 4), r(3, 4));
-            let c = transpose(r(0, 8), r(1, 8), r(2, 8), r(3, 8));
+            let x = gather3_256(spheres.position, idx);
+            let v = gather3_256(spheres.velocity, idx);
+            let w = gather3_256(spheres.spin, idx);
+            let r = F64x4::from_fn(|k| *spheres.radius.get_unchecked(*idx.get_unchecked(k)));
+            let s = F64x4::from_fn(|k| f64::from(*spheres.species.get_unchecked(*idx.get_unchecked(k))));
             let f = F64x4;
-            [f(a[0]), f(a[1]), f(a[2]), f(a[3]), f(b[0]), f(b[1]), f(b[2]), f(b[3]), f(c[0]), f(c[1]), f(c[2])]
+            [f(x[0]), f(x[1]), f(x[2]), r, f(v[0]), f(v[1]), f(v[2]), s, f(w[0]), f(w[1]), f(w[2])]
         }
     }
     #[inline(always)]
-    unsafe fn add_shares(record: &mut [[f64; 8]], i: &[usize], j: &[usize], force: [F64x4; 3], rolling: F64x4, torque_i: [F64x4; 3], torque_j: [F64x4; 3]) {
-        // SAFETY: AVX (the caller's) and the indices (the caller's check); each record is eight f64.
+    unsafe fn add_shares(record: &mut [[f64; 8]], base: usize, i: &[usize], j: &[usize], share: Share<F64x4>) {
+        let Share { force, rolling, torque_i, torque_j } = share;
+        // SAFETY: AVX (the caller's); each record is eight f64.
         unsafe {
             let zero = _mm256_setzero_pd();
             let share = transpose(force[0].0, force[1].0, force[2].0, rolling.0);
@@ -345,10 +396,10 @@ impl Simd for F64x4 {
             let flip = _mm256_set_pd(0.0, -0.0, -0.0, -0.0);
             let add = |p: *mut f64, row: __m256d| _mm256_storeu_pd(p, _mm256_add_pd(_mm256_loadu_pd(p), row));
             for k in 0..4 {
-                let a = record.get_unchecked_mut(*i.get_unchecked(k)).as_mut_ptr();
+                let a = record[i[k] - base].as_mut_ptr();
                 add(a, share[k]);
                 add(a.add(4), ti[k]);
-                let b = record.get_unchecked_mut(*j.get_unchecked(k)).as_mut_ptr();
+                let b = record[j[k] - base].as_mut_ptr();
                 add(b, _mm256_xor_pd(share[k], flip));
                 add(b.add(4), tj[k]);
             }
@@ -483,10 +534,14 @@ impl Simd for F64x8 {
     cmp8!(nle, _CMP_NLE_UQ);
     cmp8!(nge, _CMP_NGE_UQ);
     cmp8!(ne, _CMP_NEQ_UQ);
+    // From the records: on eight lanes they made the linear spring 1.2 times as fast as two joined
+    // four-lane gathers from the arrays (issue 30's seventeenth round).
+    const RECORDS: bool = true;
     #[inline(always)]
-    unsafe fn gather_sphere(spheres: &[Record], idx: &[usize]) -> [F64x8; 11] {
+    unsafe fn gather_sphere(spheres: &Spheres, idx: &[usize]) -> [F64x8; 11] {
+        // SAFETY: AVX-512 F and the indices (the caller's).
         unsafe {
-            let p = |k: usize| spheres.get_unchecked(*idx.get_unchecked(k)).0.as_ptr();
+            let p = |k: usize| spheres.records.get_unchecked(*idx.get_unchecked(k)).0.as_ptr();
             let l = |k: usize| _mm512_loadu_pd(p(k));
             let a = transpose8([l(0), l(1), l(2), l(3), l(4), l(5), l(6), l(7)]);
             let r = |k: usize| _mm256_loadu_pd(p(k).add(8));
@@ -498,8 +553,9 @@ impl Simd for F64x8 {
         }
     }
     #[inline(always)]
-    unsafe fn add_shares(record: &mut [[f64; 8]], i: &[usize], j: &[usize], force: [F64x8; 3], rolling: F64x8, torque_i: [F64x8; 3], torque_j: [F64x8; 3]) {
-        // SAFETY: AVX-512 F (the caller's) and the indices (the caller's check); each record is eight f64.
+    unsafe fn add_shares(record: &mut [[f64; 8]], base: usize, i: &[usize], j: &[usize], share: Share<F64x8>) {
+        let Share { force, rolling, torque_i, torque_j } = share;
+        // SAFETY: AVX-512 F (the caller's); each record is eight f64.
         // One 512-bit add per body and lane, not two 256-bit ones (the record is one row of eight).
         unsafe {
             let zero = _mm512_setzero_pd();
@@ -508,8 +564,8 @@ impl Simd for F64x8 {
             let rj = transpose8([minus(force[0]), minus(force[1]), minus(force[2]), rolling.0, torque_j[0].0, torque_j[1].0, torque_j[2].0, zero]);
             let add = |p: *mut f64, row: __m512d| _mm512_storeu_pd(p, _mm512_add_pd(_mm512_loadu_pd(p), row));
             for k in 0..8 {
-                add(record.get_unchecked_mut(*i.get_unchecked(k)).as_mut_ptr(), ri[k]);
-                add(record.get_unchecked_mut(*j.get_unchecked(k)).as_mut_ptr(), rj[k]);
+                add(record[i[k] - base].as_mut_ptr(), ri[k]);
+                add(record[j[k] - base].as_mut_ptr(), rj[k]);
             }
         }
     }
@@ -519,18 +575,25 @@ impl Simd for F64x8 {
 mod tests {
     use super::*;
 
-    /// `gather_sphere` gives lane k the columns of `spheres[idx[k]]` (indices repeated and in any order),
+    /// `gather_sphere` gives lane k sphere `idx[k]` (indices repeated and in any order),
     /// and `add_shares` adds to each body the scalar loop's rows, lane by lane in order, to the bit.
     #[inline(always)]
     unsafe fn check<V: Simd>() {
-        let spheres: Vec<Record> = (0..20).map(|i| Record(std::array::from_fn(|c| (100 * i + c) as f64 + 0.25))).collect();
+        // Sphere i's quantity q is 100 i + q + 0.25 (the species 100 i + 7), in the arrays and the records.
+        let value = |i: usize, q: usize| if q == 7 { (100 * i + 7) as f64 } else { (100 * i + q) as f64 + 0.25 };
+        let records: Vec<Record> = (0..20).map(|i| Record(std::array::from_fn(|q| if q < 11 { value(i, q) } else { 0.0 }))).collect();
+        let vec3 = |q: usize| (0..20).map(|i| Vec3::new(value(i, q), value(i, q + 1), value(i, q + 2))).collect::<Vec<_>>();
+        let (position, velocity, spin) = (vec3(0), vec3(4), vec3(8));
+        let radius: Vec<f64> = (0..20).map(|i| value(i, 3)).collect();
+        let species: Vec<u16> = (0..20).map(|i| (100 * i + 7) as u16).collect();
+        let spheres = Spheres { position: &position, velocity: &velocity, spin: &spin, radius: &radius, species: &species, records: &records };
         let idx = [3, 17, 3, 0, 19, 5, 5, 11];
         // SAFETY: the width's instruction set (the caller's), every index < 20.
         let lanes = unsafe { V::gather_sphere(&spheres, &idx[..V::N]) };
         for (q, lane) in lanes.iter().enumerate() {
             let a = lane.to_array();
             for k in 0..V::N {
-                assert_eq!(a.as_ref()[k], spheres[idx[k]].0[q], "lane {k}, quantity {q}");
+                assert_eq!(a.as_ref()[k], value(idx[k], q), "lane {k}, quantity {q}");
             }
         }
         // Shares with sums that depend on the order of addition; bodies met by several lanes, as owner and partner.
@@ -540,9 +603,10 @@ mod tests {
         let lane = |q: usize| unsafe { V::from_fn(|k| value(q, k)) };
         let mut got = vec![[1.0f64; 8]; 6];
         let mut want = got.clone();
-        // SAFETY: as above, every index < 6.
+        // SAFETY: as above.
         unsafe {
-            V::add_shares(&mut got, &i[..V::N], &j[..V::N], [lane(0), lane(1), lane(2)], lane(3), [lane(4), lane(5), lane(6)], [lane(7), lane(8), lane(9)]);
+            let share = Share { force: [lane(0), lane(1), lane(2)], rolling: lane(3), torque_i: [lane(4), lane(5), lane(6)], torque_j: [lane(7), lane(8), lane(9)] };
+            V::add_shares(&mut got, 0, &i[..V::N], &j[..V::N], share);
         }
         for k in 0..V::N {
             let v = |q: usize| value(q, k);
