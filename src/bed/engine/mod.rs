@@ -11,7 +11,8 @@
 //! - `isa`: the instruction set the force loop and the kick run with (AVX-512 or AVX2 where the CPU
 //!   has it);
 //! - `lanes`: the pair loop on lanes, four contacts at once with AVX2 and eight with AVX-512, for the
-//!   laws that have it; the kick on AVX2 lanes, four spheres at once (`lanes/kick.rs`).
+//!   laws that have it; the kick on AVX2 lanes, four spheres at once (`lanes/kick.rs`); the spheres'
+//!   records that eight lanes read, written by the drifting kick (`lanes/record.rs`).
 
 mod contact_memory;
 mod force_loop;
