@@ -164,7 +164,7 @@ impl<L: BedLaw> Engine<L> {
         let p = &self.particles;
         let pack_from = |first: usize, out: &mut [Record]| {
             let at = first..n;
-            pack(&p.position[at.clone()], &p.velocity[at.clone()], &p.angular_velocity[at.clone()], &p.radius[at.clone()], &p.species[at], out);
+            pack(&p.position[at.clone()], &p.velocity[at.clone()], &p.angular_velocity[at.clone()], &p.radius[at], out);
         };
         if self.threads == 1 {
             pack_from(0, &mut self.records);

@@ -520,7 +520,7 @@ impl<L: BedLaw> Engine<L> {
         let dt = if drift { self.dt } else { 0.0 };
         let g = self.gravity;
         let any_held = self.any_held;
-        let body = Body { inv_mass: &p.inv_mass, inv_inertia: &p.inv_inertia, radius: &p.radius, species: &p.species, held: if any_held { &p.held } else { &[] } };
+        let body = Body { inv_mass: &p.inv_mass, inv_inertia: &p.inv_inertia, radius: &p.radius, held: if any_held { &p.held } else { &[] } };
         let records: &mut [lanes::record::Record] = if write_records {
             self.records.resize(p.len(), Default::default());
             &mut self.records
@@ -627,7 +627,6 @@ struct Body<'a> {
     inv_mass: &'a [f64],
     inv_inertia: &'a [f64],
     radius: &'a [f64],
-    species: &'a [u16],
     held: &'a [bool],
 }
 
@@ -665,7 +664,7 @@ fn kick_range(isa: Isa, base: usize, v: &mut [Vec3], w: &mut [Vec3], x: &mut [Ve
 /// The records of the spheres from `base` on (as many as `records` holds; none when it is empty).
 fn pack_range(base: usize, v: &[Vec3], w: &[Vec3], x: &[Vec3], body: Body, records: &mut [lanes::record::Record]) {
     let end = base + records.len();
-    lanes::record::pack(x, v, w, &body.radius[base..end], &body.species[base..end], records);
+    lanes::record::pack(x, v, w, &body.radius[base..end], records);
 }
 
 #[cfg(target_arch = "x86_64")]

@@ -70,7 +70,7 @@ unsafe fn store3(v: &mut [Vec3], q: usize, c: [__m256d; 3]) {
 pub unsafe fn kick4(base: usize, v: &mut [Vec3], w: &mut [Vec3], x: &mut [Vec3], body: Body, load: &[Load], reference: &[Vec3], kick: Kick, records: &mut [Record]) -> f64 {
     let Kick { g, h, halves, dt } = kick;
     let end = base + v.len() / 4 * 4;
-    let (inv_mass, inv_inertia, radius, species) = (&body.inv_mass[base..end], &body.inv_inertia[base..end], &body.radius[base..end], &body.species[base..end]);
+    let (inv_mass, inv_inertia, radius) = (&body.inv_mass[base..end], &body.inv_inertia[base..end], &body.radius[base..end]);
     let (load, reference) = (&load[base..end], &reference[base..end]);
     // SAFETY: AVX2 is available (the contract); every slice access below is checked.
     unsafe {
@@ -127,9 +127,7 @@ pub unsafe fn kick4(base: usize, v: &mut [Vec3], w: &mut [Vec3], x: &mut [Vec3],
                 // max(d2, moved) keeps `moved` where d2 is NaN, as the scalar f64::max does.
                 moved = _mm256_max_pd(d2, moved);
                 if write {
-                    // The species (u16) as f64, exact.
-                    let s = _mm256_cvtepi32_pd(_mm_cvtepu16_epi32(_mm_loadl_epi64(species[q..q + 4].as_ptr() as *const __m128i)));
-                    let rows = [transpose(xx, xy, xz, r), transpose(vx, vy, vz, s), transpose(wx, wy, wz, zero)];
+                    let rows = [transpose(xx, xy, xz, r), transpose(vx, vy, vz, zero), transpose(wx, wy, wz, zero)];
                     for (k, rec) in records[q..q + 4].iter_mut().enumerate() {
                         for (c, row) in rows.iter().enumerate() {
                             _mm256_storeu_pd(rec.0[4 * c..4 * c + 4].as_mut_ptr(), row[k]);

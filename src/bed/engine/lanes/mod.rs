@@ -325,8 +325,8 @@ mod x86 {
             let n = sp.position.len();
             assert!(sp.velocity.len() == n && sp.spin.len() == n && sp.radius.len() == n && sp.species.len() == n);
             assert!(!V::RECORDS || sp.records.len() == n, "the records are packed for this step's spheres");
-            // Each block checks its 2w indices against n once, and the table row of each lane once, and reads without a bounds test per access (the index
-            // work was 29 % of the linear loop's samples, issue 30's fourteenth round; without the tests
+            // Each block checks its 2w indices against n once, and the table row of each lane once, and
+            // reads without a bounds test per access (the index work was 29 % of the linear loop's samples, issue 30's fourteenth round; without the tests
             // the seed's test ran 1.23x faster, its fifteenth).
             assert!(last <= e.owner.len() && last <= e.partner.len());
             let w = V::N;
@@ -348,17 +348,8 @@ mod x86 {
                 // one per array).
                 let si = V::gather_sphere(sp, &ii);
                 let sj = V::gather_sphere(sp, &jj);
-                // The species pair's row: from the records' species lanes (small integers, exact in f64), or
-                // from the species array (on four lanes, 50 fewer instructions per particle-step).
-                if V::RECORDS {
-                    let row = (si[7] * V::splat(e.species_count as f64) + sj[7]).to_array();
-                    for k in 0..w {
-                        pair[k] = row.as_ref()[k] as usize;
-                    }
-                } else {
-                    for k in 0..w {
-                        pair[k] = *sp.species.get_unchecked(ii[k]) as usize * e.species_count + *sp.species.get_unchecked(jj[k]) as usize;
-                    }
+                for k in 0..w {
+                    pair[k] = *sp.species.get_unchecked(ii[k]) as usize * e.species_count + *sp.species.get_unchecked(jj[k]) as usize;
                 }
                 assert!(pair[..w].iter().all(|&p| p < e.table.len()));
                 let param = |q: usize| V::from_fn(|k| e.table.get_unchecked(pair[k])[q]);
@@ -411,7 +402,7 @@ mod x86 {
                 let (li, lj) = (ri - half_alpha, rj - half_alpha);
                 // The surface velocity of i relative to j (kernel::surface_velocity).
                 let (vi, vj) = ([si[4], si[5], si[6]], [sj[4], sj[5], sj[6]]);
-                let (wi, wj) = ([si[8], si[9], si[10]], [sj[8], sj[9], sj[10]]);
+                let (wi, wj) = ([si[7], si[8], si[9]], [sj[7], sj[8], sj[9]]);
                 let om: [V; 3] = std::array::from_fn(|c| wi[c] * li + wj[c] * lj);
                 let v = [
                     (vi[0] - vj[0]) + (om[1] * nrm[2] - om[2] * nrm[1]),

@@ -91,12 +91,12 @@ pub trait Simd: Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = Se
     fn ne(self, o: Self) -> Self::Mask;
     /// Whether `gather_sphere` reads the records (else the arrays).
     const RECORDS: bool;
-    /// Sphere `idx[k]` in lane k: x, y, z, r, vx, vy, vz, species (as f64, exact), wx, wy, wz.
+    /// Sphere `idx[k]` in lane k: x, y, z, r, vx, vy, vz, wx, wy, wz.
     ///
     /// # Safety
     /// As the constructors, and every `idx[k]` < the length of what is read (not checked here: the pair
     /// loop checks its indices once per block).
-    unsafe fn gather_sphere(spheres: &Spheres, idx: &[usize]) -> [Self; 11];
+    unsafe fn gather_sphere(spheres: &Spheres, idx: &[usize]) -> [Self; 10];
     /// Adds each lane's share of a contact to its two bodies' records of eight f64 (`Load`, the part's
     /// from sphere `base` on): to `record[i[k] - base]` the row [force, rolling, torque_i, 0] of lane k,
     /// then to `record[j[k] - base]` the row [-force, rolling, torque_j, 0]; lane by lane in order
@@ -149,18 +149,15 @@ unsafe fn transpose8(q: [__m512d; 8]) -> [__m512d; 8] {
         // pairs of q[0..4] of lanes 0 and 4, u[1] of lanes 2 and 6, u[2] of 1 and 5, u[3] of 3 and 7; v the same of q[4..8].
         const EVEN: i32 = 0b10_00_10_00;
         const ODD: i32 = 0b11_01_11_01;
-        let u = [
-            _mm512_shuffle_f64x2::<EVEN>(t[0], t[2]),
-            _mm512_shuffle_f64x2::<ODD>(t[0], t[2]),
-            _mm512_shuffle_f64x2::<EVEN>(t[1], t[3]),
-            _mm512_shuffle_f64x2::<ODD>(t[1], t[3]),
-        ];
-        let v = [
-            _mm512_shuffle_f64x2::<EVEN>(t[4], t[6]),
-            _mm512_shuffle_f64x2::<ODD>(t[4], t[6]),
-            _mm512_shuffle_f64x2::<EVEN>(t[5], t[7]),
-            _mm512_shuffle_f64x2::<ODD>(t[5], t[7]),
-        ];
+        let blocks = |even: __m512d, odd: __m512d, even2: __m512d, odd2: __m512d| {
+            [
+                _mm512_shuffle_f64x2::<EVEN>(even, even2),
+                _mm512_shuffle_f64x2::<ODD>(even, even2),
+                _mm512_shuffle_f64x2::<EVEN>(odd, odd2),
+                _mm512_shuffle_f64x2::<ODD>(odd, odd2),
+            ]
+        };
+        let (u, v) = (blocks(t[0], t[1], t[2], t[3]), blocks(t[4], t[5], t[6], t[7]));
         [
             _mm512_shuffle_f64x2::<EVEN>(u[0], v[0]),
             _mm512_shuffle_f64x2::<EVEN>(u[2], v[2]),
@@ -371,16 +368,15 @@ impl Simd for F64x4 {
     // and two cache lines per sphere, against three 3-vector gathers; issue 30's seventeenth round).
     const RECORDS: bool = false;
     #[inline(always)]
-    unsafe fn gather_sphere(spheres: &Spheres, idx: &[usize]) -> [F64x4; 11] {
+    unsafe fn gather_sphere(spheres: &Spheres, idx: &[usize]) -> [F64x4; 10] {
         // SAFETY: AVX2 and the indices (the caller's).
         unsafe {
             let x = gather3_256(spheres.position, idx);
             let v = gather3_256(spheres.velocity, idx);
             let w = gather3_256(spheres.spin, idx);
             let r = F64x4::from_fn(|k| *spheres.radius.get_unchecked(*idx.get_unchecked(k)));
-            let s = F64x4::from_fn(|k| f64::from(*spheres.species.get_unchecked(*idx.get_unchecked(k))));
             let f = F64x4;
-            [f(x[0]), f(x[1]), f(x[2]), r, f(v[0]), f(v[1]), f(v[2]), s, f(w[0]), f(w[1]), f(w[2])]
+            [f(x[0]), f(x[1]), f(x[2]), r, f(v[0]), f(v[1]), f(v[2]), f(w[0]), f(w[1]), f(w[2])]
         }
     }
     #[inline(always)]
@@ -538,7 +534,7 @@ impl Simd for F64x8 {
     // four-lane gathers from the arrays (issue 30's seventeenth round).
     const RECORDS: bool = true;
     #[inline(always)]
-    unsafe fn gather_sphere(spheres: &Spheres, idx: &[usize]) -> [F64x8; 11] {
+    unsafe fn gather_sphere(spheres: &Spheres, idx: &[usize]) -> [F64x8; 10] {
         // SAFETY: AVX-512 F and the indices (the caller's).
         unsafe {
             let p = |k: usize| spheres.records.get_unchecked(*idx.get_unchecked(k)).0.as_ptr();
@@ -549,7 +545,8 @@ impl Simd for F64x8 {
             let hi = transpose(r(4), r(5), r(6), r(7));
             let join = |c: usize| _mm512_insertf64x4::<1>(_mm512_castpd256_pd512(lo[c]), hi[c]);
             let f = F64x8;
-            [f(a[0]), f(a[1]), f(a[2]), f(a[3]), f(a[4]), f(a[5]), f(a[6]), f(a[7]), f(join(0)), f(join(1)), f(join(2))]
+            // a[7] is the record's pad.
+            [f(a[0]), f(a[1]), f(a[2]), f(a[3]), f(a[4]), f(a[5]), f(a[6]), f(join(0)), f(join(1)), f(join(2))]
         }
     }
     #[inline(always)]
@@ -579,13 +576,15 @@ mod tests {
     /// and `add_shares` adds to each body the scalar loop's rows, lane by lane in order, to the bit.
     #[inline(always)]
     unsafe fn check<V: Simd>() {
-        // Sphere i's quantity q is 100 i + q + 0.25 (the species 100 i + 7), in the arrays and the records.
-        let value = |i: usize, q: usize| if q == 7 { (100 * i + 7) as f64 } else { (100 * i + q) as f64 + 0.25 };
-        let records: Vec<Record> = (0..20).map(|i| Record(std::array::from_fn(|q| if q < 11 { value(i, q) } else { 0.0 }))).collect();
+        // Sphere i's quantity q (x, y, z, r, vx, vy, vz, wx, wy, wz) is 100 i + q + 0.25, in the arrays and
+        // the records (whose column 7 is a pad).
+        let value = |i: usize, q: usize| (100 * i + q) as f64 + 0.25;
+        let column = |q: usize| if q < 7 { q } else { q + 1 };
+        let records: Vec<Record> = (0..20).map(|i| Record(std::array::from_fn(|c| (0..10).find(|&q| column(q) == c).map_or(0.0, |q| value(i, q))))).collect();
         let vec3 = |q: usize| (0..20).map(|i| Vec3::new(value(i, q), value(i, q + 1), value(i, q + 2))).collect::<Vec<_>>();
-        let (position, velocity, spin) = (vec3(0), vec3(4), vec3(8));
+        let (position, velocity, spin) = (vec3(0), vec3(4), vec3(7));
         let radius: Vec<f64> = (0..20).map(|i| value(i, 3)).collect();
-        let species: Vec<u16> = (0..20).map(|i| (100 * i + 7) as u16).collect();
+        let species = vec![0u16; 20];
         let spheres = Spheres { position: &position, velocity: &velocity, spin: &spin, radius: &radius, species: &species, records: &records };
         let idx = [3, 17, 3, 0, 19, 5, 5, 11];
         // SAFETY: the width's instruction set (the caller's), every index < 20.
