@@ -9,7 +9,7 @@
 
 use super::simd::{Mask, Simd};
 use super::x86::{Eval, History, LaneLaw, Lanes};
-use super::LAW_PARAMS;
+use super::{Slots, LAW_PARAMS};
 use crate::law::jkr::{Jkr, JkrCurve, JkrHistory};
 use crate::law::jkr_modified::{JkrFrictionLimit, JkrModified, JkrStiffnessRadius};
 use std::f64::consts::PI;
@@ -129,6 +129,7 @@ unsafe fn evaluation<V: Simd>(p: &[V; LAW_PARAMS], in_contact: V::Mask, a: V, hi
 
 impl LaneLaw for JkrModified {
     const LANES: Lanes = Lanes::Vector;
+    const COMPACT: bool = true;
     const MINDLIN: bool = true;
 
     fn lane_params(&self) -> Option<[f64; LAW_PARAMS]> {
@@ -150,6 +151,7 @@ impl LaneLaw for JkrModified {
 
 impl LaneLaw for Jkr {
     const LANES: Lanes = Lanes::Vector;
+    const COMPACT: bool = true;
     const MINDLIN: bool = true;
 
     fn lane_params(&self) -> Option<[f64; LAW_PARAMS]> {
@@ -158,18 +160,16 @@ impl LaneLaw for Jkr {
 
     /// Lanes `established`.
     #[inline(always)]
-    unsafe fn load_history<V: Simd>(h: &[JkrHistory]) -> History<V> {
+    unsafe fn load_history<V: Simd>(h: &[JkrHistory], at: &Slots) -> History<V> {
         // SAFETY: the caller's (the trait's contract).
-        unsafe { History { established: V::mask_from_fn(|k| h[k].established), ..History::none() } }
+        unsafe { History { established: V::mask_from_fn(|k| h[at[k]].established), ..History::none() } }
     }
 
     #[inline(always)]
-    fn store_history<V: Simd>(h: &mut [JkrHistory], v: &History<V>, mask: u32) {
+    fn store_history<V: Simd>(h: &mut [JkrHistory], at: &Slots, v: &History<V>, mask: u32) {
         let est = v.established.bits();
-        for (k, h) in h.iter_mut().enumerate().take(V::N) {
-            if mask & (1 << k) != 0 {
-                *h = JkrHistory { established: est & (1 << k) != 0 };
-            }
+        for k in (0..V::N).filter(|k| mask & (1 << k) != 0) {
+            h[at[k]] = JkrHistory { established: est & (1 << k) != 0 };
         }
     }
 

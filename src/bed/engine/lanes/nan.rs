@@ -5,7 +5,7 @@
 
 use super::simd::{Mask, Simd};
 use super::x86::{Eval, History, LaneLaw, Lanes};
-use super::LAW_PARAMS;
+use super::{Slots, LAW_PARAMS};
 use crate::law::nan::{Nan, NanHistory, NanPoints};
 
 /// A history's branch points in the order of `History::points`.
@@ -21,35 +21,35 @@ impl LaneLaw for Nan {
     }
 
     #[inline(always)]
-    unsafe fn load_history<V: Simd>(h: &[NanHistory]) -> History<V> {
+    unsafe fn load_history<V: Simd>(h: &[NanHistory], at: &Slots) -> History<V> {
         // SAFETY: the caller's (the trait's contract).
         unsafe {
             // Field by field: an index into `to_lanes` per value went through the stack (half the speed).
             let points = [
-                V::from_fn(|k| h[k].points.k_e),
-                V::from_fn(|k| h[k].points.k_c),
-                V::from_fn(|k| h[k].points.alpha_p),
-                V::from_fn(|k| h[k].points.f_cp),
-                V::from_fn(|k| h[k].points.alpha_c0),
-                V::from_fn(|k| h[k].points.alpha_cp),
-                V::from_fn(|k| h[k].points.alpha_fp),
+                V::from_fn(|k| h[at[k]].points.k_e),
+                V::from_fn(|k| h[at[k]].points.k_c),
+                V::from_fn(|k| h[at[k]].points.alpha_p),
+                V::from_fn(|k| h[at[k]].points.f_cp),
+                V::from_fn(|k| h[at[k]].points.alpha_c0),
+                V::from_fn(|k| h[at[k]].points.alpha_cp),
+                V::from_fn(|k| h[at[k]].points.alpha_fp),
             ];
-            History { established: V::mask_from_fn(|k| h[k].established), value: V::from_fn(|k| h[k].alpha_max), points }
+            History { established: V::mask_from_fn(|k| h[at[k]].established), value: V::from_fn(|k| h[at[k]].alpha_max), points }
         }
     }
 
     #[inline(always)]
-    fn store_history<V: Simd>(h: &mut [NanHistory], v: &History<V>, mask: u32) {
+    fn store_history<V: Simd>(h: &mut [NanHistory], at: &Slots, v: &History<V>, mask: u32) {
         let (est, alpha_max) = (v.established.bits(), v.value.to_array());
         let mut p = [alpha_max; 7];
         for (p, x) in p.iter_mut().zip(&v.points) {
             *p = x.to_array();
         }
-        for (k, h) in h.iter_mut().enumerate().take(V::N) {
-            if mask & (1 << k) != 0 {
+        for k in (0..V::N).filter(|k| mask & (1 << k) != 0) {
+            {
                 let q = |i: usize| p[i].as_ref()[k];
                 let points = NanPoints { k_e: q(0), k_c: q(1), alpha_p: q(2), f_cp: q(3), alpha_c0: q(4), alpha_cp: q(5), alpha_fp: q(6) };
-                *h = NanHistory { established: est & (1 << k) != 0, alpha_max: alpha_max.as_ref()[k], points };
+                h[at[k]] = NanHistory { established: est & (1 << k) != 0, alpha_max: alpha_max.as_ref()[k], points };
             }
         }
     }
@@ -124,7 +124,7 @@ impl LaneLaw for Nan {
 mod tests {
     use super::super::simd::{F64x4, Mask, Simd};
     use super::super::x86::{History, LaneLaw};
-    use super::super::LAW_PARAMS;
+    use super::super::{Slots, LAW_PARAMS};
     use crate::bed::interaction::{ContactTemplate, Interaction};
     use crate::law::nan::Nan;
     use crate::law::{Branch, NormalLaw};
@@ -152,6 +152,7 @@ mod tests {
         // back out; 400 points per leg.
         let legs = |k: usize| [0.0, (3 + k) as f64 * alpha_y, 1.5 * alpha_fe, (6 + 2 * k) as f64 * alpha_y, 2.0 * alpha_fe];
         let p: [f64; LAW_PARAMS] = law.lane_params().unwrap();
+        const ORDER: Slots = [0, 1, 2, 3, 4, 5, 6, 7];
         let mut lanes = [law.initial_history(); 4];
         let mut scalar = lanes;
         let mut met = [false; 5]; // separated after contact, adhesive, elastic, plastic, re-established
@@ -164,10 +165,10 @@ mod tests {
                 // SAFETY: AVX2 is there (checked above).
                 let ev = unsafe {
                     let pv: [F64x4; LAW_PARAMS] = std::array::from_fn(|q| F64x4::splat(p[q]));
-                    let h: History<F64x4> = Nan::load_history(&lanes);
+                    let h: History<F64x4> = Nan::load_history(&lanes, &ORDER);
                     Nan::evaluate_lanes(&pv, F64x4::load(&alpha), &h, &|_| law, F64x4::splat(0.0))
                 };
-                Nan::store_history(&mut lanes, &ev.history, 0b1111);
+                Nan::store_history(&mut lanes, &ORDER, &ev.history, 0b1111);
                 let (force, stiffness, in_contact) = (ev.force.to_array(), ev.stiffness.to_array(), ev.in_contact.bits());
                 for k in 0..4 {
                     let s = law.evaluate(alpha[k], &scalar[k]);

@@ -4,7 +4,7 @@
 
 use super::simd::{Mask, Simd};
 use super::x86::{Eval, History, LaneLaw, Lanes};
-use super::LAW_PARAMS;
+use super::{Slots, LAW_PARAMS};
 use crate::law::pasha::{PashaHistory, PashaStiffnessLaw};
 use crate::law::pasha_simplified::PashaSimplified;
 
@@ -16,18 +16,16 @@ impl LaneLaw for PashaSimplified {
     }
 
     #[inline(always)]
-    unsafe fn load_history<V: Simd>(h: &[PashaHistory]) -> History<V> {
+    unsafe fn load_history<V: Simd>(h: &[PashaHistory], at: &Slots) -> History<V> {
         // SAFETY: the caller's (the trait's contract).
-        unsafe { History { established: V::mask_from_fn(|k| h[k].established), value: V::from_fn(|k| h[k].alpha_max), ..History::none() } }
+        unsafe { History { established: V::mask_from_fn(|k| h[at[k]].established), value: V::from_fn(|k| h[at[k]].alpha_max), ..History::none() } }
     }
 
     #[inline(always)]
-    fn store_history<V: Simd>(h: &mut [PashaHistory], v: &History<V>, mask: u32) {
+    fn store_history<V: Simd>(h: &mut [PashaHistory], at: &Slots, v: &History<V>, mask: u32) {
         let (est, alpha_max) = (v.established.bits(), v.value.to_array());
-        for (k, h) in h.iter_mut().enumerate().take(V::N) {
-            if mask & (1 << k) != 0 {
-                *h = PashaHistory { established: est & (1 << k) != 0, alpha_max: alpha_max.as_ref()[k] };
-            }
+        for k in (0..V::N).filter(|k| mask & (1 << k) != 0) {
+            h[at[k]] = PashaHistory { established: est & (1 << k) != 0, alpha_max: alpha_max.as_ref()[k] };
         }
     }
 

@@ -97,6 +97,11 @@ pub trait Simd: Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = Se
     /// As the constructors, and every `idx[k]` < the length of what is read (not checked here: the pair
     /// loop checks its indices once per block).
     unsafe fn gather_sphere(spheres: &Spheres, idx: &[usize]) -> [Self; 10];
+    /// The first four of `gather_sphere`: x, y, z, r (what the pair loop's first pass reads).
+    ///
+    /// # Safety
+    /// As `gather_sphere`.
+    unsafe fn gather_position(spheres: &Spheres, idx: &[usize]) -> [Self; 4];
     /// Adds each lane's share of a contact to its two bodies' records of eight f64 (`Load`, the part's
     /// from sphere `base` on): to `record[i[k] - base]` the row [force, rolling, torque_i, 0] of lane k,
     /// then to `record[j[k] - base]` the row [-force, rolling, torque_j, 0]; lane by lane in order
@@ -380,6 +385,15 @@ impl Simd for F64x4 {
         }
     }
     #[inline(always)]
+    unsafe fn gather_position(spheres: &Spheres, idx: &[usize]) -> [F64x4; 4] {
+        // SAFETY: AVX2 and the indices (the caller's).
+        unsafe {
+            let x = gather3_256(spheres.position, idx);
+            let r = F64x4::from_fn(|k| *spheres.radius.get_unchecked(*idx.get_unchecked(k)));
+            [F64x4(x[0]), F64x4(x[1]), F64x4(x[2]), r]
+        }
+    }
+    #[inline(always)]
     unsafe fn add_shares(record: &mut [[f64; 8]], base: usize, i: &[usize], j: &[usize], share: Share<F64x4>) {
         let Share { force, rolling, torque_i, torque_j } = share;
         // SAFETY: AVX (the caller's); each record is eight f64.
@@ -547,6 +561,18 @@ impl Simd for F64x8 {
             let f = F64x8;
             // a[7] is the record's pad.
             [f(a[0]), f(a[1]), f(a[2]), f(a[3]), f(a[4]), f(a[5]), f(a[6]), f(join(0)), f(join(1)), f(join(2))]
+        }
+    }
+    #[inline(always)]
+    unsafe fn gather_position(spheres: &Spheres, idx: &[usize]) -> [F64x8; 4] {
+        // SAFETY: AVX-512 F and the indices (the caller's).
+        unsafe {
+            // The record's first 256 bits: x, y, z, r.
+            let r = |k: usize| _mm256_loadu_pd(spheres.records.get_unchecked(*idx.get_unchecked(k)).0.as_ptr());
+            let lo = transpose(r(0), r(1), r(2), r(3));
+            let hi = transpose(r(4), r(5), r(6), r(7));
+            let join = |c: usize| F64x8(_mm512_insertf64x4::<1>(_mm512_castpd256_pd512(lo[c]), hi[c]));
+            [join(0), join(1), join(2), join(3)]
         }
     }
     #[inline(always)]
