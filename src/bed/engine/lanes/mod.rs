@@ -121,8 +121,8 @@ mod x86 {
         /// The pair loop gathers the slots it visits into full blocks before computing them (`pairs`),
         /// else it computes each block of consecutive slots as it reads it. Set where that was measured
         /// faster on the LAMMPS bench bed (issue 30's eighteenth round, docs/benchmarks.md): the linear
-        /// spring (half of its slots visited, +11 %) and JKR (a costly law, +12 %); Hertz (two thirds
-        /// visited), Nan and Pasha ran 3-9 % slower gathered.
+        /// spring (half of its slots visited; 1.11x at eight lanes, 1.16x at four) and JKR (a costly law;
+        /// 1.10x, 1.28x). Gathered, Hertz (two thirds visited) ran 2-3.5 % slower, Pasha 6-9 %, Nan 13-21 %.
         const COMPACT: bool = false;
 
         /// The law's parameters for the lanes, or None where this pair's law has a form the lanes do not
@@ -217,8 +217,8 @@ mod x86 {
     }
 
     /// The law of a `Lanes::PerLane` law evaluated once per visited lane (bit k of `visit` set), as
-    /// `kernel::contact` does: its history written where it changed, and everything the rest of the
-    /// contact needs packed into lanes.
+    /// `kernel::contact` does: lane k's history (`history[at[k]]`) written where it changed, and
+    /// everything the rest of the contact needs packed into lanes.
     #[inline(always)]
     unsafe fn per_lane<L: BedLaw, V: Simd>(
         its: &[&Interaction<L>],
@@ -517,9 +517,8 @@ mod x86 {
         }
     }
 
-
     /// Lane k's slot in a block of consecutive slots.
-    const ORDER: Slots = [0, 1, 2, 3, 4, 5, 6, 7];
+    pub(super) const ORDER: Slots = [0, 1, 2, 3, 4, 5, 6, 7];
 
     /// Slots a pass of the pair loop looks at before it computes their contacts (a multiple of eight).
     const CHUNK: usize = 256;
@@ -530,8 +529,9 @@ mod x86 {
     /// `pairs_one_pass`). The first reads the two spheres' positions and radii of every slot, forgets what
     /// is beyond the forgetting distance and notes the slots to visit (within reach, a spring, or a
     /// history that forbids skipping); the second computes the noted slots' contacts `V::N` at a time
-    /// (`contacts`), so no lane works on a pair it throws away: on the bench bed 49 % of the linear
-    /// spring's slots are visited and 95 % of the blocks of eight hold one (issue 30's eighteenth round).
+    /// (`contacts`), so only the last block of a chunk has lanes to spare: on the bench bed 49 % of the
+    /// linear spring's slots are visited, yet 95 % of the blocks of eight consecutive slots hold at least
+    /// one slot to visit (issue 30's eighteenth round).
     /// The slots keep their order, so each body's sum is the scalar loop's, added in its order.
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
@@ -565,9 +565,10 @@ mod x86 {
             let w = V::N;
             let zero = V::splat(0.0);
             let forget = V::splat(e.forget);
-            // The noted slots of a chunk, with their two spheres and species pair (room for a block past
-            // the last: the first pass writes every lane and counts only the noted ones).
-            let mut noted = Noted { slot: [0; CHUNK + 8], i: [0; CHUNK + 8], j: [0; CHUNK + 8], pair: [0; CHUNK + 8], count: 0 };
+            // The noted slots of a chunk, with their two spheres and species pair. The first pass writes
+            // every lane of a block at the count so far and counts only the noted ones, so it writes at
+            // most at CHUNK - 1.
+            let mut noted = Noted { slot: [0; CHUNK], i: [0; CHUNK], j: [0; CHUNK], pair: [0; CHUNK], count: 0 };
             let (mut ii, mut jj, mut pair) = ([0usize; 8], [0usize; 8], [0usize; 8]);
             let mut slot = first;
             while slot + w <= last {
@@ -631,15 +632,14 @@ mod x86 {
                 let mut c = 0;
                 while c < noted.count {
                     // The last block's lanes past the noted slots repeat its last and are not visited (they
-                    // write nothing and add +0.0).
+                    // write nothing and add +0.0; a law may still evaluate them, which costs time, not bits).
                     let valid = (noted.count - c).min(w);
-                    let at = |k: usize| c + k.min(valid - 1);
-                    let ii: Slots = std::array::from_fn(|k| noted.i[at(k)] as usize);
-                    let jj: Slots = std::array::from_fn(|k| noted.j[at(k)] as usize);
-                    let pair: Slots = std::array::from_fn(|k| noted.pair[at(k)] as usize);
-                    let mm: Slots = std::array::from_fn(|k| noted.slot[at(k)] as usize - slot0);
-                    let mem = &spring[..];
-                    let s0 = [V::from_fn(|k| mem[mm[k]].x), V::from_fn(|k| mem[mm[k]].y), V::from_fn(|k| mem[mm[k]].z)];
+                    let entry = |k: usize| c + k.min(valid - 1);
+                    let ii: Slots = std::array::from_fn(|k| noted.i[entry(k)] as usize);
+                    let jj: Slots = std::array::from_fn(|k| noted.j[entry(k)] as usize);
+                    let pair: Slots = std::array::from_fn(|k| noted.pair[entry(k)] as usize);
+                    let mm: Slots = std::array::from_fn(|k| noted.slot[entry(k)] as usize - slot0);
+                    let s0 = [V::from_fn(|k| spring[mm[k]].x), V::from_fn(|k| spring[mm[k]].y), V::from_fn(|k| spring[mm[k]].z)];
                     let h = if L::LANES == Lanes::Vector { L::load_history::<V>(normal, &mm) } else { History::none() };
                     let (si, sj) = (V::gather_sphere(sp, &ii), V::gather_sphere(sp, &jj));
                     let block = Block { ii, jj, pair, mm, si, sj, s0, h, visit: V::mask_from_fn(|k| k < valid) };
@@ -653,10 +653,10 @@ mod x86 {
 
     /// The slots of a chunk the second pass visits, in slot order.
     struct Noted {
-        slot: [u32; CHUNK + 8],
-        i: [u32; CHUNK + 8],
-        j: [u32; CHUNK + 8],
-        pair: [u32; CHUNK + 8],
+        slot: [u32; CHUNK],
+        i: [u32; CHUNK],
+        j: [u32; CHUNK],
+        pair: [u32; CHUNK],
         count: usize,
     }
 
@@ -675,8 +675,12 @@ mod x86 {
         visit: V::Mask,
     }
 
-    /// The contacts of a block's visited lanes (the scalar kernel's from the surface velocity on): their
-    /// memory written, their shares added to the sink in lane order.
+    /// The contacts of a block's visited lanes (`kernel::contact` from the distance on): their memory
+    /// written, their shares added to the sink in lane order.
+    ///
+    /// # Safety
+    /// The width's instruction set; every `ii[k]`, `jj[k]` below the spheres' count (and their records
+    /// packed on eight lanes) and every `pair[k]` below the table's length, for all eight entries.
     #[inline(always)]
     unsafe fn contacts<L: BedLaw, V: Simd>(
         e: &LaneInput<L>,

@@ -46,11 +46,9 @@ impl LaneLaw for Nan {
             *p = x.to_array();
         }
         for k in (0..V::N).filter(|k| mask & (1 << k) != 0) {
-            {
-                let q = |i: usize| p[i].as_ref()[k];
-                let points = NanPoints { k_e: q(0), k_c: q(1), alpha_p: q(2), f_cp: q(3), alpha_c0: q(4), alpha_cp: q(5), alpha_fp: q(6) };
-                h[at[k]] = NanHistory { established: est & (1 << k) != 0, alpha_max: alpha_max.as_ref()[k], points };
-            }
+            let q = |i: usize| p[i].as_ref()[k];
+            let points = NanPoints { k_e: q(0), k_c: q(1), alpha_p: q(2), f_cp: q(3), alpha_c0: q(4), alpha_cp: q(5), alpha_fp: q(6) };
+            h[at[k]] = NanHistory { established: est & (1 << k) != 0, alpha_max: alpha_max.as_ref()[k], points };
         }
     }
 
@@ -124,7 +122,8 @@ impl LaneLaw for Nan {
 mod tests {
     use super::super::simd::{F64x4, Mask, Simd};
     use super::super::x86::{History, LaneLaw};
-    use super::super::{Slots, LAW_PARAMS};
+    use super::super::x86::ORDER;
+    use super::super::LAW_PARAMS;
     use crate::bed::interaction::{ContactTemplate, Interaction};
     use crate::law::nan::Nan;
     use crate::law::{Branch, NormalLaw};
@@ -152,7 +151,6 @@ mod tests {
         // back out; 400 points per leg.
         let legs = |k: usize| [0.0, (3 + k) as f64 * alpha_y, 1.5 * alpha_fe, (6 + 2 * k) as f64 * alpha_y, 2.0 * alpha_fe];
         let p: [f64; LAW_PARAMS] = law.lane_params().unwrap();
-        const ORDER: Slots = [0, 1, 2, 3, 4, 5, 6, 7];
         let mut lanes = [law.initial_history(); 4];
         let mut scalar = lanes;
         let mut met = [false; 5]; // separated after contact, adhesive, elastic, plastic, re-established

@@ -598,8 +598,8 @@ impl Simd for F64x8 {
 mod tests {
     use super::*;
 
-    /// `gather_sphere` gives lane k sphere `idx[k]` (indices repeated and in any order),
-    /// and `add_shares` adds to each body the scalar loop's rows, lane by lane in order, to the bit.
+    /// `gather_sphere` gives lane k sphere `idx[k]` (indices repeated and in any order), `gather_position`
+    /// its first four quantities, and `add_shares` adds to each body the scalar loop's rows, lane by lane in order, to the bit.
     #[inline(always)]
     unsafe fn check<V: Simd>() {
         // Sphere i's quantity q (x, y, z, r, vx, vy, vz, wx, wy, wz) is 100 i + q + 0.25, in the arrays and
@@ -619,6 +619,14 @@ mod tests {
             let a = lane.to_array();
             for k in 0..V::N {
                 assert_eq!(a.as_ref()[k], value(idx[k], q), "lane {k}, quantity {q}");
+            }
+        }
+        // SAFETY: as above.
+        let first = unsafe { V::gather_position(&spheres, &idx[..V::N]) };
+        for (q, lane) in first.iter().enumerate() {
+            let a = lane.to_array();
+            for k in 0..V::N {
+                assert_eq!(a.as_ref()[k], value(idx[k], q), "gather_position: lane {k}, quantity {q}");
             }
         }
         // Shares with sums that depend on the order of addition; bodies met by several lanes, as owner and partner.
