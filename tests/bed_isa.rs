@@ -59,6 +59,8 @@ fn every_law_steps_to_the_same_bits_with_avx512_avx2_and_the_baseline() {
             let base = &runs[0].1;
             assert_eq!(field(base, "isa="), "baseline");
             assert_eq!(field(base, "pair_loop="), "scalar");
+            // The scalar loop walks every slot and keeps no near list (`engine::near`).
+            assert_eq!(field(base, "near_builds="), "0", "{law}, {threads} threads");
             for (name, out) in &runs[1..] {
                 assert_eq!(field(out, "isa="), *name);
                 assert_eq!(field(out, "state_digest="), field(base, "state_digest="), "{law}, {threads} threads, {name}");
@@ -70,6 +72,12 @@ fn every_law_steps_to_the_same_bits_with_avx512_avx2_and_the_baseline() {
                     _ => "per_lane",
                 };
                 assert_eq!(field(out, "pair_loop="), lanes, "{law}, {name}");
+                // The lane loop ran over near lists, built at the first step and kept for most of the 40
+                // (the quarter bed at rest moves far less than the shell in 40 steps).
+                let near: u64 = field(out, "near_builds=").parse().unwrap();
+                if lanes != "scalar" {
+                    assert!((1..=4).contains(&near), "{law}, {threads} threads, {name}: {near} near list builds in 40 steps");
+                }
             }
         }
     }

@@ -407,6 +407,12 @@ impl AnyEngine {
         with_engine!(self, e => e.list.builds)
     }
 
+    /// Builds of the near lists so far, and the near slots per sphere now (`engine::near`; 0 on the
+    /// scalar loop).
+    pub fn near_lists(&self) -> (u64, f64) {
+        with_engine!(self, e => (e.near.builds, e.near.parts.iter().map(|p| p.len()).sum::<usize>() as f64 / e.particles.len().max(1) as f64))
+    }
+
     /// A hash of every particle's and wall's state, bit for bit (two runs are the same run when it agrees).
     pub fn state_digest(&self) -> u64 {
         with_engine!(self, e => e.state_digest())

@@ -86,6 +86,8 @@ impl<L: BedLaw> Engine<L> {
 
     /// Puts saved contacts back into the current lists (they are within range: they were in contact).
     fn restore_contacts(&mut self, pairs: &[u8], walls: &[u8]) -> Result<(), BedError> {
+        // The near lists were built on the memory replaced here.
+        self.near.valid = false;
         let pairs: Vec<(u32, u32, L::History, Vec3, f64)> =
             crate::codec::from_bytes(pairs).map_err(|e| BedError::Setup(format!("bed file: contacts unreadable ({e})")))?;
         let walls: Vec<Vec<SavedWallContact<L::History>>> =

@@ -4,8 +4,8 @@
 //! `bed/mod.rs`), and so is the accumulation (`Sink::add_contact`), which adds the partner's share with
 //! the signs the other side of the contact gives. With AVX2 the particle pairs run four at a time on
 //! lanes, with AVX-512 eight (`lanes`; 1.4-1.8 times the scalar loop for the laws evaluated on lanes
-//! with AVX2, docs/benchmarks.md), a part's last slots (fewer than a block) and the wall contacts one at
-//! a time here.
+//! with AVX2, docs/benchmarks.md), over the part's near list (`near`, rebuilt here when a step cannot
+//! reuse it); the wall contacts one at a time here.
 
 use super::super::interaction::{BedLaw, Interaction};
 use super::super::kernel::{contact, surface_velocity};
@@ -16,6 +16,7 @@ use super::super::{cross, dot, sub, Vec3, ZERO};
 use super::isa::Isa;
 use super::lanes::record::{pack, Record};
 use super::lanes::LaneRow;
+use super::near::{self, Near};
 use super::partition::Sink;
 use super::Engine;
 use rayon::prelude::*;
@@ -38,6 +39,8 @@ struct Shared<'a, L: BedLaw> {
     lanes: Option<&'a [LaneRow]>,
     /// The spheres' records for eight lanes (`lanes::record`), current this step; else empty.
     records: &'a [Record],
+    /// The near shell [m] (`near`).
+    shell: f64,
 }
 
 /// One part of the force loop: rows [rows.0, rows.1) and what it may write.
@@ -51,6 +54,9 @@ struct Part<'a, H> {
     /// Per wall: particles and their memory.
     walls: Vec<WallMemory<'a, H>>,
     sink: Sink<'a>,
+    /// The part's near list (`near`), used by the lane loop; rebuilt first unless `reuse`.
+    near: &'a mut Near,
+    reuse: bool,
 }
 
 /// One wall's contacts: the particle of each, and their memory (law history, tangential spring, contact radius).
@@ -63,11 +69,13 @@ impl<L: BedLaw> Engine<L> {
     }
 
     pub(super) fn forces_inner(&mut self) {
-        self.forces_after_kick(false);
+        self.forces_after_kick(false, false);
     }
 
-    /// The force loop; `packed`: the step's drifting kick has just written the spheres' records (`kick`).
-    pub(super) fn forces_after_kick(&mut self, packed: bool) {
+    /// The force loop; `packed`: the step's drifting kick has just written the spheres' records (`kick`);
+    /// `reuse`: the near lists hold for this step (`near::NearLists::reusable`), else the lane loop
+    /// builds them first.
+    pub(super) fn forces_after_kick(&mut self, packed: bool, reuse: bool) {
         let n = self.particles.len();
         // The pair loop tests each partner once against n, and the compiler drops the other bounds tests
         // (see `run_part_body`); the list must be this bed's.
@@ -95,7 +103,11 @@ impl<L: BedLaw> Engine<L> {
             isa: self.isa,
             lanes: lanes.then_some(&self.lane_table[..]),
             records: if records { &self.records } else { &[] },
+            shell: self.near.shell,
         };
+        let reuse = reuse && lanes && self.near.parts.len() == self.threads;
+        self.near.parts.resize_with(self.threads, Near::default);
+        let mut near_parts = self.near.parts.iter_mut();
         // Cut the contact memory into the parts' pieces; each part's sink is its buffer (one thread: the
         // totals).
         let mut parts: Vec<Part<L::History>> = Vec::with_capacity(self.threads);
@@ -141,7 +153,8 @@ impl<L: BedLaw> Engine<L> {
                 *rs = r_rest;
             }
             assert!(!record || sink.dipole.len() == sink.load.len());
-            parts.push(Part { rows: (a, b), slot0: consumed, normal: mine_n, spring: mine_s, radius: mine_r, walls, sink });
+            let near = near_parts.next().expect("one near list per part");
+            parts.push(Part { rows: (a, b), slot0: consumed, normal: mine_n, spring: mine_s, radius: mine_r, walls, sink, near, reuse });
             consumed += take;
         }
         if self.threads > 1 {
@@ -152,6 +165,14 @@ impl<L: BedLaw> Engine<L> {
         }
         for (w, wall) in self.walls.iter_mut().enumerate() {
             wall.force = self.total.wall_force[w];
+        }
+        // The lane loop built the near lists where it did not reuse them; the scalar loop keeps none.
+        if lanes && !reuse {
+            self.near.reference.clone_from(&self.particles.position);
+            self.near.valid = true;
+            self.near.builds += 1;
+        } else if !lanes {
+            self.near.valid = false;
         }
     }
 }
@@ -202,7 +223,7 @@ unsafe fn run_part_avx512<L: BedLaw>(s: &Shared<L>, part: Part<L::History>) {
 /// The force loop of one part (compiled once per instruction set, `isa`).
 #[inline(always)]
 fn run_part_body<L: BedLaw>(s: &Shared<L>, part: Part<L::History>) {
-    let Part { rows, slot0, normal, spring, radius, walls, mut sink } = part;
+    let Part { rows, slot0, normal, spring, radius, walls, mut sink, near, reuse } = part;
     sink.clear();
     let p = s.p;
     let dipoles = !sink.dipole.is_empty();
@@ -218,34 +239,28 @@ fn run_part_body<L: BedLaw>(s: &Shared<L>, part: Part<L::History>) {
                 species: &p.species,
                 records: s.records,
             },
-            species_count: s.species,
-            owner: &s.list.owner,
-            partner: &s.list.partner,
             table,
             pairs: s.pairs,
             dt: s.dt,
             forget: s.forget,
         };
+        if !reuse {
+            let build = near::Input { p, list: s.list, pairs: s.pairs, species: s.species, forget: s.forget, shell: s.shell };
+            near::build(&build, first, last, slot0, normal, spring, radius, near);
+        }
         // SAFETY: `lanes` is Some only on an engine whose isa is AVX2 or AVX-512, which it takes only
         // where the CPU reports it (`Engine::set_isa`).
-        let done = unsafe {
+        unsafe {
             if s.isa == Isa::Avx512 {
-                super::lanes::pairs_avx512::<L>(&input, first, last, slot0, normal, spring, radius, &mut sink)
+                super::lanes::near_avx512::<L>(&input, near, normal, spring, radius, &mut sink)
             } else {
-                super::lanes::pairs_avx2::<L>(&input, first, last, slot0, normal, spring, radius, &mut sink)
+                super::lanes::near_avx2::<L>(&input, near, normal, spring, radius, &mut sink)
             }
-        };
-        // The part's last slots (fewer than a block), one at a time.
-        for slot in done..last {
-            let i = s.list.owner[slot] as usize;
-            let m = slot - slot0;
-            let row = Row::of(p, s, i);
-            pair(s, &row, s.list.partner[slot] as usize, &mut normal[m], &mut spring[m], &mut radius[m], &mut sink, dipoles);
         }
         walls_of_part(s, walls, &mut sink, dipoles);
         return;
     }
-    let _ = (first, last);
+    let _ = (first, last, near, reuse);
     for i in rows.0..rows.1 {
         let row = Row::of(p, s, i);
         let (first, last) = (s.list.start[i] as usize, s.list.start[i + 1] as usize);

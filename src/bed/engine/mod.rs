@@ -10,6 +10,8 @@
 //! - `force_loop`: the force loop of one part over its pairs and wall contacts;
 //! - `isa`: the instruction set the force loop and the kick run with (AVX-512 or AVX2 where the CPU
 //!   has it);
+//! - `near`: the slots the lane loop computes, kept across steps while no sphere has moved far enough
+//!   for a slot left out to matter;
 //! - `lanes`: the pair loop on lanes, four contacts at once with AVX2 and eight with AVX-512, for the
 //!   laws that have it; the kick on AVX2 lanes, four spheres at once (`lanes/kick.rs`); the spheres'
 //!   records that eight lanes read, written by the drifting kick (`lanes/record.rs`).
@@ -19,6 +21,7 @@ mod force_loop;
 mod isa;
 mod lanes;
 mod memory;
+pub(crate) mod near;
 mod partition;
 
 pub use contact_memory::ContactMemory;
@@ -93,6 +96,8 @@ pub struct Engine<L: BedLaw> {
     /// The spheres' records for the pair loop on eight lanes (`lanes::record`), written by each step's
     /// drifting kick (else packed by the force loop); unused on four lanes and on the scalar loop.
     records: Vec<lanes::record::Record>,
+    /// The slots the lane loop computes, kept across steps (`near`).
+    pub(crate) near: near::NearLists,
 }
 
 impl<L: BedLaw> std::fmt::Debug for Engine<L> {
@@ -162,6 +167,7 @@ impl<L: BedLaw> Engine<L> {
             isa: Isa::detect(),
             lane_table: vec![],
             records: vec![],
+            near: near::NearLists { shell: near_shell(skin, forget), ..Default::default() },
         };
         e.rebuild();
         e.compute_forces();
@@ -270,6 +276,7 @@ impl<L: BedLaw> Engine<L> {
         self.pairs = pairs;
         self.wall_pairs = wall_pairs;
         self.reach = reach;
+        self.near.valid = false;
         Ok(())
     }
 
@@ -285,6 +292,7 @@ impl<L: BedLaw> Engine<L> {
         beyond_reach("the bed's", self.reach, skin, self.forget)?;
         if skin != self.list.skin {
             self.list.skin = skin;
+            self.near.shell = near_shell(skin, self.forget);
             self.rebuild();
         }
         Ok(())
@@ -300,6 +308,8 @@ impl<L: BedLaw> Engine<L> {
         }
         beyond_reach("the bed's", self.reach, self.list.skin, forget)?;
         self.forget = forget;
+        self.near.shell = near_shell(self.list.skin, forget);
+        self.near.valid = false;
         Ok(())
     }
 
@@ -364,6 +374,8 @@ impl<L: BedLaw> Engine<L> {
         self.compute_forces();
         self.dt = dt;
         self.memory = memory;
+        // The near lists were built on the memory the pass left.
+        self.near.valid = false;
         for (w, m) in self.wall_contacts.iter_mut().zip(walls) {
             w.memory = m;
         }
@@ -491,14 +503,15 @@ impl<L: BedLaw> Engine<L> {
         // Rebuild when a particle or a wall has moved half of (skin - reach): no pair can then have
         // closed the whole margin unseen.
         let limit = 0.5 * (self.list.skin - self.reach);
-        let moved = self.kick(h, true, closed_before);
+        let (moved, moved_near) = self.kick(h, true, closed_before);
         let packed = self.records_used();
         self.move_walls();
         let wall_moved = self.walls.iter().zip(&self.wall_reference).any(|(w, r)| (w.position - r).norm_squared() > limit * limit);
         if wall_moved || moved > limit * limit || self.list.rows() != self.particles.len() {
             self.rebuild();
         }
-        self.forces_after_kick(packed);
+        let reuse = self.near.reusable(moved_near);
+        self.forces_after_kick(packed, reuse);
         if !leave_open {
             self.kick(h, false, false);
         }
@@ -508,15 +521,16 @@ impl<L: BedLaw> Engine<L> {
 
     /// Half a kick: v += (F/m + g) h, w += T/I h, and rolling friction against the spin; with `drift`
     /// also x += v dt; with `twice`, two half kicks before the drift (the last step's closing one and
-    /// this step's opening one). Returns the largest squared displacement since the last list build
-    /// (with drift). A drifting kick on an engine that may run its pairs on eight lanes also writes the
+    /// this step's opening one). Returns the largest squared displacements since the last list build and
+    /// since the last near list build (with drift; infinite for the near list when it is not valid). A drifting kick on an engine that may run its pairs on eight lanes also writes the
     /// spheres' records for them (`lanes::record`), saving the force loop a pass over every sphere.
-    fn kick(&mut self, h: f64, drift: bool, twice: bool) -> f64 {
+    fn kick(&mut self, h: f64, drift: bool, twice: bool) -> (f64, f64) {
         let threads = self.threads;
         let write_records = drift && self.records_used();
         let load = &self.total.load[..];
         let p = &mut self.particles;
         let reference = self.list.reference();
+        let near_reference: &[Vec3] = if self.near.valid { &self.near.reference } else { &[] };
         let dt = if drift { self.dt } else { 0.0 };
         let g = self.gravity;
         let any_held = self.any_held;
@@ -530,8 +544,9 @@ impl<L: BedLaw> Engine<L> {
         let isa = self.isa;
         let halves = if twice { 2 } else { 1 };
         let kick = Kick { g, h, halves, dt };
+        let refs = References { list: reference, near: near_reference };
         if threads == 1 {
-            return kick_range(isa, 0, &mut p.velocity, &mut p.angular_velocity, &mut p.position, body, load, reference, kick, records);
+            return kick_range(isa, 0, &mut p.velocity, &mut p.angular_velocity, &mut p.position, body, load, refs, kick, records);
         }
         let chunk = p.len().div_ceil(threads).max(1);
         // The records cut as the spheres are (without records, an empty slice per chunk).
@@ -543,8 +558,8 @@ impl<L: BedLaw> Engine<L> {
             .zip(p.position.par_chunks_mut(chunk))
             .zip(record_chunks.into_par_iter())
             .enumerate()
-            .map(|(k, (((v, w), x), out))| kick_range(isa, k * chunk, v, w, x, body, load, reference, kick, out))
-            .reduce(|| 0.0, f64::max)
+            .map(|(k, (((v, w), x), out))| kick_range(isa, k * chunk, v, w, x, body, load, refs, kick, out))
+            .reduce(|| (0.0, 0.0), |a, b| (a.0.max(b.0), a.1.max(b.1)))
     }
 
     fn move_walls(&mut self) {
@@ -630,33 +645,48 @@ struct Body<'a> {
     held: &'a [bool],
 }
 
+/// The positions the kick measures displacements from: the last list build's, and the last near list
+/// build's (empty when the near list is not valid: its displacement is then infinite).
+#[derive(Clone, Copy)]
+struct References<'a> {
+    list: &'a [Vec3],
+    near: &'a [Vec3],
+}
+
+impl<'a> References<'a> {
+    /// The references of spheres [base, end), None where a list was built for fewer spheres.
+    fn range(&self, base: usize, end: usize) -> (Option<&'a [Vec3]>, Option<&'a [Vec3]>) {
+        (self.list.get(base..end), self.near.get(base..end))
+    }
+}
+
 /// `kick_body` with the engine's instruction set; with `records` (one per sphere of the range, else
 /// empty) it also writes the spheres' records after the drift (`lanes::record`).
 #[allow(clippy::too_many_arguments)]
-fn kick_range(isa: Isa, base: usize, v: &mut [Vec3], w: &mut [Vec3], x: &mut [Vec3], body: Body, load: &[Load], reference: &[Vec3], kick: Kick, records: &mut [lanes::record::Record]) -> f64 {
+fn kick_range(isa: Isa, base: usize, v: &mut [Vec3], w: &mut [Vec3], x: &mut [Vec3], body: Body, load: &[Load], refs: References, kick: Kick, records: &mut [lanes::record::Record]) -> (f64, f64) {
     let n = v.len();
     assert!(records.is_empty() || records.len() == n, "one record per sphere of the range");
     #[cfg(target_arch = "x86_64")]
     if isa != Isa::Baseline {
         let end = base + n;
-        if body.held.is_empty() && reference.len() >= end {
+        if body.held.is_empty() && refs.list.len() >= end {
             // Four spheres at a time on lanes, the last 0-3 one at a time (the same bits: `lanes::kick`).
             // SAFETY: an engine takes Isa::Avx2 or Isa::Avx512 (which includes AVX2) only where the CPU reports it (`Engine::set_isa`).
-            let moved = unsafe { lanes::kick4(base, v, w, x, body, load, reference, kick, records) };
+            let moved = unsafe { lanes::kick4(base, v, w, x, body, load, refs, kick, records) };
             let done = n / 4 * 4;
             // SAFETY: as above.
-            let rest = unsafe { kick_avx2(base + done, &mut v[done..], &mut w[done..], &mut x[done..], body, load, reference, kick) };
+            let rest = unsafe { kick_avx2(base + done, &mut v[done..], &mut w[done..], &mut x[done..], body, load, refs, kick) };
             if !records.is_empty() {
                 pack_range(base + done, &v[done..], &w[done..], &x[done..], body, &mut records[done..]);
             }
-            return moved.max(rest);
+            return (moved.0.max(rest.0), moved.1.max(rest.1));
         }
         // SAFETY: an engine takes Isa::Avx2 or Isa::Avx512 (which includes AVX2) only where the CPU reports it (`Engine::set_isa`).
-        let moved = unsafe { kick_avx2(base, v, w, x, body, load, reference, kick) };
+        let moved = unsafe { kick_avx2(base, v, w, x, body, load, refs, kick) };
         pack_range(base, v, w, x, body, records);
         return moved;
     }
-    let moved = kick_body(base, v, w, x, body, load, reference, kick);
+    let moved = kick_body(base, v, w, x, body, load, refs, kick);
     pack_range(base, v, w, x, body, records);
     moved
 }
@@ -670,15 +700,15 @@ fn pack_range(base: usize, v: &[Vec3], w: &[Vec3], x: &[Vec3], body: Body, recor
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
 #[allow(clippy::too_many_arguments)]
-unsafe fn kick_avx2(base: usize, v: &mut [Vec3], w: &mut [Vec3], x: &mut [Vec3], body: Body, load: &[Load], reference: &[Vec3], kick: Kick) -> f64 {
-    kick_body(base, v, w, x, body, load, reference, kick)
+unsafe fn kick_avx2(base: usize, v: &mut [Vec3], w: &mut [Vec3], x: &mut [Vec3], body: Body, load: &[Load], refs: References, kick: Kick) -> (f64, f64) {
+    kick_body(base, v, w, x, body, load, refs, kick)
 }
 
 /// Half a kick of the particles from `base` on (their slices), and the drift x += v dt (dt = 0: none).
-/// Returns the largest squared displacement from `reference` (the positions of the last list build).
+/// Returns the largest squared displacements from the references (`References`).
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
-fn kick_body(base: usize, v: &mut [Vec3], w: &mut [Vec3], x: &mut [Vec3], body: Body, load: &[Load], reference: &[Vec3], kick: Kick) -> f64 {
+fn kick_body(base: usize, v: &mut [Vec3], w: &mut [Vec3], x: &mut [Vec3], body: Body, load: &[Load], refs: References, kick: Kick) -> (f64, f64) {
     let Kick { g, h, halves, dt } = kick;
     let n = v.len();
     let end = base + n;
@@ -686,8 +716,8 @@ fn kick_body(base: usize, v: &mut [Vec3], w: &mut [Vec3], x: &mut [Vec3], body: 
     let (im, ii, r) = (&body.inv_mass[base..end], &body.inv_inertia[base..end], &body.radius[base..end]);
     let held = if body.held.is_empty() { None } else { Some(&body.held[base..end]) };
     // A list built for fewer spheres than there are: rebuild (infinitely far).
-    let reference = reference.get(base..end);
-    let mut moved: f64 = 0.0;
+    let (reference, near) = refs.range(base, end);
+    let (mut moved, mut moved_near): (f64, f64) = (0.0, 0.0);
     for q in 0..n {
         if held.is_some_and(|held| held[q]) {
             continue;
@@ -714,13 +744,21 @@ fn kick_body(base: usize, v: &mut [Vec3], w: &mut [Vec3], x: &mut [Vec3], body: 
             x[q].x += v[q].x * dt;
             x[q].y += v[q].y * dt;
             x[q].z += v[q].z * dt;
-            moved = match reference {
-                Some(x0) => moved.max(super::dot(super::sub(x[q], x0[q]), super::sub(x[q], x0[q]))),
+            let from = |x0: Option<&[Vec3]>| match x0 {
+                Some(x0) => super::dot(super::sub(x[q], x0[q]), super::sub(x[q], x0[q])),
                 None => f64::INFINITY,
             };
+            moved = moved.max(from(reference));
+            moved_near = moved_near.max(from(near));
         }
     }
-    moved
+    (moved, moved_near)
+}
+
+/// The near shell for a skin and a forgetting distance [m] (`near`): a fifth of the smaller. Measured on
+/// the LAMMPS bench bed and the shipped quarter (issue 30's nineteenth round, docs/benchmarks.md).
+fn near_shell(skin: f64, forget: f64) -> f64 {
+    0.2 * skin.min(forget)
 }
 
 /// Both the skin and the forgetting distance must exceed the adhesive necks' reach: the list must hold

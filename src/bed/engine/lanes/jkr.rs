@@ -129,7 +129,6 @@ unsafe fn evaluation<V: Simd>(p: &[V; LAW_PARAMS], in_contact: V::Mask, a: V, hi
 
 impl LaneLaw for JkrModified {
     const LANES: Lanes = Lanes::Vector;
-    const COMPACT: bool = true;
     const MINDLIN: bool = true;
 
     fn lane_params(&self) -> Option<[f64; LAW_PARAMS]> {
@@ -151,7 +150,6 @@ impl LaneLaw for JkrModified {
 
 impl LaneLaw for Jkr {
     const LANES: Lanes = Lanes::Vector;
-    const COMPACT: bool = true;
     const MINDLIN: bool = true;
 
     fn lane_params(&self) -> Option<[f64; LAW_PARAMS]> {

@@ -11,7 +11,7 @@
 use super::record::Record;
 use super::simd::transpose;
 use crate::bed::engine::partition::Load;
-use crate::bed::engine::{Body, Kick};
+use crate::bed::engine::{Body, Kick, References};
 use crate::bed::Vec3;
 use std::arch::x86_64::*;
 
@@ -58,8 +58,9 @@ unsafe fn store3(v: &mut [Vec3], q: usize, c: [__m256d; 3]) {
 }
 
 /// `kick_body` (the same arguments) for the first 4 m spheres of the slices `v`, `w`, `x` (spheres
-/// `base` on), none held and every one with a reference position; returns the largest squared
-/// displacement from the reference (with a drift, `dt` > 0), else 0. The caller kicks the last 0-3.
+/// `base` on), none held and every one with a list reference position; returns the largest squared
+/// displacements from the two references (with a drift, `dt` > 0; infinite from a near reference that
+/// lacks the spheres), else 0. The caller kicks the last 0-3.
 /// With a drift and `records` (one per sphere of the slices, else empty) it also writes the spheres'
 /// records for the pair loop (`record::Record`) from the lanes it holds.
 ///
@@ -67,11 +68,12 @@ unsafe fn store3(v: &mut [Vec3], q: usize, c: [__m256d; 3]) {
 /// AVX2 must be available.
 #[target_feature(enable = "avx2")]
 #[allow(clippy::too_many_arguments)] // as `kick_body`
-pub unsafe fn kick4(base: usize, v: &mut [Vec3], w: &mut [Vec3], x: &mut [Vec3], body: Body, load: &[Load], reference: &[Vec3], kick: Kick, records: &mut [Record]) -> f64 {
+pub unsafe fn kick4(base: usize, v: &mut [Vec3], w: &mut [Vec3], x: &mut [Vec3], body: Body, load: &[Load], refs: References, kick: Kick, records: &mut [Record]) -> (f64, f64) {
     let Kick { g, h, halves, dt } = kick;
     let end = base + v.len() / 4 * 4;
     let (inv_mass, inv_inertia, radius) = (&body.inv_mass[base..end], &body.inv_inertia[base..end], &body.radius[base..end]);
-    let (load, reference) = (&load[base..end], &reference[base..end]);
+    let (load, reference) = (&load[base..end], &refs.list[base..end]);
+    let near = refs.near.get(base..end);
     // SAFETY: AVX2 is available (the contract); every slice access below is checked.
     unsafe {
         let n = v.len() / 4 * 4;
@@ -80,7 +82,7 @@ pub unsafe fn kick4(base: usize, v: &mut [Vec3], w: &mut [Vec3], x: &mut [Vec3],
         assert!(!write || records.len() >= n);
         let (zero, one) = (_mm256_setzero_pd(), _mm256_set1_pd(1.0));
         let (gx, gy, gz, hv, dtv) = (_mm256_set1_pd(g.x), _mm256_set1_pd(g.y), _mm256_set1_pd(g.z), _mm256_set1_pd(h), _mm256_set1_pd(dt));
-        let mut moved = zero;
+        let (mut moved, mut moved_near) = (zero, zero);
         let mut q = 0;
         while q < n {
             let im = _mm256_loadu_pd(inv_mass[q..q + 4].as_ptr());
@@ -126,6 +128,12 @@ pub unsafe fn kick4(base: usize, v: &mut [Vec3], w: &mut [Vec3], x: &mut [Vec3],
                 let d2 = _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy)), _mm256_mul_pd(dz, dz));
                 // max(d2, moved) keeps `moved` where d2 is NaN, as the scalar f64::max does.
                 moved = _mm256_max_pd(d2, moved);
+                if let Some(near) = near {
+                    let [rx, ry, rz] = load3(near, q);
+                    let (dx, dy, dz) = (_mm256_sub_pd(xx, rx), _mm256_sub_pd(xy, ry), _mm256_sub_pd(xz, rz));
+                    let d2 = _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy)), _mm256_mul_pd(dz, dz));
+                    moved_near = _mm256_max_pd(d2, moved_near);
+                }
                 if write {
                     let rows = [transpose(xx, xy, xz, r), transpose(vx, vy, vz, zero), transpose(wx, wy, wz, zero)];
                     for (k, rec) in records[q..q + 4].iter_mut().enumerate() {
@@ -137,8 +145,12 @@ pub unsafe fn kick4(base: usize, v: &mut [Vec3], w: &mut [Vec3], x: &mut [Vec3],
             }
             q += 4;
         }
-        let mut m = [0.0f64; 4];
-        _mm256_storeu_pd(m.as_mut_ptr(), moved);
-        m.into_iter().fold(0.0, f64::max)
+        let largest = |v: __m256d| {
+            let mut m = [0.0f64; 4];
+            _mm256_storeu_pd(m.as_mut_ptr(), v);
+            m.into_iter().fold(0.0, f64::max)
+        };
+        let moved_near = if near.is_some() || dt == 0.0 { largest(moved_near) } else { f64::INFINITY };
+        (largest(moved), moved_near)
     }
 }

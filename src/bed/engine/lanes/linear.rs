@@ -7,7 +7,6 @@ use crate::law::linear::Linear;
 
 impl LaneLaw for Linear {
     const LANES: Lanes = Lanes::Vector;
-    const COMPACT: bool = true;
 
     fn lane_params(&self) -> Option<[f64; LAW_PARAMS]> {
         Some([self.stiffness, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0])

@@ -97,11 +97,6 @@ pub trait Simd: Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = Se
     /// As the constructors, and every `idx[k]` < the length of what is read (not checked here: the pair
     /// loop checks its indices once per block).
     unsafe fn gather_sphere(spheres: &Spheres, idx: &[usize]) -> [Self; 10];
-    /// The first four of `gather_sphere`: x, y, z, r (what the pair loop's first pass reads).
-    ///
-    /// # Safety
-    /// As `gather_sphere`.
-    unsafe fn gather_position(spheres: &Spheres, idx: &[usize]) -> [Self; 4];
     /// Adds each lane's share of a contact to its two bodies' records of eight f64 (`Load`, the part's
     /// from sphere `base` on): to `record[i[k] - base]` the row [force, rolling, torque_i, 0] of lane k,
     /// then to `record[j[k] - base]` the row [-force, rolling, torque_j, 0]; lane by lane in order
@@ -385,15 +380,6 @@ impl Simd for F64x4 {
         }
     }
     #[inline(always)]
-    unsafe fn gather_position(spheres: &Spheres, idx: &[usize]) -> [F64x4; 4] {
-        // SAFETY: AVX2 and the indices (the caller's).
-        unsafe {
-            let x = gather3_256(spheres.position, idx);
-            let r = F64x4::from_fn(|k| *spheres.radius.get_unchecked(*idx.get_unchecked(k)));
-            [F64x4(x[0]), F64x4(x[1]), F64x4(x[2]), r]
-        }
-    }
-    #[inline(always)]
     unsafe fn add_shares(record: &mut [[f64; 8]], base: usize, i: &[usize], j: &[usize], share: Share<F64x4>) {
         let Share { force, rolling, torque_i, torque_j } = share;
         // SAFETY: AVX (the caller's); each record is eight f64.
@@ -564,18 +550,6 @@ impl Simd for F64x8 {
         }
     }
     #[inline(always)]
-    unsafe fn gather_position(spheres: &Spheres, idx: &[usize]) -> [F64x8; 4] {
-        // SAFETY: AVX-512 F and the indices (the caller's).
-        unsafe {
-            // The record's first 256 bits: x, y, z, r.
-            let r = |k: usize| _mm256_loadu_pd(spheres.records.get_unchecked(*idx.get_unchecked(k)).0.as_ptr());
-            let lo = transpose(r(0), r(1), r(2), r(3));
-            let hi = transpose(r(4), r(5), r(6), r(7));
-            let join = |c: usize| F64x8(_mm512_insertf64x4::<1>(_mm512_castpd256_pd512(lo[c]), hi[c]));
-            [join(0), join(1), join(2), join(3)]
-        }
-    }
-    #[inline(always)]
     unsafe fn add_shares(record: &mut [[f64; 8]], base: usize, i: &[usize], j: &[usize], share: Share<F64x8>) {
         let Share { force, rolling, torque_i, torque_j } = share;
         // SAFETY: AVX-512 F (the caller's); each record is eight f64.
@@ -598,8 +572,7 @@ impl Simd for F64x8 {
 mod tests {
     use super::*;
 
-    /// `gather_sphere` gives lane k sphere `idx[k]` (indices repeated and in any order), `gather_position`
-    /// its first four quantities, and `add_shares` adds to each body the scalar loop's rows, lane by lane in order, to the bit.
+    /// `gather_sphere` gives lane k sphere `idx[k]` (indices repeated and in any order), and `add_shares` adds to each body the scalar loop's rows, lane by lane in order, to the bit.
     #[inline(always)]
     unsafe fn check<V: Simd>() {
         // Sphere i's quantity q (x, y, z, r, vx, vy, vz, wx, wy, wz) is 100 i + q + 0.25, in the arrays and
@@ -619,14 +592,6 @@ mod tests {
             let a = lane.to_array();
             for k in 0..V::N {
                 assert_eq!(a.as_ref()[k], value(idx[k], q), "lane {k}, quantity {q}");
-            }
-        }
-        // SAFETY: as above.
-        let first = unsafe { V::gather_position(&spheres, &idx[..V::N]) };
-        for (q, lane) in first.iter().enumerate() {
-            let a = lane.to_array();
-            for k in 0..V::N {
-                assert_eq!(a.as_ref()[k], value(idx[k], q), "gather_position: lane {k}, quantity {q}");
             }
         }
         // Shares with sums that depend on the order of addition; bodies met by several lanes, as owner and partner.
