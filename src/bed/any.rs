@@ -407,10 +407,19 @@ impl AnyEngine {
         with_engine!(self, e => e.list.builds)
     }
 
-    /// Builds of the near lists so far, and the near slots per sphere now (`engine::near`; 0 on the
-    /// scalar loop).
-    pub fn near_lists(&self) -> (u64, f64) {
-        with_engine!(self, e => (e.near.builds, e.near.parts.iter().map(|p| p.len()).sum::<usize>() as f64 / e.particles.len().max(1) as f64))
+    /// Builds of the near lists so far, the near slots per sphere at the last build, and how the lane
+    /// loop runs now: `near` (over the near lists), `walk` (every slot: the lists keep most of them) or
+    /// `none` (no lists: the scalar loop) (`engine::near`).
+    pub fn near_lists(&self) -> (u64, f64, &'static str) {
+        with_engine!(self, e => {
+            let kept = e.near.parts.iter().map(|p| p.len()).sum::<usize>() as f64 / e.particles.len().max(1) as f64;
+            let mode = match (e.near.valid, e.near.walk) {
+                (false, _) => "none",
+                (true, true) => "walk",
+                (true, false) => "near",
+            };
+            (e.near.builds, kept, mode)
+        })
     }
 
     /// A hash of every particle's and wall's state, bit for bit (two runs are the same run when it agrees).

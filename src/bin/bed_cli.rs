@@ -531,12 +531,12 @@ fn bench_cmd(a: BenchArgs) -> Result<(), String> {
     let seconds = start.elapsed().as_secs_f64();
     let ke = engine.particles().kinetic_energy();
     let builds = engine.list_builds();
-    let (near_builds, near_per_sphere) = engine.near_lists();
+    let (near_builds, near_per_sphere, near_mode) = engine.near_lists();
     let (contacts, _) = engine.contact_statistics();
     let digest = engine.state_digest();
     let (isa, pair_loop) = engine.isa_and_pair_loop();
     println!(
-        "model={model} particles={n} steps={steps} threads={threads} dt={:.4e} seconds={seconds:.4} particle_steps_per_s={:.4e} bytes_per_particle={:.0} kinetic_energy={ke:.3e} list_builds={builds} near_builds={near_builds} near_per_particle={near_per_sphere:.3} contacts_per_particle={:.3} isa={isa} pair_loop={pair_loop} state_digest={digest:016x}",
+        "model={model} particles={n} steps={steps} threads={threads} dt={:.4e} seconds={seconds:.4} particle_steps_per_s={:.4e} bytes_per_particle={:.0} kinetic_energy={ke:.3e} list_builds={builds} near_builds={near_builds} near_per_particle={near_per_sphere:.3} near_mode={near_mode} contacts_per_particle={:.3} isa={isa} pair_loop={pair_loop} state_digest={digest:016x}",
         engine.dt(),
         n as f64 * steps as f64 / seconds,
         engine.memory_bytes() as f64 / n as f64,

@@ -41,6 +41,8 @@ struct Shared<'a, L: BedLaw> {
     records: &'a [Record],
     /// The near shell [m] (`near`).
     shell: f64,
+    /// The lane loop walks every slot this step, not the near lists (`near::NearLists::walk`).
+    walk: bool,
 }
 
 /// One part of the force loop: rows [rows.0, rows.1) and what it may write.
@@ -104,6 +106,7 @@ impl<L: BedLaw> Engine<L> {
             lanes: lanes.then_some(&self.lane_table[..]),
             records: if records { &self.records } else { &[] },
             shell: self.near.shell,
+            walk: reuse && self.near.walk,
         };
         let reuse = reuse && lanes && self.near.parts.len() == self.threads;
         self.near.parts.resize_with(self.threads, Near::default);
@@ -168,9 +171,7 @@ impl<L: BedLaw> Engine<L> {
         }
         // The lane loop built the near lists where it did not reuse them; the scalar loop keeps none.
         if lanes && !reuse {
-            self.near.reference.clone_from(&self.particles.position);
-            self.near.valid = true;
-            self.near.builds += 1;
+            self.near.built(&self.particles.position, self.list.partner.len());
         } else if !lanes {
             self.near.valid = false;
         }
@@ -239,6 +240,9 @@ fn run_part_body<L: BedLaw>(s: &Shared<L>, part: Part<L::History>) {
                 species: &p.species,
                 records: s.records,
             },
+            species_count: s.species,
+            owner: &s.list.owner,
+            partner: &s.list.partner,
             table,
             pairs: s.pairs,
             dt: s.dt,
@@ -250,11 +254,29 @@ fn run_part_body<L: BedLaw>(s: &Shared<L>, part: Part<L::History>) {
         }
         // SAFETY: `lanes` is Some only on an engine whose isa is AVX2 or AVX-512, which it takes only
         // where the CPU reports it (`Engine::set_isa`).
-        unsafe {
-            if s.isa == Isa::Avx512 {
-                super::lanes::near_avx512::<L>(&input, near, normal, spring, radius, &mut sink)
-            } else {
-                super::lanes::near_avx2::<L>(&input, near, normal, spring, radius, &mut sink)
+        if !s.walk {
+            unsafe {
+                if s.isa == Isa::Avx512 {
+                    super::lanes::near_avx512::<L>(&input, near, normal, spring, radius, &mut sink)
+                } else {
+                    super::lanes::near_avx2::<L>(&input, near, normal, spring, radius, &mut sink)
+                }
+            }
+        } else {
+            // SAFETY: as above.
+            let done = unsafe {
+                if s.isa == Isa::Avx512 {
+                    super::lanes::pairs_avx512::<L>(&input, first, last, slot0, normal, spring, radius, &mut sink)
+                } else {
+                    super::lanes::pairs_avx2::<L>(&input, first, last, slot0, normal, spring, radius, &mut sink)
+                }
+            };
+            // The part's last slots (fewer than a block), one at a time.
+            for slot in done..last {
+                let i = s.list.owner[slot] as usize;
+                let m = slot - slot0;
+                let row = Row::of(p, s, i);
+                pair(s, &row, s.list.partner[slot] as usize, &mut normal[m], &mut spring[m], &mut radius[m], &mut sink, dipoles);
             }
         }
         walls_of_part(s, walls, &mut sink, dipoles);

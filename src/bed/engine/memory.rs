@@ -54,6 +54,7 @@ impl<L: BedLaw> Engine<L> {
     /// Rebuilds the Verlet list and the wall contact lists, carrying every contact's memory across.
     pub fn rebuild(&mut self) {
         self.near.valid = false;
+        self.near.walk = false;
         let remembering = self.remembering_pairs();
         let old_start = std::mem::take(&mut self.list.start);
         let old_partner = std::mem::take(&mut self.list.partner);

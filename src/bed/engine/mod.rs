@@ -530,7 +530,7 @@ impl<L: BedLaw> Engine<L> {
         let load = &self.total.load[..];
         let p = &mut self.particles;
         let reference = self.list.reference();
-        let near_reference: &[Vec3] = if self.near.valid { &self.near.reference } else { &[] };
+        let near_reference: &[Vec3] = self.near.kick_reference();
         let dt = if drift { self.dt } else { 0.0 };
         let g = self.gravity;
         let any_held = self.any_held;
@@ -568,7 +568,7 @@ impl<L: BedLaw> Engine<L> {
         }
     }
 
-    /// Bytes held by the engine's arrays (particles, list, contact memory, buffers).
+    /// Bytes held by the engine's arrays (particles, list, contact memory, near lists, buffers).
     pub fn memory_bytes(&self) -> usize {
         use std::mem::size_of;
         let (v, u) = (size_of::<Vec3>(), size_of::<u32>());
@@ -579,6 +579,7 @@ impl<L: BedLaw> Engine<L> {
             + self.wall_contacts.iter().map(|w| w.particle.capacity() * u + w.memory.memory_bytes()).sum::<usize>()
             + self.buffers.iter().map(acc).sum::<usize>()
             + acc(&self.total)
+            + self.near.memory_bytes()
     }
 
     /// The particle-particle pairs in contact now: (i, j, overlap [m]).

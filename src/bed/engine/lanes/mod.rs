@@ -201,6 +201,9 @@ mod x86 {
     pub struct LaneInput<'a, L: BedLaw> {
         /// The spheres (`Simd::gather_sphere` reads the arrays on four lanes, the records on eight).
         pub spheres: Spheres<'a>,
+        pub species_count: usize,
+        pub owner: &'a [u32],
+        pub partner: &'a [u32],
         pub table: &'a [LaneRow],
         /// The species pairs' interactions (`Engine::pairs`), for the laws evaluated per lane.
         pub pairs: &'a [Interaction<L>],
@@ -266,6 +269,248 @@ mod x86 {
                 tangential_stiffness: Some(lane(5)),
                 attraction: mask(2),
             }
+        }
+    }
+
+    /// Slots [first, last) of a part, four at a time on AVX2; returns the first slot not done (the
+    /// part's last 0-3 slots go to the scalar loop). `slot0` is the part's first slot (its memory slices
+    /// start there).
+    ///
+    /// # Safety
+    /// AVX2 must be available.
+    #[target_feature(enable = "avx2")]
+    #[allow(clippy::too_many_arguments)] // one call per part: its slots, its memory and its sink
+    pub unsafe fn pairs_avx2<L: BedLaw>(
+        e: &LaneInput<L>,
+        first: usize,
+        last: usize,
+        slot0: usize,
+        normal: &mut [L::History],
+        spring: &mut [Vec3],
+        radius_memory: &mut [f64],
+        sink: &mut Sink,
+    ) -> usize {
+        // SAFETY: AVX2 (this function's contract).
+        unsafe { pairs_one_pass::<L, F64x4>(e, first, last, slot0, normal, spring, radius_memory, sink) }
+    }
+
+    /// `pairs_avx2` eight at a time on AVX-512; the part's last 0-7 slots go to the scalar loop.
+    ///
+    /// # Safety
+    /// AVX-512 F and DQ must be available.
+    #[target_feature(enable = "avx2,avx512f,avx512dq")]
+    #[allow(clippy::too_many_arguments)] // as `pairs_avx2`
+    pub unsafe fn pairs_avx512<L: BedLaw>(
+        e: &LaneInput<L>,
+        first: usize,
+        last: usize,
+        slot0: usize,
+        normal: &mut [L::History],
+        spring: &mut [Vec3],
+        radius_memory: &mut [f64],
+        sink: &mut Sink,
+    ) -> usize {
+        // SAFETY: AVX-512 F and DQ (this function's contract).
+        unsafe { pairs_one_pass::<L, F64x8>(e, first, last, slot0, normal, spring, radius_memory, sink) }
+    }
+
+    /// The walk over every slot of a part (where its near list holds most of them, `engine::near`): each
+    /// block of `V::N` consecutive slots read and its contacts computed at once. Its kernel is
+    /// `contacts`' (the same operations in the same order, `tests/bed_isa.rs` holds both to the scalar
+    /// loop's bits), kept written out here because Hertz ran 4 % slower at eight lanes when this loop
+    /// called `contacts` (issue 30's eighteenth round).
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    unsafe fn pairs_one_pass<L: BedLaw, V: Simd>(
+        e: &LaneInput<L>,
+        first: usize,
+        last: usize,
+        slot0: usize,
+        normal: &mut [L::History],
+        spring: &mut [Vec3],
+        radius_memory: &mut [f64],
+        sink: &mut Sink,
+    ) -> usize {
+        // SAFETY: the caller runs this with the width's instruction set (the lane helpers and the law's
+        // lane functions need it); the unchecked reads of sphere data and table rows use indices checked
+        // against their arrays once per block (below), every other slice access is checked, and the raw
+        // loads and stores stay inside their vectors and records.
+        unsafe {
+            let sp = &e.spheres;
+            let n = sp.position.len();
+            assert!(sp.velocity.len() == n && sp.spin.len() == n && sp.radius.len() == n && sp.species.len() == n);
+            assert!(!V::RECORDS || sp.records.len() == n, "the records are packed for this step's spheres");
+            // Each block checks its 2w indices against n once, and the table row of each lane once, and
+            // reads without a bounds test per access (the index work was 29 % of the linear loop's samples, issue 30's fourteenth round; without the tests
+            // the seed's test ran 1.23x faster, its fifteenth).
+            assert!(last <= e.owner.len() && last <= e.partner.len());
+            let w = V::N;
+            let zero = V::splat(0.0);
+            let (one, half) = (V::splat(1.0), V::splat(0.5));
+            let dt = V::splat(e.dt);
+            let forget = V::splat(e.forget);
+            let base = sink.base;
+            let mut slot = first;
+            let (mut ii, mut jj, mut pair) = ([0usize; 8], [0usize; 8], [0usize; 8]);
+            while slot + w <= last {
+                for k in 0..w {
+                    ii[k] = *e.owner.get_unchecked(slot + k) as usize;
+                    jj[k] = *e.partner.get_unchecked(slot + k) as usize;
+                }
+                assert!(ii[..w].iter().chain(&jj[..w]).all(|&p| p < n));
+                let m = slot - slot0;
+                // Both spheres of each lane (on eight lanes from their records: two cache lines each, not
+                // one per array).
+                let si = V::gather_sphere(sp, &ii);
+                let sj = V::gather_sphere(sp, &jj);
+                for k in 0..w {
+                    pair[k] = *sp.species.get_unchecked(ii[k]) as usize * e.species_count + *sp.species.get_unchecked(jj[k]) as usize;
+                }
+                assert!(pair[..w].iter().all(|&p| p < e.table.len()));
+                let param = |q: usize| V::from_fn(|k| e.table.get_unchecked(pair[k])[q]);
+                let xi = [si[0], si[1], si[2]];
+                let xj = [sj[0], sj[1], sj[2]];
+                let d = [xj[0] - xi[0], xj[1] - xi[1], xj[2] - xi[2]];
+                let dist2 = dot3(d, d);
+                let (ri, rj) = (si[3], sj[3]);
+                let sum_r = ri + rj;
+                let range = sum_r + param(0);
+                // Beyond the forgetting distance a contact forgets (as the scalar loop's `pair`), before its
+                // memory is read; such lanes are then skipped below (apart, nothing remembered).
+                let far = sum_r + forget;
+                let beyond = dist2.ge(far * far).bits();
+                if beyond != 0 {
+                    for k in (0..w).filter(|k| beyond & (1 << k) != 0) {
+                        let initial = e.pairs[pair[k]].initial;
+                        super::super::force_loop::forget(&mut normal[m + k], &mut spring[m + k], &mut radius_memory[m + k], initial);
+                    }
+                }
+                let mem = &mut spring[m..m + w];
+                let s0 = [V::from_fn(|k| mem[k].x), V::from_fn(|k| mem[k].y), V::from_fn(|k| mem[k].z)];
+                let vector = L::LANES == Lanes::Vector;
+                let interactions = |k: usize| &e.pairs[pair[k]];
+                let (h, must_visit) = if vector {
+                    let h = L::load_history::<V>(&normal[m..m + w], &ORDER);
+                    (h, L::must_visit(&h, |q| param(COMMON + q)))
+                } else {
+                    let must = V::mask_from_fn(|k| {
+                        let (h, it) = (&normal[m + k], interactions(k));
+                        !(*h == it.initial || it.law.rests_apart(h))
+                    });
+                    (History::none(), must)
+                };
+                // The scalar loop skips a pair that is apart (dist2 >= range^2), has no spring and whose
+                // history allows it; the lanes visit the rest.
+                let within = dist2.nge(range * range);
+                let has_spring = s0[0].ne(zero) | s0[1].ne(zero) | s0[2].ne(zero);
+                let visit = within | has_spring | must_visit;
+                let visit_bits = visit.bits();
+                if visit_bits == 0 {
+                    slot += w;
+                    continue;
+                }
+                let dist = dist2.sqrt();
+                let inv = one / dist;
+                let nrm = [d[0] * inv, d[1] * inv, d[2] * inv];
+                let alpha = sum_r - dist;
+                let half_alpha = half * alpha;
+                let (li, lj) = (ri - half_alpha, rj - half_alpha);
+                // The surface velocity of i relative to j (kernel::surface_velocity).
+                let (vi, vj) = ([si[4], si[5], si[6]], [sj[4], sj[5], sj[6]]);
+                let (wi, wj) = ([si[7], si[8], si[9]], [sj[7], sj[8], sj[9]]);
+                let om: [V; 3] = std::array::from_fn(|c| wi[c] * li + wj[c] * lj);
+                let v = [
+                    (vi[0] - vj[0]) + (om[1] * nrm[2] - om[2] * nrm[1]),
+                    (vi[1] - vj[1]) + (om[2] * nrm[0] - om[0] * nrm[2]),
+                    (vi[2] - vj[2]) + (om[0] * nrm[1] - om[1] * nrm[0]),
+                ];
+                // The law (kernel::contact from here on).
+                let ev = if vector {
+                    // A loop, not `array::from_fn`: its closure is not inlined and would call the vector
+                    // loads out of line (30 % slower at eight lanes, issue 30's fourteenth round).
+                    let mut law_params = [zero; LAW_PARAMS];
+                    for (q, p) in law_params.iter_mut().enumerate() {
+                        *p = param(COMMON + q);
+                    }
+                    let guess = V::load(&radius_memory[m..m + w]);
+                    let ev = L::evaluate_lanes(&law_params, alpha, &h, &|k| &e.pairs[pair[k]].law, guess);
+                    L::store_history(&mut normal[m..m + w], &ORDER, &ev.history, visit_bits);
+                    ev
+                } else {
+                    let its: [&Interaction<L>; 8] = std::array::from_fn(interactions);
+                    per_lane(&its[..w], alpha, &mut normal[m..m + w], &ORDER, &radius_memory[m..m + w], visit_bits)
+                };
+                let touch = visit & ev.in_contact;
+                let approach = dot3(v, nrm);
+                let abs_k = ev.stiffness.abs();
+                let root_k = ev.damping_stiffness.abs().sqrt();
+                let damping = V::select(ev.yielded, param(2), param(1));
+                let f_n = ev.force + damping * root_k * approach;
+                let minus_f_n = -f_n;
+                // The tangential spring, kept in the tangent plane of the turned contact with its magnitude.
+                let v_t: [V; 3] = std::array::from_fn(|c| v[c] - nrm[c] * approach);
+                let along = dot3(s0, nrm);
+                let mut s_t: [V; 3] = std::array::from_fn(|c| s0[c] - nrm[c] * along);
+                let t2 = dot3(s_t, s_t);
+                let turned = along.ne(zero) & t2.gt(zero);
+                if turned.bits() != 0 {
+                    let x = along * along / t2;
+                    let small = x.lt(V::splat(1e-4));
+                    let series = one + x * (half - V::splat(0.125) * x);
+                    let factor = if turned.and_not(small).bits() != 0 { V::select(small, series, (one + x).sqrt()) } else { series };
+                    s_t = std::array::from_fn(|c| V::select(turned, s_t[c] * factor, s_t[c]));
+                }
+                // TangentialSpring::step with k_t (000 Eq. 22, or Mindlin's 004 Eq. 3.25) and the limit mu max(N, 0).
+                let k_t = match ev.tangential_stiffness {
+                    Some(k_t) => k_t,
+                    None => param(3) * if L::MINDLIN { ev.radius } else { abs_k },
+                };
+                let mu = param(5);
+                let mut f_s: [V; 3] = std::array::from_fn(|c| s_t[c] - v_t[c] * dt * k_t);
+                let limit = mu * ev.sliding_normal_force.max(zero);
+                let norm2 = dot3(f_s, f_s);
+                let sliding = norm2.nle(limit * limit);
+                if sliding.bits() != 0 {
+                    let norm = norm2.sqrt();
+                    let scale = (limit / norm).keep(norm.gt(zero));
+                    f_s = std::array::from_fn(|c| V::select(sliding, f_s[c] * scale, f_s[c]));
+                }
+                let root_kt = param(4) * root_k;
+                let c_t = param(1) * root_kt;
+                let tangential: [V; 3] = std::array::from_fn(|c| V::select(sliding, f_s[c], f_s[c] - v_t[c] * c_t));
+                // No friction: no tangential force, and the spring as it was. None out of contact either.
+                let rubs = mu.gt(zero);
+                let tangential: [V; 3] = std::array::from_fn(|c| tangential[c].keep(rubs & touch));
+                // The memory: a visited lane in contact keeps the new spring (where it rubs), one out of
+                // contact forgets it; a lane not visited keeps its own.
+                let new_s: [V::Array; 3] = std::array::from_fn(|c| V::select(visit, V::select(rubs, f_s[c], s0[c]).keep(ev.in_contact), s0[c]).to_array());
+                let new_radius = ev.radius.to_array();
+                for k in 0..w {
+                    if visit_bits & (1 << k) != 0 {
+                        mem[k] = Vec3::new(new_s[0].as_ref()[k], new_s[1].as_ref()[k], new_s[2].as_ref()[k]);
+                        radius_memory[m + k] = new_radius.as_ref()[k];
+                    }
+                }
+                // Each contact's share of its two bodies; lanes not touching add +0.0, which changes no sum (a
+                // sum that starts at +0.0 is never -0.0).
+                // A lane out of contact that attracts (Tomas) gives the normal force alone, and no rolling load.
+                let attracts = visit & ev.attraction;
+                let minus_f = -ev.force;
+                let acts = touch | attracts;
+                let force: [V; 3] = std::array::from_fn(|c| V::select(attracts, nrm[c] * minus_f, nrm[c] * minus_f_n + tangential[c]).keep(acts));
+                let turn = [
+                    nrm[1] * tangential[2] - nrm[2] * tangential[1],
+                    nrm[2] * tangential[0] - nrm[0] * tangential[2],
+                    nrm[0] * tangential[1] - nrm[1] * tangential[0],
+                ];
+                let (li, lj) = (li.keep(acts), lj.keep(acts));
+                let rolling = (param(6) * ev.force.abs()).keep(touch);
+                let torque_i = [turn[0] * li, turn[1] * li, turn[2] * li];
+                let torque_j = [turn[0] * lj, turn[1] * lj, turn[2] * lj];
+                V::add_shares(Load::as_rows(sink.load), base, &ii[..w], &jj[..w], Share { force, rolling, torque_i, torque_j });
+                slot += w;
+            }
+            slot
         }
     }
 
@@ -366,8 +611,7 @@ mod x86 {
         }
     }
 
-    /// Lane k's slot in a block of consecutive slots (the laws' tests load and store histories so).
-    #[cfg(test)]
+    /// Lane k's slot in a block of consecutive slots.
     pub(super) const ORDER: Slots = [0, 1, 2, 3, 4, 5, 6, 7];
 
     /// A block of lanes for the contact: the two spheres, the species pair and the memory slot (relative to
