@@ -73,9 +73,9 @@ pub struct NearLists {
     /// Builds so far.
     pub builds: u64,
     /// The last build kept more than `WALK` of the slots: until the Verlet list is rebuilt the lane loop
-    /// walks every slot instead (reading a slot's memory in place costs less than through the near
-    /// list, so a list that leaves out less is not worth walking), and the kick measures no
-    /// displacement for the near lists.
+    /// walks every slot instead (the near loop reads each slot's memory by index, the walk in place; on
+    /// the shipped quarter, 92 % kept, the walk was the faster), and the kick measures no displacement
+    /// for the near lists.
     pub walk: bool,
 }
 
