@@ -92,6 +92,10 @@ impl<L: BedLaw> Engine<L> {
         if records && !(packed && self.records.len() == n) {
             self.pack_records();
         }
+        // The near lists: reused where the step allows it (`near::NearLists::reusable`), else each part
+        // builds its own first.
+        let reuse = reuse && lanes && self.near.parts.len() == self.threads;
+        self.near.parts.resize_with(self.threads, Near::default);
         let shared = Shared {
             p: &self.particles,
             list: &self.list,
@@ -108,8 +112,6 @@ impl<L: BedLaw> Engine<L> {
             shell: self.near.shell,
             walk: reuse && self.near.walk,
         };
-        let reuse = reuse && lanes && self.near.parts.len() == self.threads;
-        self.near.parts.resize_with(self.threads, Near::default);
         let mut near_parts = self.near.parts.iter_mut();
         // Cut the contact memory into the parts' pieces; each part's sink is its buffer (one thread: the
         // totals).

@@ -318,7 +318,8 @@ mod x86 {
     /// block of `V::N` consecutive slots read and its contacts computed at once. Its kernel is
     /// `contacts`' (the same operations in the same order, `tests/bed_isa.rs` holds both to the scalar
     /// loop's bits), kept written out here because Hertz ran 4 % slower at eight lanes when this loop
-    /// called `contacts` (issue 30's eighteenth round).
+    /// called `contacts` (issue 30's eighteenth round). Its first part (forgetting, the lanes to visit)
+    /// is `near_pairs`' with the memory read in place instead of by index.
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
     unsafe fn pairs_one_pass<L: BedLaw, V: Simd>(
