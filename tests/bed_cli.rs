@@ -150,6 +150,7 @@ fn every_shipped_bed_scene_fills() {
         seen += 1;
     }
     assert!(seen >= 22, "{seen} bed scenes found");
+    std::fs::remove_dir_all(&d).unwrap();
 }
 
 /// `bed indent --change`: a one-change experiment on the same prepared bed. The bed's own value changes
@@ -193,4 +194,5 @@ fn indent_change_lays_a_scene_over_the_same_bed() {
         assert_eq!(code, 2, "{change}: {err}");
         assert!(err.contains("--change") && err.contains(name), "{change}: {err}");
     }
+    std::fs::remove_dir_all(&d).unwrap();
 }

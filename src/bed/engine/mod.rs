@@ -671,9 +671,16 @@ fn kick_range(isa: Isa, base: usize, v: &mut [Vec3], w: &mut [Vec3], x: &mut [Ve
     if isa != Isa::Baseline {
         let end = base + n;
         if body.held.is_empty() && refs.list.len() >= end {
-            // Four spheres at a time on lanes, the last 0-3 one at a time (the same bits: `lanes::kick`).
-            // SAFETY: an engine takes Isa::Avx2 or Isa::Avx512 (which includes AVX2) only where the CPU reports it (`Engine::set_isa`).
-            let moved = unsafe { lanes::kick4(base, v, w, x, body, load, refs, kick, records) };
+            // Four spheres at a time on lanes (their spins eight at a time on AVX-512), the last 0-3 one
+            // at a time (the same bits: `lanes::kick`).
+            // SAFETY: an engine takes Isa::Avx2 or Isa::Avx512 (which includes AVX2 and AVX-512 F) only where the CPU reports it (`Engine::set_isa`).
+            let moved = unsafe {
+                if isa == Isa::Avx512 {
+                    lanes::kick8(base, v, w, x, body, load, refs, kick, records)
+                } else {
+                    lanes::kick4(base, v, w, x, body, load, refs, kick, records)
+                }
+            };
             let done = n / 4 * 4;
             // SAFETY: as above.
             let rest = unsafe { kick_avx2(base + done, &mut v[done..], &mut w[done..], &mut x[done..], body, load, refs, kick) };
