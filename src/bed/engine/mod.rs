@@ -542,11 +542,6 @@ impl<L: BedLaw> Engine<L> {
             &mut []
         };
         let isa = self.isa;
-        // The spins on eight lanes pay only where the rolling brake runs: without rolling friction the kick
-        // took 10.1 % of a linear-spring step on the bench bed with them and 8.1 % without (`perf
-        // record`); with 0.01 on the shipped quarter 14.5 % with them and 16.5 % without.
-        let rolls = self.pairs.iter().chain(self.wall_pairs.iter().flatten()).any(|it| it.rolling_friction > 0.0);
-        let isa = if isa == Isa::Avx512 && !rolls { Isa::Avx2 } else { isa };
         let halves = if twice { 2 } else { 1 };
         let kick = Kick { g, h, halves, dt };
         let refs = References { list: reference, near: near_reference };
@@ -676,16 +671,9 @@ fn kick_range(isa: Isa, base: usize, v: &mut [Vec3], w: &mut [Vec3], x: &mut [Ve
     if isa != Isa::Baseline {
         let end = base + n;
         if body.held.is_empty() && refs.list.len() >= end {
-            // Four spheres at a time on lanes (their spins eight at a time on AVX-512), the last 0-3 one
-            // at a time (the same bits: `lanes::kick`).
-            // SAFETY: an engine takes Isa::Avx2 or Isa::Avx512 (which includes AVX2 and AVX-512 F) only where the CPU reports it (`Engine::set_isa`).
-            let moved = unsafe {
-                if isa == Isa::Avx512 {
-                    lanes::kick8(base, v, w, x, body, load, refs, kick, records)
-                } else {
-                    lanes::kick4(base, v, w, x, body, load, refs, kick, records)
-                }
-            };
+            // Four spheres at a time on lanes, the last 0-3 one at a time (the same bits: `lanes::kick`).
+            // SAFETY: an engine takes Isa::Avx2 or Isa::Avx512 (which includes AVX2) only where the CPU reports it (`Engine::set_isa`).
+            let moved = unsafe { lanes::kick4(base, v, w, x, body, load, refs, kick, records) };
             let done = n / 4 * 4;
             // SAFETY: as above.
             let rest = unsafe { kick_avx2(base + done, &mut v[done..], &mut w[done..], &mut x[done..], body, load, refs, kick) };

@@ -34,7 +34,7 @@ pub mod record;
 pub mod simd;
 
 #[cfg(target_arch = "x86_64")]
-pub use kick::{kick4, kick8};
+pub use kick::kick4;
 #[cfg(target_arch = "x86_64")]
 pub use x86::*;
 
