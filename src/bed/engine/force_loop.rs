@@ -12,12 +12,12 @@ use super::super::kernel::{contact, surface_velocity};
 use super::super::neighbors::NeighborList;
 use super::super::particles::Particles;
 use super::super::walls::Wall;
-use super::super::{cross, dot, sub, Vec3, ZERO};
+use super::super::{cross, dot, sub, Tensor, Vec3, ZERO};
 use super::isa::Isa;
 use super::lanes::record::{pack, Record};
 use super::lanes::LaneRow;
 use super::near::{self, Near};
-use super::partition::Sink;
+use super::partition::{Load, Sink};
 use super::Engine;
 use rayon::prelude::*;
 
@@ -127,13 +127,21 @@ impl<L: BedLaw> Engine<L> {
         let mut consumed = 0usize;
         let mut sinks: Vec<Sink> = if self.threads == 1 {
             let t = &mut self.total;
-            vec![Sink { base: 0, load: &mut t.load, dipole: &mut t.dipole, wall_force: &mut t.wall_force }]
+            vec![Sink { base: 0, load: &mut t.load, spill: &mut [], dipole: &mut t.dipole, dipole_spill: &mut [], wall_force: &mut t.wall_force }]
         } else {
-            self.buffers
-                .iter_mut()
-                .zip(&self.parts)
-                .map(|(b, &base)| Sink { base, load: &mut b.load, dipole: &mut b.dipole, wall_force: &mut b.wall_force })
-                .collect()
+            // Each part's own rows of the totals, and its buffer for the spill beyond them.
+            let dipoles = record;
+            let (mut load, mut dipole): (&mut [Load], &mut [Tensor]) = (&mut self.total.load, &mut self.total.dipole);
+            let mut sinks = Vec::with_capacity(self.threads);
+            for (k, b) in self.buffers.iter_mut().enumerate() {
+                let (base, len) = (self.parts[k], self.parts[k + 1] - self.parts[k]);
+                let (own, rest) = std::mem::take(&mut load).split_at_mut(len);
+                load = rest;
+                let (own_d, rest) = std::mem::take(&mut dipole).split_at_mut(if dipoles { len } else { 0 });
+                dipole = rest;
+                sinks.push(Sink { base, load: own, spill: &mut b.load, dipole: own_d, dipole_spill: &mut b.dipole, wall_force: &mut b.wall_force });
+            }
+            sinks
         };
         for (k, sink) in sinks.drain(..).enumerate() {
             let (a, b) = (self.parts[k], self.parts[k + 1]);
@@ -157,7 +165,7 @@ impl<L: BedLaw> Engine<L> {
                 *ss = s_rest;
                 *rs = r_rest;
             }
-            assert!(!record || sink.dipole.len() == sink.load.len());
+            assert!(!record || (sink.dipole.len() == sink.load.len() && sink.dipole_spill.len() == sink.spill.len()));
             let near = near_parts.next().expect("one near list per part");
             parts.push(Part { rows: (a, b), slot0: consumed, normal: mine_n, spring: mine_s, radius: mine_r, walls, sink, near, reuse });
             consumed += take;
@@ -229,7 +237,7 @@ fn run_part_body<L: BedLaw>(s: &Shared<L>, part: Part<L::History>) {
     let Part { rows, slot0, normal, spring, radius, walls, mut sink, near, reuse } = part;
     sink.clear();
     let p = s.p;
-    let dipoles = !sink.dipole.is_empty();
+    let dipoles = !sink.dipole.is_empty() || !sink.dipole_spill.is_empty();
     let (first, last) = (s.list.start[rows.0] as usize, s.list.start[rows.1] as usize);
     #[cfg(target_arch = "x86_64")]
     if let Some(table) = s.lanes {

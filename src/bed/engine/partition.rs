@@ -1,8 +1,9 @@
 //! The partition of the force loop over threads: the rows cut into parts of about equal work; each part
-//! accumulates into one contiguous buffer over the particles it touches, [first row, last partner], with
-//! no test of whose particle it is; the buffers are then summed, each particle's in part order (its own
-//! part first, then the parts before it), so a run is bitwise the same for a given thread count. With one
-//! thread the part writes straight into the totals.
+//! adds to its own particles' totals directly (no other part writes them during the loop) and to a spill
+//! buffer for the particles beyond its rows that its contacts reach, [its last row + 1, last partner], with
+//! no test of whose particle it is but one compare; the spills are then added, each particle's in part
+//! order (its own part first, then the parts before it), so a run is bitwise the same for a given thread
+//! count. With one thread the part writes the totals and spills nothing.
 
 use super::super::interaction::BedLaw;
 use super::super::{Tensor, Vec3, ZERO};
@@ -67,13 +68,41 @@ impl Accum {
     }
 }
 
-/// Where one part of the force loop writes: particle i at `load[i - base]`, for every i from its first
-/// row to its last row's last partner (j > i, so no partner is below `base`).
+/// Where one part of the force loop writes: particle i of its own rows at `load[i - base]` (a slice of
+/// the totals), a particle beyond them at `spill[i - base - load.len()]` (the part's buffer), for every i
+/// from its first row to its last row's last partner (j > i, so no partner is below `base`).
 pub(super) struct Sink<'a> {
     pub(super) base: usize,
     pub(super) load: &'a mut [Load],
+    pub(super) spill: &'a mut [Load],
+    /// As `load` and `spill`, when dipoles are recorded (else both empty).
     pub(super) dipole: &'a mut [Tensor],
+    pub(super) dipole_spill: &'a mut [Tensor],
     pub(super) wall_force: &'a mut [Vec3],
+}
+
+/// A sink's loads as rows of eight f64, as the lane loop adds to them (`Simd::add_shares`).
+pub struct Rows<'a> {
+    base: usize,
+    own: &'a mut [[f64; 8]],
+    spill: &'a mut [[f64; 8]],
+}
+
+impl<'a> Rows<'a> {
+    pub(crate) fn new(base: usize, own: &'a mut [[f64; 8]], spill: &'a mut [[f64; 8]]) -> Rows<'a> {
+        Rows { base, own, spill }
+    }
+
+    /// Particle p's row (a panic outside the part's span, as an index).
+    #[inline(always)]
+    pub(crate) fn at(&mut self, p: usize) -> &mut [f64; 8] {
+        let o = p - self.base;
+        if o < self.own.len() {
+            &mut self.own[o]
+        } else {
+            &mut self.spill[o - self.own.len()]
+        }
+    }
 }
 
 impl Load {
@@ -88,8 +117,15 @@ impl Load {
 impl Sink<'_> {
     pub(super) fn clear(&mut self) {
         self.load.fill(Load::default());
+        self.spill.fill(Load::default());
         self.dipole.fill(Tensor::zeros());
+        self.dipole_spill.fill(Tensor::zeros());
         self.wall_force.fill(ZERO);
+    }
+
+    /// The loads as the lane loop adds to them.
+    pub(super) fn rows(&mut self) -> Rows<'_> {
+        Rows::new(self.base, Load::as_rows(self.load), Load::as_rows(self.spill))
     }
 
     /// Adds one contact's share to particle `i`, seen from `i`: `n` the unit normal toward the partner,
@@ -100,7 +136,9 @@ impl Sink<'_> {
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
     pub(super) fn add_contact(&mut self, i: usize, sign: f64, n: Vec3, force: Vec3, turn: Vec3, lever: f64, rolling_load: f64, dipoles: bool) {
-        let l = &mut self.load[i - self.base];
+        let o = i - self.base;
+        let own = o < self.load.len();
+        let l = if own { &mut self.load[o] } else { &mut self.spill[o - self.load.len()] };
         if sign > 0.0 {
             l.force.x += force.x;
             l.force.y += force.y;
@@ -116,14 +154,15 @@ impl Sink<'_> {
         l.rolling += rolling_load;
         if dipoles {
             // (-n lever)(-F)^T = (n lever) F^T to the bit.
-            self.dipole[i - self.base] += (n * lever) * force.transpose();
+            let d = if own { &mut self.dipole[o] } else { &mut self.dipole_spill[o - self.load.len()] };
+            *d += (n * lever) * force.transpose();
         }
     }
 }
 
 impl<L: BedLaw> Engine<L> {
     /// Splits the rows into `threads` parts of about equal work (list slots plus one per row); then
-    /// `resize_buffers` sizes each part's buffer for the particles it touches.
+    /// `resize_buffers` sizes each part's spill buffer for the particles beyond its rows it touches.
     pub(super) fn cut_parts(&mut self) {
         let n = self.particles.len();
         let t = self.threads;
@@ -164,7 +203,7 @@ impl<L: BedLaw> Engine<L> {
         }
         self.buffers.resize_with(self.threads, Accum::default);
         for k in 0..self.threads {
-            let len = self.span_end[k] - self.parts[k];
+            let len = self.span_end[k] - self.parts[k + 1];
             let buffer = &mut self.buffers[k];
             buffer.load.clear();
             buffer.dipole.clear();
@@ -172,9 +211,9 @@ impl<L: BedLaw> Engine<L> {
         }
     }
 
-    /// The totals from the parts' buffers (threads > 1): each particle's own part first, then every
-    /// earlier part whose span reaches it, in part order; the wall reactions summed in part order. Each
-    /// part's own rows are summed by a thread of their own.
+    /// The totals from the parts' spills (threads > 1): each particle's own part has written it, then every
+    /// earlier part whose span reaches it adds its spill, in part order; the wall reactions summed in part
+    /// order. Each part's own rows are summed by a thread of their own.
     pub(super) fn add_buffers(&mut self) {
         let (parts, ends, buffers) = (&self.parts, &self.span_end, &self.buffers);
         let dipoles = self.record_dipoles;
@@ -193,14 +232,13 @@ impl<L: BedLaw> Engine<L> {
         }
         loads.into_par_iter().zip(dips).enumerate().for_each(|(k, (load, dipole))| {
             let a = parts[k];
-            load.copy_from_slice(&buffers[k].load[..load.len()]);
-            dipole.copy_from_slice(&buffers[k].dipole[..dipole.len()]);
             for m in 0..k {
                 let end = ends[m].min(a + load.len());
                 if end <= a {
                     continue;
                 }
-                let from = a - parts[m];
+                // Part m's spill starts after its own rows.
+                let from = a - parts[m + 1];
                 for (t, s) in load[..end - a].iter_mut().zip(&buffers[m].load[from..]) {
                     t.force += s.force;
                     t.torque += s.torque;

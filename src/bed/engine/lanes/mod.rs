@@ -55,7 +55,7 @@ mod x86 {
     use super::simd::{F64x4, F64x8, Mask, Share, Simd, Spheres};
     use super::{LaneRow, Slots, COMMON, LAW_PARAMS};
     use crate::bed::engine::near::Near;
-    use crate::bed::engine::partition::{Load, Sink};
+    use crate::bed::engine::partition::Sink;
     use crate::bed::interaction::{BedLaw, Interaction};
     use crate::bed::Vec3;
     use crate::law::tangential::TangentialStiffness;
@@ -350,7 +350,6 @@ mod x86 {
             let (one, half) = (V::splat(1.0), V::splat(0.5));
             let dt = V::splat(e.dt);
             let forget = V::splat(e.forget);
-            let base = sink.base;
             let mut slot = first;
             let (mut ii, mut jj, mut pair) = ([0usize; 8], [0usize; 8], [0usize; 8]);
             while slot + w <= last {
@@ -508,7 +507,7 @@ mod x86 {
                 let rolling = (param(6) * ev.force.abs()).keep(touch);
                 let torque_i = [turn[0] * li, turn[1] * li, turn[2] * li];
                 let torque_j = [turn[0] * lj, turn[1] * lj, turn[2] * lj];
-                V::add_shares(Load::as_rows(sink.load), base, &ii[..w], &jj[..w], Share { force, rolling, torque_i, torque_j });
+                V::add_shares(&mut sink.rows(), &ii[..w], &jj[..w], Share { force, rolling, torque_i, torque_j });
                 slot += w;
             }
             slot
@@ -653,7 +652,6 @@ mod x86 {
             let zero = V::splat(0.0);
             let (one, half) = (V::splat(1.0), V::splat(0.5));
             let dt = V::splat(e.dt);
-            let base = sink.base;
             let param = |q: usize| V::from_fn(|k| e.table.get_unchecked(pair[k])[q]);
             let xi = [si[0], si[1], si[2]];
             let xj = [sj[0], sj[1], sj[2]];
@@ -760,7 +758,7 @@ mod x86 {
             let rolling = (param(6) * ev.force.abs()).keep(touch);
             let torque_i = [turn[0] * li, turn[1] * li, turn[2] * li];
             let torque_j = [turn[0] * lj, turn[1] * lj, turn[2] * lj];
-            V::add_shares(Load::as_rows(sink.load), base, &ii[..w], &jj[..w], Share { force, rolling, torque_i, torque_j });
+            V::add_shares(&mut sink.rows(), &ii[..w], &jj[..w], Share { force, rolling, torque_i, torque_j });
         }
     }
 }

@@ -15,6 +15,7 @@
 //! contract is that the CPU runs the width's instruction set; the safe methods then rely on it.
 
 use super::record::Record;
+use crate::bed::engine::partition::Rows;
 use crate::bed::Vec3;
 use std::arch::x86_64::*;
 use std::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
@@ -105,7 +106,7 @@ pub trait Simd: Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = Se
     ///
     /// # Safety
     /// As the constructors.
-    unsafe fn add_shares(record: &mut [[f64; 8]], base: usize, i: &[usize], j: &[usize], share: Share<Self>);
+    unsafe fn add_shares(rows: &mut Rows, i: &[usize], j: &[usize], share: Share<Self>);
 }
 
 /// Lanes a, b, c, d to four rows [a_k, b_k, c_k, d_k].
@@ -380,7 +381,7 @@ impl Simd for F64x4 {
         }
     }
     #[inline(always)]
-    unsafe fn add_shares(record: &mut [[f64; 8]], base: usize, i: &[usize], j: &[usize], share: Share<F64x4>) {
+    unsafe fn add_shares(rows: &mut Rows, i: &[usize], j: &[usize], share: Share<F64x4>) {
         let Share { force, rolling, torque_i, torque_j } = share;
         // SAFETY: AVX (the caller's); each record is eight f64.
         unsafe {
@@ -392,10 +393,10 @@ impl Simd for F64x4 {
             let flip = _mm256_set_pd(0.0, -0.0, -0.0, -0.0);
             let add = |p: *mut f64, row: __m256d| _mm256_storeu_pd(p, _mm256_add_pd(_mm256_loadu_pd(p), row));
             for k in 0..4 {
-                let a = record[i[k] - base].as_mut_ptr();
+                let a = rows.at(i[k]).as_mut_ptr();
                 add(a, share[k]);
                 add(a.add(4), ti[k]);
-                let b = record[j[k] - base].as_mut_ptr();
+                let b = rows.at(j[k]).as_mut_ptr();
                 add(b, _mm256_xor_pd(share[k], flip));
                 add(b.add(4), tj[k]);
             }
@@ -550,7 +551,7 @@ impl Simd for F64x8 {
         }
     }
     #[inline(always)]
-    unsafe fn add_shares(record: &mut [[f64; 8]], base: usize, i: &[usize], j: &[usize], share: Share<F64x8>) {
+    unsafe fn add_shares(rows: &mut Rows, i: &[usize], j: &[usize], share: Share<F64x8>) {
         let Share { force, rolling, torque_i, torque_j } = share;
         // SAFETY: AVX-512 F (the caller's); each record is eight f64.
         // One 512-bit add per body and lane, not two 256-bit ones (the record is one row of eight).
@@ -561,8 +562,8 @@ impl Simd for F64x8 {
             let rj = transpose8([minus(force[0]), minus(force[1]), minus(force[2]), rolling.0, torque_j[0].0, torque_j[1].0, torque_j[2].0, zero]);
             let add = |p: *mut f64, row: __m512d| _mm512_storeu_pd(p, _mm512_add_pd(_mm512_loadu_pd(p), row));
             for k in 0..8 {
-                add(record[i[k] - base].as_mut_ptr(), ri[k]);
-                add(record[j[k] - base].as_mut_ptr(), rj[k]);
+                add(rows.at(i[k]).as_mut_ptr(), ri[k]);
+                add(rows.at(j[k]).as_mut_ptr(), rj[k]);
             }
         }
     }
@@ -604,7 +605,7 @@ mod tests {
         // SAFETY: as above.
         unsafe {
             let share = Share { force: [lane(0), lane(1), lane(2)], rolling: lane(3), torque_i: [lane(4), lane(5), lane(6)], torque_j: [lane(7), lane(8), lane(9)] };
-            V::add_shares(&mut got, 0, &i[..V::N], &j[..V::N], share);
+            V::add_shares(&mut Rows::new(0, &mut got, &mut []), &i[..V::N], &j[..V::N], share);
         }
         for k in 0..V::N {
             let v = |q: usize| value(q, k);
