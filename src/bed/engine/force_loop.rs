@@ -113,8 +113,8 @@ impl<L: BedLaw> Engine<L> {
             walk: reuse && self.near.walk,
         };
         let mut near_parts = self.near.parts.iter_mut();
-        // Cut the contact memory into the parts' pieces; each part's sink is its buffer (one thread: the
-        // totals).
+        // Cut the contact memory into the parts' pieces; each part's sink is its own rows of the totals
+        // and its spill buffer (one thread: the totals).
         let mut parts: Vec<Part<L::History>> = Vec::with_capacity(self.threads);
         let mut normal: &mut [L::History] = &mut self.memory.history;
         let mut spring: &mut [Vec3] = &mut self.memory.spring;

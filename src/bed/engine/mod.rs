@@ -4,9 +4,9 @@
 //! - here: the engine, its set-up and the integration (kicks, drift, walls, when to rebuild);
 //! - `memory`: carrying every contact's memory (law history, tangential spring, contact radius) across
 //!   list rebuilds;
-//! - `partition`: the fixed partition of the particles into parts of equal work, each part's buffer
-//!   over the particles it touches, and their sum in part order, so a run is bitwise the same for a
-//!   given thread count;
+//! - `partition`: the fixed partition of the particles into parts of equal work, each part adding its
+//!   own rows into the totals and the particles beyond them into its spill buffer, and the spills
+//!   added in part order, so a run is bitwise the same for a given thread count;
 //! - `force_loop`: the force loop of one part over its pairs and wall contacts;
 //! - `isa`: the instruction set the force loop and the kick run with (AVX-512 or AVX2 where the CPU
 //!   has it);
@@ -75,7 +75,8 @@ pub struct Engine<L: BedLaw> {
     forget: f64,
     /// Forces, torques, rolling loads (and dipoles) of the last step.
     total: Accum,
-    /// Each part's buffer over its span (threads > 1; one thread writes into `total`).
+    /// Each part's spill buffer, over the particles beyond its rows that it reaches, and its wall
+    /// reactions (threads > 1; one thread writes into `total`).
     buffers: Vec<Accum>,
     /// First row of each part of the force loop (len parts + 1).
     parts: Vec<usize>,
