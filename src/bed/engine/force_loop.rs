@@ -12,12 +12,12 @@ use super::super::kernel::{contact, surface_velocity};
 use super::super::neighbors::NeighborList;
 use super::super::particles::Particles;
 use super::super::walls::Wall;
-use super::super::{cross, dot, sub, Tensor, Vec3, ZERO};
+use super::super::{cross, dot, sub, Vec3, ZERO};
 use super::isa::Isa;
 use super::lanes::record::{pack, Record};
 use super::lanes::LaneRow;
 use super::near::{self, Near};
-use super::partition::{Load, Sink};
+use super::partition::{own_rows, Sink};
 use super::Engine;
 use rayon::prelude::*;
 
@@ -130,18 +130,12 @@ impl<L: BedLaw> Engine<L> {
             vec![Sink { base: 0, load: &mut t.load, spill: &mut [], dipole: &mut t.dipole, dipole_spill: &mut [], wall_force: &mut t.wall_force }]
         } else {
             // Each part's own rows of the totals, and its buffer for the spill beyond them.
-            let dipoles = record;
-            let (mut load, mut dipole): (&mut [Load], &mut [Tensor]) = (&mut self.total.load, &mut self.total.dipole);
-            let mut sinks = Vec::with_capacity(self.threads);
-            for (k, b) in self.buffers.iter_mut().enumerate() {
-                let (base, len) = (self.parts[k], self.parts[k + 1] - self.parts[k]);
-                let (own, rest) = std::mem::take(&mut load).split_at_mut(len);
-                load = rest;
-                let (own_d, rest) = std::mem::take(&mut dipole).split_at_mut(if dipoles { len } else { 0 });
-                dipole = rest;
-                sinks.push(Sink { base, load: own, spill: &mut b.load, dipole: own_d, dipole_spill: &mut b.dipole, wall_force: &mut b.wall_force });
-            }
-            sinks
+            own_rows(&mut self.total, &self.parts, record)
+                .into_iter()
+                .zip(self.buffers.iter_mut())
+                .zip(&self.parts)
+                .map(|(((load, dipole), b), &base)| Sink { base, load, spill: &mut b.load, dipole, dipole_spill: &mut b.dipole, wall_force: &mut b.wall_force })
+                .collect()
         };
         for (k, sink) in sinks.drain(..).enumerate() {
             let (a, b) = (self.parts[k], self.parts[k + 1]);

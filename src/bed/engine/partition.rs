@@ -93,6 +93,12 @@ impl<'a> Rows<'a> {
         Rows { base, own, spill }
     }
 
+    /// The row of particle i of the part's own rows (a pair's owner): no compare.
+    #[inline(always)]
+    pub(crate) fn own(&mut self, i: usize) -> &mut [f64; 8] {
+        &mut self.own[i - self.base]
+    }
+
     /// Particle p's row (a panic outside the part's span, as an index).
     #[inline(always)]
     pub(crate) fn at(&mut self, p: usize) -> &mut [f64; 8] {
@@ -160,6 +166,22 @@ impl Sink<'_> {
     }
 }
 
+/// The totals cut into each part's own rows: the loads, and the dipoles where they are recorded (else
+/// empty slices). `parts` holds each part's first row and, last, the row count.
+pub(super) fn own_rows<'a>(total: &'a mut Accum, parts: &[usize], dipoles: bool) -> Vec<(&'a mut [Load], &'a mut [Tensor])> {
+    let (mut load, mut dipole): (&mut [Load], &mut [Tensor]) = (&mut total.load, &mut total.dipole);
+    let mut rows = Vec::with_capacity(parts.len().saturating_sub(1));
+    for w in parts.windows(2) {
+        let len = w[1] - w[0];
+        let (own, rest) = std::mem::take(&mut load).split_at_mut(len);
+        load = rest;
+        let (own_d, rest) = std::mem::take(&mut dipole).split_at_mut(if dipoles { len } else { 0 });
+        dipole = rest;
+        rows.push((own, own_d));
+    }
+    rows
+}
+
 impl<L: BedLaw> Engine<L> {
     /// Splits the rows into `threads` parts of about equal work (list slots plus one per row); then
     /// `resize_buffers` sizes each part's spill buffer for the particles beyond its rows it touches.
@@ -217,20 +239,7 @@ impl<L: BedLaw> Engine<L> {
     pub(super) fn add_buffers(&mut self) {
         let (parts, ends, buffers) = (&self.parts, &self.span_end, &self.buffers);
         let dipoles = self.record_dipoles;
-        let mut loads: Vec<&mut [Load]> = Vec::with_capacity(buffers.len());
-        let mut rest: &mut [Load] = &mut self.total.load;
-        let mut dips: Vec<&mut [Tensor]> = Vec::with_capacity(buffers.len());
-        let mut rest_d: &mut [Tensor] = &mut self.total.dipole;
-        for k in 0..buffers.len() {
-            let len = parts[k + 1] - parts[k];
-            let (mine, more) = std::mem::take(&mut rest).split_at_mut(len);
-            loads.push(mine);
-            rest = more;
-            let (mine, more) = std::mem::take(&mut rest_d).split_at_mut(if dipoles { len } else { 0 });
-            dips.push(mine);
-            rest_d = more;
-        }
-        loads.into_par_iter().zip(dips).enumerate().for_each(|(k, (load, dipole))| {
+        own_rows(&mut self.total, parts, dipoles).into_par_iter().enumerate().for_each(|(k, (load, dipole))| {
             let a = parts[k];
             for m in 0..k {
                 let end = ends[m].min(a + load.len());

@@ -393,7 +393,7 @@ impl Simd for F64x4 {
             let flip = _mm256_set_pd(0.0, -0.0, -0.0, -0.0);
             let add = |p: *mut f64, row: __m256d| _mm256_storeu_pd(p, _mm256_add_pd(_mm256_loadu_pd(p), row));
             for k in 0..4 {
-                let a = rows.at(i[k]).as_mut_ptr();
+                let a = rows.own(i[k]).as_mut_ptr();
                 add(a, share[k]);
                 add(a.add(4), ti[k]);
                 let b = rows.at(j[k]).as_mut_ptr();
@@ -562,7 +562,7 @@ impl Simd for F64x8 {
             let rj = transpose8([minus(force[0]), minus(force[1]), minus(force[2]), rolling.0, torque_j[0].0, torque_j[1].0, torque_j[2].0, zero]);
             let add = |p: *mut f64, row: __m512d| _mm512_storeu_pd(p, _mm512_add_pd(_mm512_loadu_pd(p), row));
             for k in 0..8 {
-                add(rows.at(i[k]).as_mut_ptr(), ri[k]);
+                add(rows.own(i[k]).as_mut_ptr(), ri[k]);
                 add(rows.at(j[k]).as_mut_ptr(), rj[k]);
             }
         }
