@@ -72,8 +72,10 @@ pub struct Nan {
     before_yield: NanPoints,
 }
 
-/// What the contact remembers.
+/// What the contact remembers. In C layout: the pair loop's lanes read and write alpha_max and the points
+/// as one row of eight f64 (`engine::lanes::nan`).
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[repr(C)]
 pub struct NanHistory {
     /// The paper's cs: the contact is established (000 Eq. 20).
     pub established: bool,
@@ -85,6 +87,7 @@ pub struct NanHistory {
 
 /// The quantities that follow from alpha_max (000 Eqs. 11-14, 46, 59).
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[repr(C)]
 pub struct NanPoints {
     /// Elastic un/reloading stiffness k_e: k_el before yield, 000 Eq. 46 or 47-49 after [N/m].
     pub k_e: f64,
@@ -102,6 +105,15 @@ pub struct NanPoints {
     /// Overlap alpha_fp at which the contact detaches, at -5/9 f_cp (000 Eq. 14) [m].
     pub alpha_fp: f64,
 }
+
+// The lanes' row of a history: alpha_max, then the points in the order of `History::points`.
+const _: () = {
+    use std::mem::{offset_of, size_of};
+    assert!(offset_of!(NanHistory, points) == offset_of!(NanHistory, alpha_max) + 8);
+    assert!(offset_of!(NanPoints, k_e) == 0 && offset_of!(NanPoints, k_c) == 8 && offset_of!(NanPoints, alpha_p) == 16);
+    assert!(offset_of!(NanPoints, f_cp) == 24 && offset_of!(NanPoints, alpha_c0) == 32 && offset_of!(NanPoints, alpha_cp) == 40);
+    assert!(offset_of!(NanPoints, alpha_fp) == 48 && size_of::<NanPoints>() == 56);
+};
 
 impl Nan {
     /// The law of a parameter set, with its branch points before yield set exactly to k_el, k_cl,

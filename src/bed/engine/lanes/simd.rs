@@ -107,6 +107,17 @@ pub trait Simd: Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = Se
     /// # Safety
     /// As the constructors.
     unsafe fn add_shares(rows: &mut Rows, i: &[usize], j: &[usize], share: Share<Self>);
+    /// Eight consecutive f64 from `rows[k]` on in lane k: the q-th of each row in the q-th result.
+    ///
+    /// # Safety
+    /// As the constructors, and each `rows[k]` (k < N) points to eight readable f64.
+    unsafe fn load_rows(rows: &[*const f64; 8]) -> [Self; 8];
+    /// `load_rows` reversed for the lanes whose bit `mask` sets: lane k's values written to the eight f64
+    /// from `rows[k]` on.
+    ///
+    /// # Safety
+    /// As the constructors, and each `rows[k]` with its bit set points to eight writable f64.
+    unsafe fn store_rows(rows: &[*mut f64; 8], q: &[Self; 8], mask: u32);
 }
 
 /// Lanes a, b, c, d to four rows [a_k, b_k, c_k, d_k].
@@ -381,6 +392,28 @@ impl Simd for F64x4 {
         }
     }
     #[inline(always)]
+    unsafe fn load_rows(rows: &[*const f64; 8]) -> [F64x4; 8] {
+        // SAFETY: AVX and the rows (the caller's).
+        unsafe {
+            // No closures: one would not take the caller's instruction set and would call the loads.
+            let lo = transpose(_mm256_loadu_pd(rows[0]), _mm256_loadu_pd(rows[1]), _mm256_loadu_pd(rows[2]), _mm256_loadu_pd(rows[3]));
+            let hi = transpose(_mm256_loadu_pd(rows[0].add(4)), _mm256_loadu_pd(rows[1].add(4)), _mm256_loadu_pd(rows[2].add(4)), _mm256_loadu_pd(rows[3].add(4)));
+            let f = F64x4;
+            [f(lo[0]), f(lo[1]), f(lo[2]), f(lo[3]), f(hi[0]), f(hi[1]), f(hi[2]), f(hi[3])]
+        }
+    }
+    #[inline(always)]
+    unsafe fn store_rows(rows: &[*mut f64; 8], q: &[F64x4; 8], mask: u32) {
+        // SAFETY: AVX and the rows (the caller's).
+        unsafe {
+            let (lo, hi) = (transpose(q[0].0, q[1].0, q[2].0, q[3].0), transpose(q[4].0, q[5].0, q[6].0, q[7].0));
+            for k in (0..4).filter(|k| mask & (1 << k) != 0) {
+                _mm256_storeu_pd(rows[k], lo[k]);
+                _mm256_storeu_pd(rows[k].add(4), hi[k]);
+            }
+        }
+    }
+    #[inline(always)]
     unsafe fn add_shares(rows: &mut Rows, i: &[usize], j: &[usize], share: Share<F64x4>) {
         let Share { force, rolling, torque_i, torque_j } = share;
         // SAFETY: AVX (the caller's); each record is eight f64.
@@ -551,6 +584,34 @@ impl Simd for F64x8 {
         }
     }
     #[inline(always)]
+    unsafe fn load_rows(rows: &[*const f64; 8]) -> [F64x8; 8] {
+        // SAFETY: AVX-512 F and the rows (the caller's).
+        unsafe {
+            let l = [
+                _mm512_loadu_pd(rows[0]),
+                _mm512_loadu_pd(rows[1]),
+                _mm512_loadu_pd(rows[2]),
+                _mm512_loadu_pd(rows[3]),
+                _mm512_loadu_pd(rows[4]),
+                _mm512_loadu_pd(rows[5]),
+                _mm512_loadu_pd(rows[6]),
+                _mm512_loadu_pd(rows[7]),
+            ];
+            let t = transpose8(l);
+            [F64x8(t[0]), F64x8(t[1]), F64x8(t[2]), F64x8(t[3]), F64x8(t[4]), F64x8(t[5]), F64x8(t[6]), F64x8(t[7])]
+        }
+    }
+    #[inline(always)]
+    unsafe fn store_rows(rows: &[*mut f64; 8], q: &[F64x8; 8], mask: u32) {
+        // SAFETY: AVX-512 F and the rows (the caller's); the transpose is its own inverse.
+        unsafe {
+            let r = transpose8([q[0].0, q[1].0, q[2].0, q[3].0, q[4].0, q[5].0, q[6].0, q[7].0]);
+            for k in (0..8).filter(|k| mask & (1 << k) != 0) {
+                _mm512_storeu_pd(rows[k], r[k]);
+            }
+        }
+    }
+    #[inline(always)]
     unsafe fn add_shares(rows: &mut Rows, i: &[usize], j: &[usize], share: Share<F64x8>) {
         let Share { force, rolling, torque_i, torque_j } = share;
         // SAFETY: AVX-512 F (the caller's); each record is eight f64.
@@ -621,6 +682,30 @@ mod tests {
         for (b, (g, w)) in got.iter().zip(&want).enumerate() {
             assert_eq!(g.map(f64::to_bits), w.map(f64::to_bits), "body {b}: {g:?} against {w:?}");
         }
+        // `load_rows` puts element q of row idx[k] in lane k of the q-th; `store_rows` writes lane k back
+        // to its row where the mask says so, and no other row.
+        let mut table: Vec<[f64; 8]> = (0..20).map(|r| std::array::from_fn(|q| (10 * r + q) as f64 + 0.5)).collect();
+        let rows: [*const f64; 8] = std::array::from_fn(|k| table[idx[k]].as_ptr());
+        // SAFETY: as above; every row holds eight f64.
+        let q = unsafe { V::load_rows(&rows) };
+        for (c, lane) in q.iter().enumerate() {
+            for k in 0..V::N {
+                assert_eq!(lane.to_array().as_ref()[k], table[idx[k]][c], "row lane {k}, element {c}");
+            }
+        }
+        // Lanes 1, 3 and 4 (when there) stored with 1000 added, to rows 17, 0 and 19 (distinct).
+        let mask = if V::N == 8 { 0b0001_1010 } else { 0b1010 };
+        // SAFETY: as above.
+        let shifted: [V; 8] = std::array::from_fn(|c| unsafe { V::from_fn(|k| table[idx[k]][c] + 1000.0) });
+        let before = table.clone();
+        let rows: [*mut f64; 8] = std::array::from_fn(|k| table[idx[k]].as_mut_ptr());
+        // SAFETY: as above.
+        unsafe { V::store_rows(&rows, &shifted, mask) };
+        for (r, (now, was)) in table.iter().zip(&before).enumerate() {
+            let stored = (0..V::N).any(|k| mask & (1 << k) != 0 && idx[k] == r);
+            let want: [f64; 8] = std::array::from_fn(|c| was[c] + if stored { 1000.0 } else { 0.0 });
+            assert_eq!(*now, want, "row {r} after store_rows");
+        }
     }
 
     #[target_feature(enable = "avx2")]
@@ -636,7 +721,7 @@ mod tests {
     }
 
     #[test]
-    fn records_gather_and_shares_add_at_both_widths() {
+    fn records_gather_shares_add_and_rows_round_trip_at_both_widths() {
         if !std::arch::is_x86_feature_detected!("avx2") {
             eprintln!("no AVX2 on this CPU: the lanes are not run");
             return;
