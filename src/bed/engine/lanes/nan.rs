@@ -28,7 +28,11 @@ impl LaneLaw for Nan {
             // One row of eight per slot, transposed (`Simd::load_rows`), not eight fields gathered lane by
             // lane (64 scalar loads and their inserts per block on eight lanes): 1.05x on the bench bed
             // at eight lanes, 1.01x at four (issue 30's twenty-first round).
-            let rows: [*const f64; 8] = std::array::from_fn(|k| &h[at[k.min(V::N - 1)]].alpha_max as *const f64);
+            // Each pointer is taken from the whole history (its provenance covers the row's 64 bytes).
+            let rows: [*const f64; 8] = std::array::from_fn(|k| {
+                let slot: *const NanHistory = &h[at[k.min(V::N - 1)]];
+                std::ptr::addr_of!((*slot).alpha_max)
+            });
             let [value, p @ ..] = V::load_rows(&rows);
             History { established: V::mask_from_fn(|k| h[at[k]].established), value, points: p }
         }
@@ -37,7 +41,15 @@ impl LaneLaw for Nan {
     #[inline(always)]
     fn store_history<V: Simd>(h: &mut [NanHistory], at: &Slots, v: &History<V>, mask: u32) {
         let est = v.established.bits();
-        let rows: [*mut f64; 8] = std::array::from_fn(|k| if k < V::N && mask & (1 << k) != 0 { &mut h[at[k]].alpha_max as *mut f64 } else { std::ptr::null_mut() });
+        let rows: [*mut f64; 8] = std::array::from_fn(|k| {
+            if k < V::N && mask & (1 << k) != 0 {
+                let slot: *mut NanHistory = &mut h[at[k]];
+                // SAFETY: `slot` points to a live history; the field's address keeps its provenance.
+                unsafe { std::ptr::addr_of_mut!((*slot).alpha_max) }
+            } else {
+                std::ptr::null_mut()
+            }
+        });
         let [a, b, c, d, e, f, g] = v.points;
         // SAFETY: the lanes of `mask` point into their slots (checked above), eight consecutive f64 each.
         unsafe { V::store_rows(&rows, &[v.value, a, b, c, d, e, f, g], mask) };
