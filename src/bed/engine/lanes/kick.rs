@@ -9,7 +9,7 @@
 //! eleventh round).
 
 use super::record::Record;
-use super::simd::transpose;
+use super::simd::{load4x4, transpose};
 use crate::bed::engine::partition::Load;
 use crate::bed::engine::{Body, Kick, References};
 use crate::bed::Vec3;
@@ -30,14 +30,6 @@ unsafe fn load3(v: &[Vec3], q: usize) -> [__m256d; 3] {
         let u = _mm256_permute2f128_pd::<0x30>(b, c); // y1 z1 y3 z3
         [_mm256_shuffle_pd::<0b1010>(s, t), _mm256_shuffle_pd::<0b0101>(s, u), _mm256_shuffle_pd::<0b1010>(t, u)]
     }
-}
-
-/// Four rows of four f64 (the `Load` halves of four spheres) as four lanes: row k's element c in lane k
-/// of the c-th.
-#[inline(always)]
-unsafe fn load4x4(rows: [*const f64; 4]) -> [__m256d; 4] {
-    // SAFETY: AVX2 (the caller's); each pointer holds four f64 (the caller's).
-    unsafe { transpose(_mm256_loadu_pd(rows[0]), _mm256_loadu_pd(rows[1]), _mm256_loadu_pd(rows[2]), _mm256_loadu_pd(rows[3])) }
 }
 
 /// x, y and z lanes back to four consecutive 3-vectors from `v[q]` on: `load3` reversed, three stores

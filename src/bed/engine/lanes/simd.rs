@@ -138,6 +138,17 @@ pub unsafe fn transpose(a: __m256d, b: __m256d, c: __m256d, d: __m256d) -> [__m2
     }
 }
 
+/// Four rows of four f64 as four lanes: row k's element c in lane k of the c-th (the kick's `Load` halves,
+/// `F64x4::load_rows`).
+///
+/// # Safety
+/// AVX, and each pointer holds four readable f64.
+#[inline(always)]
+pub unsafe fn load4x4(rows: [*const f64; 4]) -> [__m256d; 4] {
+    // SAFETY: AVX and the rows (the caller's).
+    unsafe { transpose(_mm256_loadu_pd(rows[0]), _mm256_loadu_pd(rows[1]), _mm256_loadu_pd(rows[2]), _mm256_loadu_pd(rows[3])) }
+}
+
 /// Eight lanes of eight quantities to one row per lane: row k is [q[0][k], q[1][k], ..., q[7][k]].
 ///
 /// # Safety
@@ -395,9 +406,10 @@ impl Simd for F64x4 {
     unsafe fn load_rows(rows: &[*const f64; 8]) -> [F64x4; 8] {
         // SAFETY: AVX and the rows (the caller's).
         unsafe {
-            // No closures: one would not take the caller's instruction set and would call the loads.
-            let lo = transpose(_mm256_loadu_pd(rows[0]), _mm256_loadu_pd(rows[1]), _mm256_loadu_pd(rows[2]), _mm256_loadu_pd(rows[3]));
-            let hi = transpose(_mm256_loadu_pd(rows[0].add(4)), _mm256_loadu_pd(rows[1].add(4)), _mm256_loadu_pd(rows[2].add(4)), _mm256_loadu_pd(rows[3].add(4)));
+            // No closures around the loads: one would not take the caller's instruction set and would
+            // call them out of line.
+            let lo = load4x4([rows[0], rows[1], rows[2], rows[3]]);
+            let hi = load4x4([rows[0].add(4), rows[1].add(4), rows[2].add(4), rows[3].add(4)]);
             let f = F64x4;
             [f(lo[0]), f(lo[1]), f(lo[2]), f(lo[3]), f(hi[0]), f(hi[1]), f(hi[2]), f(hi[3])]
         }
@@ -572,15 +584,13 @@ impl Simd for F64x8 {
         // SAFETY: AVX-512 F and the indices (the caller's).
         unsafe {
             let p = |k: usize| spheres.records.get_unchecked(*idx.get_unchecked(k)).0.as_ptr();
-            let l = |k: usize| _mm512_loadu_pd(p(k));
-            let a = transpose8([l(0), l(1), l(2), l(3), l(4), l(5), l(6), l(7)]);
-            let r = |k: usize| _mm256_loadu_pd(p(k).add(8));
-            let lo = transpose(r(0), r(1), r(2), r(3));
-            let hi = transpose(r(4), r(5), r(6), r(7));
+            let a = F64x8::load_rows(&[p(0), p(1), p(2), p(3), p(4), p(5), p(6), p(7)]);
+            let lo = load4x4([p(0).add(8), p(1).add(8), p(2).add(8), p(3).add(8)]);
+            let hi = load4x4([p(4).add(8), p(5).add(8), p(6).add(8), p(7).add(8)]);
             let join = |c: usize| _mm512_insertf64x4::<1>(_mm512_castpd256_pd512(lo[c]), hi[c]);
             let f = F64x8;
             // a[7] is the record's pad.
-            [f(a[0]), f(a[1]), f(a[2]), f(a[3]), f(a[4]), f(a[5]), f(a[6]), f(join(0)), f(join(1)), f(join(2))]
+            [a[0], a[1], a[2], a[3], a[4], a[5], a[6], f(join(0)), f(join(1)), f(join(2))]
         }
     }
     #[inline(always)]
