@@ -1,0 +1,89 @@
+#!/usr/bin/env python3
+"""Window means of an indentation's hardness over depth, per run, and their mean over runs on several beds.
+
+Reads the CSVs `powderfmu bed indent --every DT --out F` writes (docs/data/ch5_quarter*.csv,
+docs/data/ch6_indentation) and prints, per file, the mean hardness F/(pi (2 r h - h^2)) of the rows while
+loading (state 0) in each window of h/r (both ends included), then the mean over the files with its
+standard error from their spread (the bed-to-bed scatter, n - 1 in the variance). The unit's own plateau
+(the log's `plateau hardness`) is read over its every-100-steps samples and differs from the rows' mean
+by a few percent; the docs quote both.
+
+LABEL=CSV@OFFSET re-reads a first-touch run from another depth origin: h - OFFSET [m], OFFSET being how far
+the origin lies below the first touch (`bed indent BED --depth-origin mean-surface` prints the bed's mean
+surface's as "... m below the first touch"); the windows are then taken in (h - OFFSET)/r and the area
+is A(h - OFFSET) (docs/indentation.md, "The depth origin").
+
+    python3 benches/indentation_windows.py seed1=docs/data/ch5_quarter45_13mm_edem_friction.csv \
+        seed2=docs/data/ch5_quarter45_13mm_edem_friction_seed2.csv
+"""
+
+import csv
+import math
+import sys
+
+WINDOWS = [(0.1, 0.2), (0.2, 0.35), (0.35, 0.4), (0.4, 0.45), (0.45, 0.5), (0.35, 0.5)]
+
+
+def window_means(path, offset=0.0):
+    """Mean hardness [Pa] of the loading rows in each of WINDOWS; NaN where a window has no row."""
+    with open(path, newline="") as f:
+        raw = [r for r in csv.DictReader(f) if r["state"] == "0"]
+    if not raw:
+        sys.exit(f"{path}: no loading rows (state 0); is it a `bed indent --out` CSV?")
+    # The indenter's radius from the deepest row: depth_over_r is rounded to 5 digits, depth_m is not.
+    last = max(raw, key=lambda r: float(r["depth_m"]))
+    radius = float(last["depth_m"]) / float(last["depth_over_r"])
+    radius = round(radius, 4)  # the indenters are whole tenths of a millimetre in radius
+    rows = []
+    for r in raw:
+        if offset == 0.0:  # the CSV's own columns, as the docs' tables read them
+            rows.append((float(r["depth_over_r"]), float(r["hardness_Pa"])))
+            continue
+        h = float(r["depth_m"]) - offset
+        if h <= 0.0:
+            continue
+        area = math.pi * (2.0 * radius * h - h * h)
+        rows.append((h / radius, float(r["force_N"]) / area))
+    out = []
+    for lo, hi in WINDOWS:
+        v = [h for x, h in rows if lo <= x <= hi]
+        out.append(sum(v) / len(v) if v else math.nan)
+    return out
+
+
+def mean_and_standard_error(values):
+    n = len(values)
+    m = sum(values) / n
+    if n < 2:
+        return m, math.nan
+    var = sum((v - m) ** 2 for v in values) / (n - 1)
+    return m, math.sqrt(var / n)
+
+
+def main(args):
+    if not args or any("=" not in a for a in args):
+        sys.exit("usage: indentation_windows.py LABEL=CSV[@OFFSET_M] [LABEL=CSV[@OFFSET_M] ...]")
+    labels, table = [], []
+    for a in args:
+        label, path = a.split("=", 1)
+        offset = 0.0
+        if "@" in path:
+            path, off = path.rsplit("@", 1)
+            offset = float(off)
+        labels.append(label)
+        table.append(window_means(path, offset))
+    head = " | ".join(f"{lo}-{hi}" for lo, hi in WINDOWS)
+    print(f"| bed | {head} |")
+    print("|---" + "|---:" * len(WINDOWS) + "|")
+    for label, row in zip(labels, table):
+        print(f"| {label} [Pa] | " + " | ".join(f"{v:.0f}" for v in row) + " |")
+    if len(table) > 1:
+        cells = []
+        for j in range(len(WINDOWS)):
+            m, se = mean_and_standard_error([row[j] for row in table])
+            cells.append(f"{m:.0f} +- {se:.0f}")
+        print(f"| mean of {len(table)} +- standard error [Pa] | " + " | ".join(cells) + " |")
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])
