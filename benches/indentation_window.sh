@@ -4,8 +4,7 @@
 # (max penetration 4 mm) on the three quarter beds the FMU ships, at the default's speed (gamma* 0.02),
 # the seed's (0.01) and faster (0.04, 0.08), and on the shipped whole bed at the seed's speed; every
 # sphere moving, 2.5e-7 s steps, the unit's own plateau over 0.35-0.5 in each log; about 75 minutes on
-# two cores. A run whose log holds a result is not run
-# again, so the study can be stopped and resumed.
+# two cores. A run whose log holds a result is not run again, so the study can be stopped and resumed.
 #
 #   bash benches/indentation_window.sh OUT_DIR [BIN]
 #   then: python3 benches/indentation_windows.py q1=OUT_DIR/quarter1_g0.02.csv ...

@@ -17,47 +17,37 @@ is A(h - OFFSET) (docs/indentation.md, "The depth origin").
         seed2=docs/data/ch5_quarter45_13mm_edem_friction_seed2.csv
 """
 
-import csv
 import math
+import statistics
 import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from indentation_rate import load, summary  # noqa: E402  (the window mean of every indentation bench)
 
 WINDOWS = [(0.1, 0.2), (0.2, 0.35), (0.35, 0.4), (0.4, 0.45), (0.45, 0.5), (0.35, 0.5)]
 
 
-def window_means(path, offset=0.0):
-    """Mean hardness [Pa] of the loading rows in each of WINDOWS; NaN where a window has no row."""
-    with open(path, newline="") as f:
-        raw = [r for r in csv.DictReader(f) if r["state"] == "0"]
-    if not raw:
-        sys.exit(f"{path}: no loading rows (state 0); is it a `bed indent --out` CSV?")
-    # The indenter's radius from the deepest row: depth_over_r is rounded to 5 digits, depth_m is not.
-    last = max(raw, key=lambda r: float(r["depth_m"]))
-    radius = float(last["depth_m"]) / float(last["depth_over_r"])
-    radius = round(radius, 4)  # the indenters are whole tenths of a millimetre in radius
-    rows = []
-    for r in raw:
-        if offset == 0.0:  # the CSV's own columns, as the docs' tables read them
-            rows.append((float(r["depth_over_r"]), float(r["hardness_Pa"])))
-            continue
-        h = float(r["depth_m"]) - offset
-        if h <= 0.0:
-            continue
-        area = math.pi * (2.0 * radius * h - h * h)
-        rows.append((h / radius, float(r["force_N"]) / area))
+def from_origin(rows, offset):
+    """The same rows read from an origin `offset` [m] below the first touch: depth, h/r and F/A(h)."""
+    last = max(rows, key=lambda r: r["depth_m"])
+    radius = round(last["depth_m"] / last["depth_over_r"], 4)  # depth_over_r is rounded; radii are whole 0.1 mm
     out = []
-    for lo, hi in WINDOWS:
-        v = [h for x, h in rows if lo <= x <= hi]
-        out.append(sum(v) / len(v) if v else math.nan)
+    for r in rows:
+        h = r["depth_m"] - offset
+        if h > 0.0:
+            out.append({**r, "depth_over_r": h / radius, "hardness_Pa": r["force_N"] / (math.pi * (2.0 * radius * h - h * h))})
     return out
 
 
-def mean_and_standard_error(values):
-    n = len(values)
-    m = sum(values) / n
-    if n < 2:
-        return m, math.nan
-    var = sum((v - m) ** 2 for v in values) / (n - 1)
-    return m, math.sqrt(var / n)
+def window_means(path, offset=0.0):
+    """Mean hardness [Pa] of the loading rows in each of WINDOWS; NaN where a window has no row."""
+    rows = load(path)
+    if not any(r["state"] == 0 for r in rows):
+        sys.exit(f"{path}: no loading rows (state 0); is it a `bed indent --out` CSV?")
+    if offset != 0.0:
+        rows = from_origin(rows, offset)
+    return [summary(rows, window)["plateau"] for window in WINDOWS]
 
 
 def main(args):
@@ -80,8 +70,9 @@ def main(args):
     if len(table) > 1:
         cells = []
         for j in range(len(WINDOWS)):
-            m, se = mean_and_standard_error([row[j] for row in table])
-            cells.append(f"{m:.0f} +- {se:.0f}")
+            column = [row[j] for row in table]
+            se = statistics.stdev(column) / math.sqrt(len(column))
+            cells.append(f"{statistics.fmean(column):.0f} +- {se:.0f}")
         print(f"| mean of {len(table)} +- standard error [Pa] | " + " | ".join(cells) + " |")
 
 
