@@ -13,17 +13,28 @@ if ! command -v cargo >/dev/null 2>&1; then
     echo "run_all.sh: cargo is not on PATH; install a Rust toolchain (https://rustup.rs) and rerun" >&2
     exit 1
 fi
-echo "== Python environment (.venv, pinned requirements.txt)"
+# Each phase's wall time is printed at the end: CI's budget is 20 minutes on two cores.
+phases=()
+phase_start=$SECONDS
+phase_name=""
+phase() {
+    [ -n "$phase_name" ] && phases+=("$(printf '%5d s  %s' $((SECONDS - phase_start)) "$phase_name")")
+    phase_name=$1
+    phase_start=$SECONDS
+    [ -n "$1" ] && echo "== $1"
+    return 0
+}
+phase "Python environment (.venv, pinned requirements.txt)"
 python=$(bash tools/venv.sh)
 fmu_flags=()
 if [ "${POWDERFMU_SKIP_WINDOWS:-0}" = 1 ]; then
     echo "== Windows: skipped (POWDERFMU_SKIP_WINDOWS=1): the FMUs get linux64 binaries only"
     fmu_flags=(--linux-only)
 else
-    echo "== Windows toolchain (Rust target, mingw-w64, wine)"
+    phase "Windows toolchain (Rust target, mingw-w64, wine)"
     bash tools/windows_toolchain.sh
 fi
-echo "== Peer DEM codes (LAMMPS, Yade: the peer tests of the fmpy suite)"
+phase "Peer DEM codes (LAMMPS, Yade: the peer tests of the fmpy suite)"
 bash tools/peers.sh || echo "run_all.sh: the peer codes could not be installed; their tests skip" >&2
 headers=$("$python" -c 'import fmpy, os; print(os.path.join(os.path.dirname(fmpy.__file__), "c-code"))')
 
@@ -32,27 +43,30 @@ pylog=$(mktemp)
 trap 'rm -f "$log" "$pylog"' EXIT
 status=0
 
-echo "== Rust tests (workspace: powderfmu, fmu_build)"
+phase "Rust tests (workspace: powderfmu, fmu_build; debug build included)"
 FMI2_HEADERS="$headers" FMI3_HEADERS="$headers" cargo test --workspace --locked 2>&1 | tee "$log" || status=$?
 rust_passed=$(awk '/^test result:/ {s += $4} END {print s + 0}' "$log")
 rust_failed=$(awk '/^test result:/ {s += $6} END {print s + 0}' "$log")
 
-echo "== Lints (cargo clippy, warnings are errors)"
+phase "Lints (cargo clippy, warnings are errors)"
 if cargo clippy --version >/dev/null 2>&1; then
     cargo clippy --workspace --all-targets --locked --quiet -- -D warnings || status=1
 else
     echo "run_all.sh: cargo clippy is not installed (rustup component add clippy); lints skipped" >&2
 fi
 
-echo "== Building the FMUs (target/fmu)"
+phase "Building the FMUs (target/fmu)"
 cargo run --locked --quiet -p fmu_build -- "${fmu_flags[@]}" || status=$?
 
-echo "== fmpy suite (tests/python) and the Python package's own tests (python/tests)"
+phase "fmpy suite (tests/python) and the Python package's own tests (python/tests)"
 POWDERFMU_FMU_DIR="$PWD/target/fmu" POWDERFMU_CLI="$PWD/target/debug/powderfmu" \
-    "$python" -m pytest tests/python python/tests -q -rs -p no:cacheprovider --durations=12 2>&1 | tee "$pylog" || status=$?
+    "$python" -m pytest tests/python python/tests -q -rs -p no:cacheprovider --durations=30 2>&1 | tee "$pylog" || status=$?
 py_passed=$( (grep -Eo '[0-9]+ passed' "$pylog" || true) | tail -1 | grep -Eo '[0-9]+' || true)
 py_failed=$( (grep -Eo '[0-9]+ (failed|error)' "$pylog" || true) | awk '{s += $1} END {print s + 0}')
 
+phase ""
 echo
+echo "wall time by phase (total ${SECONDS} s):"
+printf '%s\n' "${phases[@]}"
 echo "rust: ${rust_passed} passed, ${rust_failed} failed; fmpy: ${py_passed:-0} passed, ${py_failed} failed"
 exit "$status"
