@@ -150,7 +150,7 @@ fn momentum_is_conserved_to_round_off_without_walls() {
     let mut contacts = 0;
     for _ in 0..2000 {
         e.step();
-        contacts += with_engine!(&e, x => x.contact_statistics().0);
+        contacts += e.contact_statistics().0;
     }
     assert!(contacts > 1000, "the cloud must collide ({contacts} contact-steps)");
     let p1 = e.particles().momentum();
@@ -367,7 +367,7 @@ fn contact_memory_survives_list_rebuilds_and_bed_files() {
     let (mut every, _) = file::load(&path, None).unwrap();
     for _ in 0..300 {
         again.step();
-        with_engine!(&mut every, x => x.rebuild());
+        every.rebuild();
         every.step();
     }
     let d = scene.size_distribution.mean_diameter();
@@ -601,10 +601,10 @@ fn a_colliding_cloud_steps_to_the_same_bits_with_every_instruction_set_this_cpu_
     // through the command-line tool on the shipped bed, for every law).
     let digest = |isa: Isa| {
         let mut e = cloud(vec![]);
-        with_engine!(&mut e, x => x.set_isa(isa)).unwrap();
-        assert_eq!(with_engine!(&e, x => x.isa()), isa);
+        e.set_isa(isa).unwrap();
+        assert_eq!(e.isa(), isa);
         e.run(1500);
-        with_engine!(&e, x => x.state_digest())
+        e.state_digest()
     };
     let baseline = digest(Isa::Baseline);
     for isa in [Isa::Avx2, Isa::Avx512] {
@@ -613,7 +613,7 @@ fn a_colliding_cloud_steps_to_the_same_bits_with_every_instruction_set_this_cpu_
         } else {
             // Not this CPU's: refused by name, and the engine keeps running the baseline.
             let mut e = cloud(vec![]);
-            let refused = with_engine!(&mut e, x => x.set_isa(isa)).unwrap_err();
+            let refused = e.set_isa(isa).unwrap_err();
             assert!(refused.contains(isa.name()), "{refused}");
         }
     }
@@ -689,7 +689,8 @@ fn a_pair_forgets_at_the_forgetting_distance_not_at_the_skin() {
         })
     };
     place(&mut e, 5e-5);
-    with_engine!(&mut e, x => { x.rebuild(); x.compute_forces() });
+    e.rebuild();
+    e.compute_forces();
     // (The law broke the contact, `established` false; its plastic memory alpha_max stays.)
     let alpha_max = |h: &str| h[h.find("alpha_max").expect("Pasha's history has alpha_max")..].to_string();
     let (apart, _) = history(&e).expect("beyond the skin, within the forgetting distance, the pair stays listed");
@@ -697,9 +698,9 @@ fn a_pair_forgets_at_the_forgetting_distance_not_at_the_skin() {
     assert_ne!(alpha_max(&apart), alpha_max(&initial));
     // Beyond the forgetting distance: forgotten at the force loop, dropped by the next rebuild.
     place(&mut e, 1.5e-4);
-    with_engine!(&mut e, x => x.compute_forces());
+    e.compute_forces();
     assert_eq!(history(&e), Some((initial.clone(), initial.clone())), "beyond the forgetting distance the pair forgets");
-    with_engine!(&mut e, x => x.rebuild());
+    e.rebuild();
     assert_eq!(history(&e), None, "a pair that forgot and is beyond the skin leaves the list");
     // A wall contact alike: a sphere pressed on a floor, lifted beyond the skin but within the forgetting
     // distance, keeps its contact with its memory at a rebuild; lifted beyond it, forgets and is dropped.
@@ -720,11 +721,13 @@ fn a_pair_forgets_at_the_forgetting_distance_not_at_the_skin() {
         })
     };
     lift(&mut w, 5e-5);
-    with_engine!(&mut w, x => { x.rebuild(); x.compute_forces() });
+    w.rebuild();
+    w.compute_forces();
     let apart = wall_history(&w).expect("beyond the skin, within the forgetting distance, the wall contact stays listed");
     assert_eq!(alpha_max(&apart), alpha_max(&on_floor));
     lift(&mut w, 1.5e-4);
-    with_engine!(&mut w, x => { x.compute_forces(); x.rebuild() });
+    w.compute_forces();
+    w.rebuild();
     assert_eq!(wall_history(&w), None, "beyond the forgetting distance the wall contact forgets and leaves the list");
     // A forgetting distance within the necks' reach is refused by name.
     let reach = with_engine!(&e, x => x.reach());

@@ -1,11 +1,12 @@
 //! The engine for the law a scene names: one `Engine<L>` per law, so every force loop is compiled for
 //! its law with no dispatch inside it. `with_engine!` runs one expression on whichever is inside.
 
-use super::engine::Engine;
+use super::engine::{Engine, Isa};
 use super::interaction::{BedLaw, ContactTemplate, Interaction};
 use super::particles::Particles;
 use super::scene::BedScene;
 use super::walls::Wall;
+use super::Tensor;
 use super::Vec3;
 use crate::error::ParamError;
 use crate::scene::ModelKind;
@@ -343,8 +344,16 @@ impl AnyEngine {
     }
 
     /// See `Engine::run_while`.
-    pub fn run_while(&mut self, steps: u64, go_on: impl FnMut(&[Wall], f64) -> bool + Send) -> u64 {
-        with_engine!(self, e => e.run_while(steps, go_on))
+    pub fn run_while(&mut self, steps: u64, mut go_on: impl FnMut(&[Wall], f64) -> bool + Send) -> u64 {
+        self.run_while_dyn(steps, &mut go_on)
+    }
+
+    /// `run_while` behind one function pointer per step, so that the engine's step loop is compiled once
+    /// per law here and not again in every crate that passes its own closure: with the closure generic,
+    /// tests/compression.rs and tests/bed.rs each compiled the whole engine for every law (56 and 61 s of
+    /// the suite's build).
+    fn run_while_dyn(&mut self, steps: u64, go_on: &mut (dyn FnMut(&[Wall], f64) -> bool + Send)) -> u64 {
+        with_engine!(self, e => e.run_while(steps, &mut *go_on))
     }
 
     /// See `Engine::hold`.
@@ -380,6 +389,28 @@ impl AnyEngine {
     /// Rebuilds the neighbour and wall contact lists now, keeping every contact's memory in range.
     pub fn rebuild(&mut self) {
         with_engine!(self, e => e.rebuild())
+    }
+
+    /// Each sphere's stress dipole for the current state, which it leaves unchanged (see
+    /// `Engine::measure_dipoles`).
+    pub fn measure_dipoles(&mut self) -> Vec<Tensor> {
+        with_engine!(self, e => e.measure_dipoles())
+    }
+
+    /// One pass of the force loop, without a step (see `Engine::compute_forces`).
+    pub fn compute_forces(&mut self) {
+        with_engine!(self, e => e.compute_forces())
+    }
+
+    /// The instruction set the force loop and the kick run with.
+    pub fn isa(&self) -> Isa {
+        with_engine!(self, e => e.isa())
+    }
+
+    /// Runs the hot loops with another instruction set (see `Engine::set_isa`); refused by name where this
+    /// CPU lacks it.
+    pub fn set_isa(&mut self, isa: Isa) -> Result<(), String> {
+        with_engine!(self, e => e.set_isa(isa))
     }
 
     /// Time step [s].

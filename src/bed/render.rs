@@ -39,7 +39,7 @@ pub fn cross_section(engine: &mut AnyEngine, die_diameter: f64, width: u32) -> R
         let p = engine.particles();
         (p.position.clone(), p.radius.clone(), engine.walls().to_vec())
     };
-    let dipoles = with_engine!(engine, e => e.measure_dipoles());
+    let dipoles = engine.measure_dipoles();
     let top = centres.iter().zip(&radii).map(|(x, r)| x[2] + r).fold(0.0, f64::max);
     let margin = 0.05 * die_diameter;
     let (x0, x1) = (-0.5 * die_diameter - margin, 0.5 * die_diameter + margin);
