@@ -6,7 +6,9 @@
 # matplotlib, pytest) and the Windows toolchain of the win64 binaries and their test under wine (the Rust
 # target x86_64-pc-windows-gnu, Debian's gcc-mingw-w64-x86-64 and wine; tools/windows_toolchain.sh) and
 # the peer DEM codes the peer tests compare with (Debian's lammps and yade; tools/peers.sh).
-# POWDERFMU_SKIP_WINDOWS=1 builds linux64 only and skips the wine tests. Ends with one line of totals.
+# POWDERFMU_SKIP_WINDOWS=1 builds linux64 only and skips the wine tests. The fmpy suite runs on
+# POWDERFMU_TEST_WORKERS pytest-xdist workers (default 2, CI's cores), each test file on one worker, so a
+# module's fixtures are built once. Ends with each phase's wall time and one line of totals.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 if ! command -v cargo >/dev/null 2>&1; then
@@ -60,7 +62,8 @@ cargo run --locked --quiet -p fmu_build -- "${fmu_flags[@]}" || status=$?
 
 phase "fmpy suite (tests/python) and the Python package's own tests (python/tests)"
 POWDERFMU_FMU_DIR="$PWD/target/fmu" POWDERFMU_CLI="$PWD/target/debug/powderfmu" \
-    "$python" -m pytest tests/python python/tests -q -rs -p no:cacheprovider --durations=30 2>&1 | tee "$pylog" || status=$?
+    "$python" -m pytest tests/python python/tests -q -rs -p no:cacheprovider --durations=30 \
+    -n "${POWDERFMU_TEST_WORKERS:-2}" --dist loadfile 2>&1 | tee "$pylog" || status=$?
 py_passed=$( (grep -Eo '[0-9]+ passed' "$pylog" || true) | tail -1 | grep -Eo '[0-9]+' || true)
 py_failed=$( (grep -Eo '[0-9]+ (failed|error)' "$pylog" || true) | awk '{s += $1} END {print s + 0}')
 
