@@ -58,19 +58,13 @@ else
 fi
 
 phase "Building the FMUs (target/fmu)"
-# The packaging tool as the Rust tests built it: `cargo run -p fmu_build` resolves the dependencies'
-# features without the dev-dependencies and compiled the library again (92 s of CI's packaging phase).
-fmu_build=$(FMI2_HEADERS="$headers" FMI3_HEADERS="$headers" cargo test --workspace --locked --no-run --message-format=json 2>/dev/null |
-    "$python" -c 'import json, sys
-for line in sys.stdin:
-    m = json.loads(line)
-    t = m.get("target", {})
-    if m.get("reason") == "compiler-artifact" and t.get("name") == "fmu_build" and "bin" in t.get("kind", []) and not m["profile"]["test"]:
-        print(m["executable"])' | head -1 || true)
-if [ ! -x "${fmu_build:-}" ]; then
-    echo "run_all.sh: the Rust tests left no fmu_build binary; building it with cargo run" >&2
+# The packaging tool as the Rust tests built it (cargo puts their binaries in target/debug): `cargo run -p
+# fmu_build` resolves the dependencies' features without the dev-dependencies and compiled the library
+# again (92 s of CI's packaging phase).
+fmu_build=$PWD/target/debug/fmu_build
+if [ ! -x "$fmu_build" ]; then
+    echo "run_all.sh: the Rust tests left no $fmu_build; building it" >&2
     cargo build --locked --quiet -p fmu_build
-    fmu_build=$PWD/target/debug/fmu_build
 fi
 export POWDERFMU_FMU_BUILD=$fmu_build
 "$fmu_build" "${fmu_flags[@]}" || status=$?
