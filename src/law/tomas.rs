@@ -98,8 +98,31 @@ impl Tomas {
         brent(g, 0.0, alpha_max, 0.0).unwrap_or(0.0)
     }
 
-    fn after_plastic(&self, alpha: f64) -> TomasHistory {
-        let h_min = self.h_min(alpha);
+    /// `h_min` by Newton's method from a nearby root `guess` (the contact's h_min a step earlier). The
+    /// function is convex and decreasing in h: from the left Newton climbs to the root without passing it,
+    /// from the right its first step lands left of it. Brent's method from scratch was 64 % of this law's
+    /// bed time (perf, quarter bed, one thread); it stays the fallback without a usable guess.
+    pub fn h_min_near(&self, alpha_max: f64, guess: f64) -> f64 {
+        let mut h = guess;
+        for _ in 0..8 {
+            if !(h > 0.0 && h < alpha_max) {
+                break;
+            }
+            let d = alpha_max - h;
+            let root = d.sqrt();
+            let step = (self.c * d * root - self.k_a * h - self.k1 * alpha_max) / (-1.5 * self.c * root - self.k_a);
+            h -= step;
+            // Quadratic convergence: the error after a step is about step^2 / (4 (alpha_max - h)), below
+            // rounding once the step is below 1e-8 of both h and alpha_max - h.
+            if step.abs() <= 1e-8 * h.min(alpha_max - h) {
+                return h;
+            }
+        }
+        self.h_min(alpha_max)
+    }
+
+    fn after_plastic(&self, alpha: f64, from: &TomasHistory) -> TomasHistory {
+        let h_min = if from.yielded { self.h_min_near(alpha, from.h_min) } else { self.h_min(alpha) };
         TomasHistory {
             yielded: true,
             alpha_max: alpha,
@@ -174,7 +197,7 @@ impl NormalLaw for Tomas {
                 branch: Branch::Plastic,
                 lower: alpha,
                 upper: f64::INFINITY,
-                history: self.after_plastic(alpha),
+                history: self.after_plastic(alpha, h),
             };
         }
         if alpha < h.h_min {
@@ -278,5 +301,26 @@ impl LawInfo for Tomas {
         };
         let f0 = own.tomas_contact_adhesion_force.unwrap_or(2.0 * PI * pair.surface_energy * pair.radius);
         Ok(Tomas::new(pair.radius, pair.youngs_modulus, p_f, own.tomas_area_coefficient, own.tomas_repulsion_coefficient, f0, own.tomas_separation))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn newtons_h_min_from_a_nearby_root_is_brents() {
+        // A fine-powder pair (not a seed table's): R* 1 um, E* 50 GPa, p_f 300 MPa, kappa_A 0.9, kappa_p 0.1,
+        // F_H0 10 nN, a_F 0.4 nm.
+        let law = Tomas::new(1e-6, 50e9, 300e6, 0.9, 0.1, 1e-8, 4e-10);
+        for alpha_max in [2.0, 5.0, 50.0, 2000.0].map(|x| x * law.alpha_y) {
+            let brent = law.h_min(alpha_max);
+            for guess in [brent * (1.0 - 1e-4), brent * (1.0 + 1e-4), 0.5 * brent, 0.9 * alpha_max] {
+                let newton = law.h_min_near(alpha_max, guess);
+                assert!((newton / brent - 1.0).abs() < 1e-13, "alpha_max {alpha_max:e}, from {guess:e}: {newton:e} vs {brent:e}");
+            }
+            // No usable guess: Brent's method.
+            assert_eq!(law.h_min_near(alpha_max, 0.0), brent);
+        }
     }
 }
