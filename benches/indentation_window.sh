@@ -9,6 +9,10 @@
 #   bash benches/indentation_window.sh OUT_DIR [BIN]
 #   then: python3 benches/indentation_windows.py q1=OUT_DIR/quarter1_g0.02.csv ...
 #
+# POWDERFMU_WHOLE_BEDS="BED2 BED3" adds the other whole beds of the reference of record at the seed's speed
+# (whole2_g0.01, whole3_g0.01; about 30 minutes each). They are not shipped: `powderfmu bed prepare` of
+# scenes/bed_004_ch6.json with "seed": 2 and 3 (about 2 hours each on two cores; docs/indentation.md).
+#
 # speed = gamma* x 1.786 m/s: gamma* = (v / H) (d / g)^(1/2) with H = 18.0 mm and d = 1 mm (004 Eq. 5.4);
 # 0.035726 m/s is the FMU's default indentation_speed.
 set -euo pipefail
@@ -28,6 +32,11 @@ run() { # name bed speed
 Q=(beds/bed_004_ch6_quarter.pfbed beds/bed_004_ch6_quarter_seed2.pfbed beds/bed_004_ch6_quarter_seed3.pfbed)
 for i in 1 2 3; do run "quarter${i}_g0.02" "${Q[$((i - 1))]}" 0.035726; done
 run whole1_g0.01 beds/bed_004_ch6.pfbed 0.01786
+i=1
+for bed in ${POWDERFMU_WHOLE_BEDS:-}; do
+    i=$((i + 1))
+    run "whole${i}_g0.01" "$bed" 0.01786
+done
 for i in 1 2 3; do run "quarter${i}_g0.01" "${Q[$((i - 1))]}" 0.01786; done
 for g in 0.04 0.08; do
     for i in 1 2 3; do run "quarter${i}_g$g" "${Q[$((i - 1))]}" "$(python3 -c "print(f'{$g * 1.786:.5g}')")"; done
