@@ -100,17 +100,20 @@ impl ThorntonNing {
     /// The unloading curve after plastic loading to alpha_max: (R_p, alpha_p) of Eq. 3.58.
     pub fn unloading_curve(&self, alpha_max: f64) -> (f64, f64) {
         let (f_max, _, a_max) = self.plastic_at(alpha_max);
-        let (flat, alpha_p) = self.flattened(alpha_max, f_max, a_max, &self.curve);
+        let (flat, alpha_p) = self.flattened(alpha_max, f_max, a_max, None);
         (flat.radius, alpha_p)
     }
 
     /// The JKR curve of R_p and its shift alpha_p for a peak (alpha_max, F_max) at contact radius a_max;
     /// `near`, the contact's unloading curve before this step, starts the cube root of R_p.
-    fn flattened(&self, alpha_max: f64, f_max: f64, a_max: f64, near: &JkrCurve) -> (JkrCurve, f64) {
+    fn flattened(&self, alpha_max: f64, f_max: f64, a_max: f64, near: Option<&JkrCurve>) -> (JkrCurve, f64) {
         let (r, e) = (self.curve.radius, self.curve.youngs_modulus);
         let f_star = 4.0 * e * a_max.powi(3) / (3.0 * r);
         let r_p = r * f_star / (f_max + (4.0 * self.curve.pull_off_force() * f_star).sqrt());
-        let flat = self.curve.with_radius_near(r_p, near);
+        let flat = match near {
+            Some(near) => self.curve.with_radius_near(r_p, near),
+            None => self.curve.with_radius(r_p),
+        };
         (flat, alpha_max - flat.overlap(a_max))
     }
 
@@ -118,7 +121,7 @@ impl ThorntonNing {
     /// at `alpha`.
     fn plastic_loading(&self, alpha: f64, a: f64, h: &TnHistory) -> Evaluation<TnHistory> {
         let (force, stiffness, a) = self.plastic_at_radius(alpha, a);
-        let (flat, alpha_p) = self.flattened(alpha, force, a, &h.flat);
+        let (flat, alpha_p) = self.flattened(alpha, force, a, Some(&h.flat));
         Evaluation {
             force,
             stiffness,
