@@ -1,12 +1,13 @@
 #!/usr/bin/env python3
 """The figure of docs/indentation.md's "The seed's window on the seed's bed": the hardness F/A(h) against
-h/r on the three shipped quarter beds and the whole bed, and the two windows' means against gamma*.
+h/r on the three shipped quarter beds and the whole beds, and the two windows' means against gamma*.
 
 Reads the runs `benches/indentation_window.sh` wrote (docs/data/ch6_indentation/window/<bed>_g<gamma*>.csv)
 and writes docs/figures/indentation_window.png. Left: F/A(h) of the loading rows, averaged in bins of 0.01
-h/r, for the quarter beds at gamma* 0.01 and 0.04 and the whole bed at 0.01, with the unit's window
-(0.1-0.2) and the seed's (0.35-0.5) shaded. Right: each window's mean over the three quarter beds against
-gamma*, the bars their bed-to-bed standard deviation (n - 1), the whole bed's reading beside them.
+h/r, for the quarter beds at gamma* 0.01 and 0.04 and the whole beds at 0.01 (whole<N>_g0.01.csv, as
+many as there are), with the unit's window (0.1-0.2) and the seed's (0.35-0.5) shaded. Right: each
+window's mean over the three quarter beds against gamma*, the bars their bed-to-bed standard deviation
+(n - 1), each whole bed's reading beside them.
 
     .venv/bin/python benches/plot_indentation_window.py [DIR] [OUT.png]
 """
@@ -50,9 +51,10 @@ def main(folder, out):
         for k, q in enumerate(quarters):
             x, y = binned(runs[f"{q}_g{gamma}"])
             ax.plot(x, y, color=colour, lw=0.9, alpha=0.8, label=f"quarter beds, gamma* {gamma}" if k == 0 else None)
-    if "whole1_g0.01" in runs:
-        x, y = binned(runs["whole1_g0.01"])
-        ax.plot(x, y, color="black", lw=1.4, label="whole bed 1, gamma* 0.01")
+    wholes = sorted(name for name in runs if name.startswith("whole") and name.endswith("_g0.01"))
+    for k, name in enumerate(wholes):
+        x, y = binned(runs[name])
+        ax.plot(x, y, color="black", lw=1.4, ls=["-", "--", ":"][k % 3], label=f"whole bed {name[5:-6]}, gamma* 0.01")
     ax.set_xlabel("h / r [-] (depth from the first touch)")
     ax.set_ylabel("F / A(h) [kPa] (mean over bins of 0.01 h/r)")
     ax.set_xlim(0.0, 0.5)
@@ -69,9 +71,10 @@ def main(folder, out):
             means.append(statistics.fmean(column))
             sds.append(statistics.stdev(column))
         bx.errorbar(x, means, yerr=sds, marker=marker, capsize=4, label=f"{label}: {len(quarters)} quarter beds, mean +- SD")
-        if "whole1_g0.01" in runs:
-            bx.plot([0.01], [summary(runs["whole1_g0.01"], window)["plateau"] / 1e3], marker=marker, color="black", ls="none",
-                    mfc="none", ms=9, label=f"{label.split(',')[0]}: whole bed 1")
+        if wholes:
+            readings = [summary(runs[name], window)["plateau"] / 1e3 for name in wholes]
+            bx.plot([0.01] * len(readings), readings, marker=marker, color="black", ls="none", mfc="none", ms=9,
+                    label=f"{label.split(',')[0]}: whole beds {', '.join(name[5:-6] for name in wholes)}")
     bx.set_xscale("log")
     bx.set_xticks(x, GAMMAS)
     bx.minorticks_off()
