@@ -63,7 +63,13 @@ impl JkrCurve {
         let b = (2.0 * PI * surface_energy / youngs_modulus).sqrt();
         let w_detach = cbrt(b * radius / 4.0);
         let a_pull_off = cbrt(9.0 * PI * surface_energy * radius * radius / (8.0 * youngs_modulus));
-        let mut c = JkrCurve { radius, youngs_modulus, surface_energy, b, w_detach, alpha_detach: 0.0, a_pull_off, alpha_pull_off: 0.0 };
+        let c = JkrCurve { radius, youngs_modulus, surface_energy, b, w_detach: 0.0, alpha_detach: 0.0, a_pull_off: 0.0, alpha_pull_off: 0.0 };
+        c.with_points(w_detach, a_pull_off)
+    }
+
+    /// This curve with its detachment point (sqrt(a) = w_detach) and pull-off radius, and their overlaps.
+    fn with_points(self, w_detach: f64, a_pull_off: f64) -> JkrCurve {
+        let mut c = JkrCurve { w_detach, a_pull_off, ..self };
         c.alpha_detach = c.overlap(w_detach * w_detach);
         c.alpha_pull_off = c.overlap(a_pull_off);
         c
@@ -71,7 +77,7 @@ impl JkrCurve {
 
     /// The curve of another radius of curvature with the same E* and Gamma (Thornton-Ning's flattened
     /// radius R_p, built at every step of plastic loading). The detachment and pull-off radii scale as
-    /// R^(1/3) and R^(2/3): one cube root instead of `new`'s two (it cut that law's bed time by 10 %).
+    /// R^(1/3) and R^(2/3): one cube root instead of `new`'s two.
     pub fn with_radius(&self, radius: f64) -> JkrCurve {
         self.scaled(radius, cbrt(radius / self.radius))
     }
@@ -98,11 +104,7 @@ impl JkrCurve {
 
     /// The curve of radius `radius` = s^3 R with the same E* and Gamma.
     fn scaled(&self, radius: f64, s: f64) -> JkrCurve {
-        let (w_detach, a_pull_off) = (self.w_detach * s, self.a_pull_off * s * s);
-        let mut c = JkrCurve { radius, w_detach, a_pull_off, alpha_detach: 0.0, alpha_pull_off: 0.0, ..*self };
-        c.alpha_detach = c.overlap(w_detach * w_detach);
-        c.alpha_pull_off = c.overlap(a_pull_off);
-        c
+        JkrCurve { radius, ..*self }.with_points(self.w_detach * s, self.a_pull_off * s * s)
     }
 
     /// Overlap at contact radius a (000 Eq. B3).
@@ -334,12 +336,8 @@ impl Jkr {
     }
 }
 
-/// Force on the JKR curve at an overlap, split at the pull-off point into elastic and adhesive branches.
-pub(crate) fn on_curve<H>(curve: &JkrCurve, offset: f64, alpha: f64, history: H) -> Evaluation<H> {
-    on_curve_at(curve, offset, curve.contact_radius(alpha - offset), history)
-}
-
-/// `on_curve` with the contact radius `a` of `alpha` already solved.
+/// Force on the JKR curve shifted by `offset` at the overlap whose contact radius is `a` (solved by the
+/// caller), split at the pull-off point into elastic and adhesive branches.
 pub(crate) fn on_curve_at<H>(curve: &JkrCurve, offset: f64, a: f64, history: H) -> Evaluation<H> {
     let a_c = curve.pull_off_radius();
     let alpha_c = offset + curve.pull_off_overlap();

@@ -14,7 +14,7 @@
 //!   alpha_p so that it passes through (alpha_max, F_max). Pull-off f_cp = 1.5 pi Gamma R_p (Eq. 3.59);
 //!   detachment at -5/9 f_cp; re-contact at alpha_c0 = alpha_p with -8/9 f_cp (004 Sec. 3.4.4.1).
 
-use super::jkr::{on_curve, on_curve_at, JkrCurve};
+use super::jkr::{on_curve_at, JkrCurve};
 use super::params::Effective;
 use super::tangential::TangentialModel;
 use super::{Branch, Evaluation, LawInfo, LawOptions, NormalLaw};
@@ -176,20 +176,10 @@ impl NormalLaw for ThorntonNing {
         TnHistory { established: false, alpha_max: self.alpha_yield_start, alpha_p: 0.0, flat: self.curve }
     }
 
+    /// The closed-form solve of `evaluate_with_radius` (the same operations, so the same bits).
     #[inline]
     fn evaluate(&self, alpha: f64, h: &TnHistory) -> Evaluation<TnHistory> {
-        let flat = h.flat;
-        let alpha_c0 = h.alpha_p;
-        let alpha_f = h.alpha_p + flat.detach_overlap();
-        if (!h.established && alpha < alpha_c0) || alpha < alpha_f {
-            return Evaluation::separated(alpha_c0, TnHistory { established: false, ..*h });
-        }
-        if alpha > h.alpha_max {
-            return self.plastic_loading(alpha, self.curve.contact_radius(alpha), h);
-        }
-        let mut e = on_curve(&flat, h.alpha_p, alpha, TnHistory { established: true, ..*h });
-        e.upper = e.upper.min(h.alpha_max);
-        e
+        self.evaluate_with_radius(alpha, h).0
     }
 
     #[inline]

@@ -122,7 +122,8 @@ impl Tomas {
     }
 
     fn after_plastic(&self, alpha: f64, from: &TomasHistory) -> TomasHistory {
-        let h_min = if from.yielded { self.h_min_near(alpha, from.h_min) } else { self.h_min(alpha) };
+        // Before the first yield h_min is 0: no usable guess, Brent's method.
+        let h_min = self.h_min_near(alpha, from.h_min);
         TomasHistory {
             yielded: true,
             alpha_max: alpha,
