@@ -5,7 +5,7 @@ h/r on the three shipped quarter beds and the whole beds, and the two windows' m
 Reads the runs `benches/indentation_window.sh` wrote (docs/data/ch6_indentation/window/<bed>_g<gamma*>.csv)
 and writes docs/figures/indentation_window.png. Left: F/A(h) of the loading rows, averaged in bins of 0.01
 h/r, for the quarter beds at gamma* 0.01 and 0.04 and the whole beds at 0.01 (whole<N>_g0.01.csv, as
-many as there are), with the unit's window (0.1-0.2) and the seed's (0.35-0.5) shaded. Right: each
+many as there are), with the window of the default until 2026-12-06 (0.1-0.2) and the seed's (0.35-0.5) shaded. Right: each
 window's mean over the three quarter beds against gamma*, the bars their bed-to-bed standard deviation
 (n - 1), each whole bed's reading beside them.
 
@@ -26,7 +26,7 @@ from indentation_rate import load, summary  # noqa: E402  (the window mean of ev
 
 REPO = Path(__file__).resolve().parent.parent
 GAMMAS = ["0.01", "0.02", "0.04", "0.08"]
-WINDOWS = {"unit's window, h/r 0.1-0.2": (0.1, 0.2), "seed's window, h/r 0.35-0.5": (0.35, 0.5)}
+WINDOWS = {"earlier default's window, h/r 0.1-0.2": (0.1, 0.2), "seed's window, h/r 0.35-0.5": (0.35, 0.5)}
 
 
 def binned(rows, width=0.01):
@@ -59,8 +59,8 @@ def main(folder, out):
     ax.set_ylabel("F / A(h) [kPa] (mean over bins of 0.01 h/r)")
     ax.set_xlim(0.0, 0.5)
     ax.set_ylim(0.0, 16.0)
-    ax.text(0.15, 15.2, "unit's window", ha="center", fontsize=9)
-    ax.text(0.425, 15.2, "seed's window", ha="center", fontsize=9)
+    ax.text(0.15, 15.2, "until 2026-12-06", ha="center", fontsize=9)
+    ax.text(0.425, 15.2, "seed's window (default)", ha="center", fontsize=9)
     ax.legend(loc="lower right", fontsize=8)
     ax.set_title("16 mm indenter on the 004 Ch. 6 bed, 2.5e-7 s, every sphere moving", fontsize=10)
     x = [float(g) for g in GAMMAS]
