@@ -20,7 +20,7 @@ moving) on the three whole beds of docs/data/ch6_indentation/beds.csv, each with
 mean with the error over beds (`--reference` writes it).
 
     .venv/bin/python benches/indentation_outputs.py [--csv docs/data/indentation_outputs.csv]
-        [--reference docs/data/reference_of_record.csv]
+        [--reference docs/data/reference_of_record_h0.1-0.2.csv]
 """
 
 import argparse

@@ -7,7 +7,7 @@ spread of the hardness after unloading. (Bed-to-bed scatter, a different bed eac
 docs/indentation.md.)
 
     .venv/bin/python benches/indentation_replicas.py [--runs 5] [--fmu target/fmu/BallIndentation.fmu]
-        [--csv docs/data/default_replicas.csv]
+        [--csv docs/data/default_replicas.csv] (the default in the seed's window since 2026-12-06; the ten runs of the default before it: default_replicas_h0.1-0.2.csv)
 """
 
 import argparse

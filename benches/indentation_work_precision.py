@@ -22,7 +22,7 @@ def plateau(path, window=(0.1, 0.2)):
     with open(path) as f:
         h = [float(r["hardness_Pa"]) for r in csv.DictReader(f) if r["state"] == "0" and window[0] <= float(r["depth_over_r"]) <= window[1]]
     if not h:
-        raise SystemExit(f"{path}: no loading rows at 0.1 <= h/r <= 0.2")
+        raise SystemExit(f"{path}: no loading rows at {window[0]} <= h/r <= {window[1]}")
     return statistics.fmean(h), statistics.pstdev(h)
 
 
