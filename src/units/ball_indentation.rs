@@ -12,7 +12,7 @@ use super::scene_params;
 use super::variables::{Value, VarType, Variable};
 use super::{Model, UnitError, UnitInfo};
 use crate::bed::{constraint_factor, file};
-use crate::bed::indentation::{DepthOrigin, Indentation, Motion, Setup, TestState, FAST, PLATEAU};
+use crate::bed::indentation::{DepthOrigin, Indentation, Motion, Setup, TestState, FAST, SEED_WINDOW};
 use crate::bed::replicas::{check_replica, over_beds, Replicas};
 use crate::bed::{BedError, BedScene};
 use crate::scene::{Key, KeyDefault, KEYS};
@@ -47,13 +47,16 @@ pub const QUARTER_REPLICAS: [(&str, &str, &str); 2] = [
     ("bed_quarter_3.pfbed", include_str!("../../scenes/bed_004_ch6_quarter_seed3.json"), "beds/bed_004_ch6_quarter_seed3.pfbed"),
 ];
 
-/// The default speed [m/s]: gamma* = (v/H)(d/g)^(1/2) = 0.02 on the shipped bed (`004` Eq. 7.1; H =
-/// 18.0 mm, d = 1.0 mm), run on its quarter (`fidelity = quarter`): the test in 76-99 s on two cores (AVX2).
-/// Chosen from the measured curve in docs/indentation.md: the whole bed fits in 2 minutes only from
-/// gamma* = 0.08 on, which reads the plateau about 22 % below the seed's gamma* = 0.01. Ten runs of the
-/// default read 18 % below the whole beds at the seed's speed (6874 against 8408 Pa), with a standard
-/// deviation of 8 % from run to run.
-pub const DEFAULT_SPEED: f64 = 0.035726;
+/// The default speed [m/s]: gamma* = (v/H)(d/g)^(1/2) = 0.04 on the shipped bed (`004` Eq. 7.1; H =
+/// 18.0 mm, d = 1.0 mm), run on its quarter (`fidelity = quarter`) to h/r 0.5 and read in the seed's
+/// window (`SEED_WINDOW`): the test in 104-116 s on two cores (AVX2). Chosen from the measured curve in
+/// docs/indentation.md: in the seed's window the three quarter beds read the same level at gamma* 0.01,
+/// 0.02 and 0.04 (6719, 6767 and 6631 Pa) and 14 % less at 0.08, and 0.04 is the fastest of them.
+pub const DEFAULT_SPEED: f64 = 0.07144;
+
+/// The default depth [m] the indenter turns at: h/r = 0.5 for the 16 mm indenter, the end of the seed's
+/// window.
+pub const DEFAULT_MAX_PENETRATION: f64 = 0.004;
 
 /// The default time step [s]: half the shipped bed's stability limit 2 sqrt(m*/k) = 5.0e-7 s (its
 /// smallest sphere on the 8 MN/m die wall, 000 Eq. 68), 2.5 times its own step (docs/indentation.md
@@ -150,21 +153,21 @@ variable_table! {
     plateau_hardness: Variable::output("plateau_hardness", VarType::Real, "Pa", "mean of F/A(h) over the loading samples (every 100 engine steps) at plateau_start <= h/r <= plateau_end, where it levels off (004 Figs. 5.2-5.3, 5.19); 0 until the indenter reaches plateau_start"),
     plateau_hardness_standard_error: Variable::output("plateau_hardness_standard_error", VarType::Real, "Pa", "standard error of plateau_hardness from this run's fluctuations: sqrt(sigma^2 tau / n), sigma^2 the samples' variance and tau their integrated autocorrelation time in samples (Sokal's window); 0 below 8 samples. It holds neither the bed-to-bed scatter nor, below about 50 correlation times of samples, a reliable error of itself (docs/indentation.md)"),
     plateau_samples: Variable::output("plateau_samples", VarType::Integer, "", "n, the samples behind plateau_hardness (over every replica)"),
-    plateau_hardness_standard_error_over_beds: Variable::output("plateau_hardness_standard_error_over_beds", VarType::Real, "Pa", "with replicas > 1: the standard error of plateau_hardness from the replicas' spread, s / sqrt(replicas) with s the sample standard deviation of their plateaus; it holds the bed-to-bed scatter one bed cannot show (about 12 % of the plateau for a quarter bed at the default speed, docs/indentation.md). 0 with one replica"),
+    plateau_hardness_standard_error_over_beds: Variable::output("plateau_hardness_standard_error_over_beds", VarType::Real, "Pa", "with replicas > 1: the standard error of plateau_hardness from the replicas' spread, s / sqrt(replicas) with s the sample standard deviation of their plateaus; it holds the bed-to-bed scatter one bed cannot show (the shipped quarter beds differ by about 4 % in the seed's window, 11 % over h/r 0.1-0.2: docs/indentation.md). 0 with one replica"),
     depth_origin_offset: Variable::output("depth_origin_offset", VarType::Real, "m", "height of the indenter's first touch above the depth origin (0 with depth_origin = first_touch)"),
     indenter_motion: Variable::parameter("indenter_motion", Value::String("prescribed".into()), "", "prescribed (load at indentation_speed to max_penetration, unload at the same speed until the indenter leaves the bed) or input (follow indenter_displacement and indenter_velocity)"),
     indenter_diameter: Variable::parameter("indenter_diameter", Value::Real(0.016), "m", "d, diameter of the spherical indenter, narrower than the die (default 16 mm, 16 mean diameters of the shipped bed: 004 Ch. 5's smallest reliable size)")
         .with_range(Some(0.0), None),
-    indentation_speed: Variable::parameter("indentation_speed", Value::Real(DEFAULT_SPEED), "m/s", "speed of the prescribed loading and unloading (default gamma* = 0.02 on the shipped bed's quarter, 76-99 s on two cores with AVX2; over ten runs it reads the plateau hardness 18 % below the whole beds at the seed's speed gamma* = 0.01, 0.01786 m/s, with 8 % from run to run: docs/indentation.md)")
+    indentation_speed: Variable::parameter("indentation_speed", Value::Real(DEFAULT_SPEED), "m/s", "speed of the prescribed loading and unloading (default gamma* = 0.04 on the shipped bed's quarter: the test to h/r 0.5 in 104-116 s on two cores with AVX2; in the seed's window the three quarter beds read at it within 2 % of what they read at the seed's speed gamma* = 0.01, 0.01786 m/s: docs/indentation.md)")
         .with_range(Some(0.0), None),
-    max_penetration: Variable::parameter("max_penetration", Value::Real(0.0016), "m", "depth at which the prescribed indenter turns (default h/r = 0.2)")
+    max_penetration: Variable::parameter("max_penetration", Value::Real(DEFAULT_MAX_PENETRATION), "m", "depth at which the prescribed indenter turns (default 4 mm: h/r = 0.5, the end of the seed's window)")
         .with_range(Some(0.0), None),
     constraint_factor: Variable::parameter("constraint_factor", Value::Real(3.0), "", "C = hardness / yield strength (004 Eq. 2.10) with constraint_factor_source = constant")
         .with_range(Some(0.0), None),
-    constraint_factor_source: Variable::parameter("constraint_factor_source", Value::String("constant".into()), "", "constant (constraint_factor, taken as exact) or measured: C(sigma_1) = H / sigma_c measured for the 004 Ch. 6 material with this unit's default test and UnconfinedCompression's at 1, 3, 10 and 20 kPa, interpolated in ln sigma_1 at the bed's consolidation stress, with its standard error (docs/data/constraint_factor_ch6.csv); refused for a bed of another material or outside 1-20 kPa"),
-    plateau_start: Variable::parameter("plateau_start", Value::Real(PLATEAU.0), "", "h/r where the plateau window of plateau_hardness starts, in [0, plateau_end); a window beyond max_penetration / r gets no samples (default 0.1: 004's minimum depth, Secs. 5.2-5.3)")
+    constraint_factor_source: Variable::parameter("constraint_factor_source", Value::String("constant".into()), "", "constant (constraint_factor, taken as exact) or measured: C(sigma_1) = H / sigma_c measured for the 004 Ch. 6 material with this unit's default test and UnconfinedCompression's at 1, 3, 10 and 20 kPa, interpolated in ln sigma_1 at the bed's consolidation stress, with its standard error (docs/data/constraint_factor_ch6.csv: measured with the earlier default window, h/r 0.1-0.2 at gamma* 0.02); refused for a bed of another material or outside 1-20 kPa"),
+    plateau_start: Variable::parameter("plateau_start", Value::Real(SEED_WINDOW.0), "", "h/r where the plateau window of plateau_hardness starts, in [0, plateau_end); a window beyond max_penetration / r gets no samples (default 0.35: the seed reads its level after h/r 0.35-0.4, 004 Figs. 5.3-5.4, 6.3)")
         .with_range(Some(0.0), None),
-    plateau_end: Variable::parameter("plateau_end", Value::Real(PLATEAU.1), "", "h/r where the plateau window ends, above plateau_start (default 0.2, the default max_penetration)")
+    plateau_end: Variable::parameter("plateau_end", Value::Real(SEED_WINDOW.1), "", "h/r where the plateau window ends, above plateau_start (default 0.5, the default max_penetration; 004 Fig. 5.19)")
         .with_range(Some(0.0), None),
     depth_origin: Variable::parameter("depth_origin", Value::String("first_touch".into()), "", "where h is measured from: first_touch (the indenter's lowest point when it first touches a sphere, lowered along the die axis) or mean_surface (the bed's mean surface under the footprint of max_penetration, probed before the test with a sphere of the mean particle radius on a grid of a quarter mean diameter); depth_origin_offset gives the difference"),
     bed_file: Variable::parameter("bed_file", Value::String(String::new()), "", "a bed file of `powderfmu bed prepare`, or several separated by ';' (one per replica, as many as replicas); empty: the beds in the FMU's resources"),
@@ -190,9 +193,9 @@ pub fn info() -> UnitInfo {
         model_exchange: false,
         can_interpolate_inputs: false,
         returns_early: false,
-        // The default test: 44.8 ms of loading, the unloading no longer (the bed is not stepped once
-        // the indenter has left it).
-        stop_time: 0.1,
+        // The default test: 56.0 ms of loading; the bed lets go of the indenter within a step of the
+        // turn, and is not stepped once it has (room for a deeper origin or a slower unloading).
+        stop_time: 0.08,
         step_size: 1e-4,
         new_model: |u, resources| {
             Box::new(BallIndentation {
