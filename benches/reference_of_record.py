@@ -11,7 +11,7 @@ there, from the runs to h/r 0.5 in docs/data/ch6_indentation/window (`benches/in
   scenes/bed_004_ch6.json), each with its own error, and their mean with the standard error from their
   spread (`--reference` writes it in the format docs/data/reference_of_record_h0.1-0.2.csv has).
 
-    python3 benches/reference_of_record.py [--reference docs/data/reference_of_record.csv]
+    .venv/bin/python benches/reference_of_record.py [--reference docs/data/reference_of_record.csv]
 """
 
 import argparse
