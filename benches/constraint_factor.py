@@ -4,9 +4,16 @@ sigma_1, sigma_c from UnconfinedCompression's (the `compression` task) on specim
 same stress. Writes the table BallIndentation reads with `constraint_factor_source = measured` and a
 figure.
 
-    python benches/constraint_factor.py --compression wip/c_uct.csv wip/c_uct_s2.csv \\
-        --indentation 1000=wip/c_ind_1.csv 3000=wip/c_ind_3.csv 10000=wip/c_10kpa.csv 20000=wip/c_ind_20.csv \\
-        --csv docs/data/constraint_factor_ch6.csv --plot docs/figures/constraint_factor_ch6.png
+    D=docs/data/constraint_factor_ch6 S=docs/data/constraint_factor_ch6/seed_window
+    .venv/bin/python benches/constraint_factor.py --compression $D/compression_fill1.csv $D/compression_fill2.csv \\
+        --indentation 1000=$S/indentation_1kPa.csv 3000=$S/indentation_3kPa.csv \\
+                      10000=$S/indentation_10kPa.csv 20000=$S/indentation_20kPa.csv --window 0.35-0.5 \\
+        --csv docs/data/constraint_factor_ch6_seed_window.csv --plot docs/figures/constraint_factor_ch6_seed_window.png
+
+(the table BallIndentation reads; the earlier one, read over h/r 0.1-0.2, by the command in
+docs/data/constraint_factor_ch6/README.md). The sweep rows do not carry the plateau window: `--window`
+names the one the indentation runs used (BallIndentation's default when they ran), for the table's
+comment and the figure.
 
 Errors: the fill-to-fill scatter (independently prepared beds and specimens; it holds each run's own
 fluctuation too) is taken as one relative standard deviation for all stresses, pooled over the stresses'
@@ -58,6 +65,7 @@ def main():
     p.add_argument("--indentation", nargs="+", required=True, help="SIGMA_1_PA=CSV: indentation sweep rows on beds consolidated to SIGMA_1_PA")
     p.add_argument("--csv", required=True)
     p.add_argument("--plot", required=True)
+    p.add_argument("--window", required=True, help="the indentation runs' plateau window in h/r, START-END (0.35-0.5 for the default since 2026-12-06)")
     a = p.parse_args()
 
     sigma_c = {}
@@ -108,10 +116,11 @@ def main():
         })
     with open(a.csv, "w", newline="") as f:
         f.write("# The constraint factor C = H / sigma_c of the 004 Ch. 6 material against the consolidation stress sigma_1 (004 Eq. 2.10):\n")
-        f.write("# H BallIndentation's default test (hardness after unloading; plateau_hardness over h/r 0.1-0.2) on quarter beds of scenes/bed_004_ch6_quarter*.json,\n")
+        f.write(f"# H BallIndentation's default test (hardness after unloading; plateau_hardness over h/r {a.window}) on quarter beds of scenes/bed_004_ch6_quarter*.json,\n")
         f.write("# sigma_c UnconfinedCompression's default test on specimens of scenes/uct_004_ch6*.json; standard errors of the means over fills, from the fill-to-fill\n")
         f.write(f"# scatter pooled over the stresses ({100 * scatter_h:.1f} % in H, {100 * scatter_p:.1f} % in the plateau, {100 * scatter_c:.1f} % in sigma_c); the runs: docs/data/constraint_factor_ch6/.\n")
-        f.write("# BallIndentation's constraint_factor_source = measured reads constraint_factor. Written by benches/constraint_factor.py (docs/units/UnconfinedCompression.md).\n")
+        f.write("# BallIndentation's constraint_factor_source = measured reads the constraint_factor of docs/data/constraint_factor_ch6_seed_window.csv (its default's window).\n")
+        f.write("# Written by benches/constraint_factor.py (docs/units/UnconfinedCompression.md).\n")
         w = csv.DictWriter(f, fieldnames=list(table[0]))
         w.writeheader()
         for row in table:
@@ -139,7 +148,7 @@ def main():
 
     s = [r["consolidation_stress_Pa"] / 1e3 for r in table]
     fig, ax = plt.subplots(1, 2, figsize=(12, 5))
-    for key, label, color in [("hardness", "H, after unloading", "C0"), ("plateau_hardness", "H, plateau (h/r 0.1-0.2)", "C2"), ("unconfined_yield_strength", "sigma_c, unconfined compression", "C3")]:
+    for key, label, color in [("hardness", "H, after unloading", "C0"), ("plateau_hardness", f"H, plateau (h/r {a.window})", "C2"), ("unconfined_yield_strength", "sigma_c, unconfined compression", "C3")]:
         ax[0].errorbar(s, [r[f"{key}_Pa"] / 1e3 for r in table], yerr=[r[f"{key}_standard_error_Pa"] / 1e3 for r in table], fmt="o-", color=color, capsize=3, label=label)
     for s1, fills in sigma_c.items():
         if len(fills) > 1:

@@ -281,11 +281,11 @@ def indentation(fmu, out):
 
 
 def measured_constraint_factor(sigma_1):
-    """C and its standard error at sigma_1 from docs/data/constraint_factor_ch6.csv (None where the table
+    """C and its standard error at sigma_1 from docs/data/constraint_factor_ch6_seed_window.csv (None where the table
     has no row at that stress)."""
     import csv
 
-    with open(os.path.join(ROOT, "docs", "data", "constraint_factor_ch6.csv")) as f:
+    with open(os.path.join(ROOT, "docs", "data", "constraint_factor_ch6_seed_window.csv")) as f:
         for row in csv.DictReader(line for line in f if not line.startswith("#")):
             if float(row["consolidation_stress_Pa"]) == sigma_1:
                 return float(row["constraint_factor"]), float(row["constraint_factor_standard_error"])
@@ -329,7 +329,7 @@ def compression(fmu, out, plateau, plateau_se):
     c, c_se = measured_constraint_factor(last["consolidation_stress"])
     if c is not None:
         print(f"  the constraint factor measured over several beds and specimens at this stress: C = {c:.3g} +- {c_se:.2g} "
-              f"(docs/data/constraint_factor_ch6.csv; BallIndentation divides by it with constraint_factor_source = measured)")
+              f"(docs/data/constraint_factor_ch6_seed_window.csv, the default test read over h/r 0.35-0.5; BallIndentation divides by it with constraint_factor_source = measured)")
     fig, ax = plt.subplots(figsize=(6.5, 4.2))
     loaded = r["axial_strain"] > 0
     ax.plot(r["axial_strain"][loaded] * 100, r["axial_stress"][loaded], lw=0.8, label="axial stress (mean over 100 engine steps)")

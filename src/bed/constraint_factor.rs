@@ -1,8 +1,9 @@
 //! The constraint factor C = H / sigma_c (`004` Eq. 2.10) of the `004` Ch. 6 material, measured against
 //! the consolidation stress sigma_1: H the hardness of BallIndentation's default test on a quarter bed
 //! consolidated to sigma_1, sigma_c the unconfined yield strength of UnconfinedCompression's default test
-//! on a specimen of the same material consolidated to sigma_1 (`docs/data/constraint_factor_ch6.csv`, how
-//! it was measured in docs/units/UnconfinedCompression.md). BallIndentation divides by it with
+//! on a specimen of the same material consolidated to sigma_1 (`docs/data/constraint_factor_ch6_seed_window.csv`,
+//! BallIndentation's default read over the seed's window; how it was measured in
+//! docs/units/UnconfinedCompression.md). BallIndentation divides by it with
 //! `constraint_factor_source = measured`.
 //!
 //! Between the measured stresses C is interpolated linearly in ln sigma_1; outside them it is refused (no
@@ -12,7 +13,7 @@
 use std::sync::OnceLock;
 
 /// The measurements, as committed.
-const TABLE: &str = include_str!("../../docs/data/constraint_factor_ch6.csv");
+const TABLE: &str = include_str!("../../docs/data/constraint_factor_ch6_seed_window.csv");
 
 /// One measured stress.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -28,7 +29,7 @@ pub struct Point {
 /// The table's points by increasing stress.
 pub fn points() -> &'static [Point] {
     static POINTS: OnceLock<Vec<Point>> = OnceLock::new();
-    POINTS.get_or_init(|| parse(TABLE).expect("docs/data/constraint_factor_ch6.csv is well formed (tested)"))
+    POINTS.get_or_init(|| parse(TABLE).expect("docs/data/constraint_factor_ch6_seed_window.csv is well formed (tested)"))
 }
 
 /// The points of a table (comment lines start with '#'; the header names the columns).
@@ -87,6 +88,15 @@ mod tests {
     fn a_malformed_table_is_refused() {
         assert!(parse("consolidation_stress_Pa,constraint_factor\n1,2\n").unwrap_err().contains("constraint_factor_standard_error"));
         assert!(parse("consolidation_stress_Pa,constraint_factor,constraint_factor_standard_error\n2,1,0\n1,1,0\n").is_err());
+    }
+
+    #[test]
+    fn the_committed_table_was_read_over_the_window_of_the_units_default() {
+        // C belongs to the test that measured H: the table must name the window BallIndentation reads
+        // by default, so changing the default without measuring C again fails here.
+        let (a, b) = crate::bed::indentation::SEED_WINDOW;
+        let named = format!("plateau_hardness over h/r {a}-{b})");
+        assert!(TABLE.lines().take_while(|l| l.starts_with('#')).any(|l| l.contains(&named)), "the table's comment does not name {named}");
     }
 
     #[test]

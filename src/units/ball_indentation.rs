@@ -141,7 +141,7 @@ variable_table! {
     unconfined_yield_strength: Variable::output("unconfined_yield_strength", VarType::Real, "Pa", "hardness / C (004 Eq. 2.10), C the constraint_factor_used"),
     unconfined_yield_strength_standard_error: Variable::output("unconfined_yield_strength_standard_error", VarType::Real, "Pa", "from hardness_standard_error / C and C's own standard error, added in quadrature (a constant constraint_factor taken as exact; a measured C's error is common to the replicas' beds)"),
     constraint_factor_used: Variable::output("constraint_factor_used", VarType::Real, "", "C the unconfined_yield_strength is divided by: constraint_factor, or with constraint_factor_source = measured the C(sigma_1) measured for the 004 Ch. 6 material at the bed's consolidation stress (the mean over the replicas' beds)"),
-    constraint_factor_used_standard_error: Variable::output("constraint_factor_used_standard_error", VarType::Real, "", "the standard error of constraint_factor_used: 0 for the constant, the measured table's for C(sigma_1) (its fill-to-fill scatter, docs/data/constraint_factor_ch6.csv)"),
+    constraint_factor_used_standard_error: Variable::output("constraint_factor_used_standard_error", VarType::Real, "", "the standard error of constraint_factor_used: 0 for the constant, the measured table's for C(sigma_1) (its fill-to-fill scatter, docs/data/constraint_factor_ch6_seed_window.csv)"),
     hydrostatic_stress: Variable::output("hydrostatic_stress", VarType::Real, "Pa", "Bagi's hydrostatic stress in the dynamic bin under the indenter (004 Eqs. 5.1-5.2, Sec. 5.2), compression positive"),
     deviatoric_stress: Variable::output("deviatoric_stress", VarType::Real, "Pa", "Bagi's deviatoric stress in the dynamic bin under the indenter (004 Eq. 5.3)"),
     indenter_contacts: Variable::output("indenter_contacts", VarType::Integer, "", "spheres touching the indenter (on a quarter bed, with their mirror images: four per sphere)"),
@@ -164,7 +164,7 @@ variable_table! {
         .with_range(Some(0.0), None),
     constraint_factor: Variable::parameter("constraint_factor", Value::Real(3.0), "", "C = hardness / yield strength (004 Eq. 2.10) with constraint_factor_source = constant")
         .with_range(Some(0.0), None),
-    constraint_factor_source: Variable::parameter("constraint_factor_source", Value::String("constant".into()), "", "constant (constraint_factor, taken as exact) or measured: C(sigma_1) = H / sigma_c measured for the 004 Ch. 6 material with this unit's default test and UnconfinedCompression's at 1, 3, 10 and 20 kPa, interpolated in ln sigma_1 at the bed's consolidation stress, with its standard error (docs/data/constraint_factor_ch6.csv: measured with the earlier default window, h/r 0.1-0.2 at gamma* 0.02); refused for a bed of another material or outside 1-20 kPa"),
+    constraint_factor_source: Variable::parameter("constraint_factor_source", Value::String("constant".into()), "", "constant (constraint_factor, taken as exact) or measured: C(sigma_1) = H / sigma_c measured for the 004 Ch. 6 material with this unit's default test and UnconfinedCompression's at 1, 3, 10 and 20 kPa, interpolated in ln sigma_1 at the bed's consolidation stress, with its standard error (docs/data/constraint_factor_ch6_seed_window.csv: measured with this default, read over h/r 0.35-0.5 at gamma* 0.04; C = 10.3, 6.5, 7.2, 5.9); refused for a bed of another material or outside 1-20 kPa"),
     plateau_start: Variable::parameter("plateau_start", Value::Real(SEED_WINDOW.0), "", "h/r where the plateau window of plateau_hardness starts, in [0, plateau_end); a window beyond max_penetration / r gets no samples (default 0.35: the seed reads its level after h/r 0.35-0.4, 004 Figs. 5.3-5.4, 6.3)")
         .with_range(Some(0.0), None),
     plateau_end: Variable::parameter("plateau_end", Value::Real(SEED_WINDOW.1), "", "h/r where the plateau window ends, above plateau_start (default 0.5, the default max_penetration; 004 Fig. 5.19)")
@@ -426,7 +426,7 @@ impl Model for BallIndentation {
             if measured {
                 (setup.constraint_factor, setup.constraint_factor_standard_error) = Self::measured_for(&scene, path)?;
                 self.events.push(format!(
-                    "constraint factor measured for the 004 Ch. 6 material at the bed's consolidation stress {:e} Pa: C = {:.3} +- {:.3} (docs/data/constraint_factor_ch6.csv)",
+                    "constraint factor measured for the 004 Ch. 6 material at the bed's consolidation stress {:e} Pa: C = {:.3} +- {:.3} (docs/data/constraint_factor_ch6_seed_window.csv)",
                     scene.consolidation_stress, setup.constraint_factor, setup.constraint_factor_standard_error
                 ));
             }

@@ -241,12 +241,12 @@ def test_the_depth_from_the_mean_surface_is_the_depth_from_the_first_touch_less_
 
 
 def _table_c_at_10_kpa():
-    """C and its standard error at 10 kPa from the committed table (docs/data/constraint_factor_ch6.csv)."""
+    """C and its standard error at 10 kPa from the committed table (docs/data/constraint_factor_ch6_seed_window.csv)."""
     import csv
 
     from fmu_support import REPO
 
-    with open(REPO / "docs" / "data" / "constraint_factor_ch6.csv") as f:
+    with open(REPO / "docs" / "data" / "constraint_factor_ch6_seed_window.csv") as f:
         rows = [r for r in csv.DictReader(line for line in f if not line.startswith("#"))]
     row = next(r for r in rows if float(r["consolidation_stress_Pa"]) == 1e4)
     return float(row["constraint_factor"]), float(row["constraint_factor_standard_error"])
