@@ -247,6 +247,11 @@ def indentation(fmu, out):
     print(f"  after unloading: F_max {last['force_at_turn']:.4f} N (the loading curve at the turn; largest output sample "
           f"{r['indenter_force'].max():.4f} N), h_c {last['contact_depth'] * 1e3:.4f} mm ({how}), hardness F_max/A(h_c) {last['hardness']:.4g} +- {last['hardness_standard_error']:.2g} Pa "
           f"(a local reading at h_max, the window's deep end: docs/indentation.md)")
+    hyd, dev = last["plateau_hydrostatic_stress"], last["plateau_deviatoric_stress"]
+    print(f"  dynamic bin (5.2 x 5.2 x 4.2 mm under the indenter, 004 Sec. 5.3, Eqs. 5.2-5.3) over the same window: hydrostatic {hyd:.4g} "
+          f"+- {last['plateau_hydrostatic_stress_standard_error']:.2g} Pa, deviatoric {dev:.4g} +- {last['plateau_deviatoric_stress_standard_error']:.2g} Pa "
+          f"(standard errors of this run; the quarter beds differ by about 20 % in these: docs/data/bin_stresses_ch6.csv); "
+          f"plateau hardness / hydrostatic {last['plateau_hardness'] / hyd:.3g}")
     reference = None
     if os.path.isfile(REFERENCE):
         reference = np.genfromtxt(REFERENCE, delimiter=",", names=True)
@@ -270,6 +275,7 @@ def indentation(fmu, out):
     ax[0].legend(fontsize=8)
     ax[1].plot(r["dimensionless_penetration"][ok], r["hydrostatic_stress"][ok] / 1e3, lw=0.8, label="hydrostatic stress, dynamic bin")
     ax[1].hlines(last["plateau_hardness"] / 1e3, p0, p1, color="C3", lw=2, label="plateau hardness")
+    ax[1].hlines(hyd / 1e3, p0, p1, color="C1", lw=2, label="plateau hydrostatic stress")
     ax[1].fill_between([p0, p1], (last["plateau_hardness"] - 2 * se) / 1e3, (last["plateau_hardness"] + 2 * se) / 1e3, color="C3", alpha=0.2, lw=0,
                        label="+- 2 standard errors")
     ax[1].set(xlabel="h / r [-]", ylabel="[kPa]", title="hardness against dimensionless penetration")

@@ -190,6 +190,9 @@ pub struct Record {
     pub steps: u64,
     /// (h, F) at every check while loading, in the order taken.
     pub loading: Vec<(f64, f64)>,
+    /// (h, sigma_hyd, tau_D) of the dynamic bin (004 Eqs. 5.2-5.3, Sec. 5.3) at every check while loading
+    /// with h/r in the plateau window, in the order taken [m], [Pa], [Pa].
+    pub window_stress: Vec<(f64, f64, f64)>,
 }
 
 impl Record {
@@ -204,6 +207,19 @@ impl Record {
             .map(|&(h, f)| f / projected_area(d, h))
             .collect();
         series::mean_with_error(&samples)
+    }
+
+    /// The dynamic bin's hydrostatic and deviatoric stresses (004 Eqs. 5.2-5.3) averaged over the loading
+    /// checks at h/r within `window`, each with its standard error from the autocorrelated samples
+    /// (`series::mean_with_error`; mean 0 before the first) [Pa]: the levels 004 reads from its dynamic bin
+    /// (Fig. 5.19, Figs. 7.3-7.5). Only checks within the test's own window were sampled.
+    pub fn window_stress(&self, d: f64, window: (f64, f64)) -> [MeanEstimate; 2] {
+        let r = 0.5 * d;
+        let inside: Vec<&(f64, f64, f64)> = self.window_stress.iter().filter(|s| s.0 / r >= window.0 && s.0 / r <= window.1).collect();
+        [
+            series::mean_with_error(&inside.iter().map(|s| s.1).collect::<Vec<_>>()),
+            series::mean_with_error(&inside.iter().map(|s| s.2).collect::<Vec<_>>()),
+        ]
     }
 
     /// The force at the turn [N]: A(h_max) times the mean of F/A(h) over the loading samples within the
@@ -292,6 +308,11 @@ pub struct Reading {
     pub hydrostatic_stress: f64,
     /// Deviatoric stress of Bagi's tensor in the dynamic bin (004 Eq. 5.3) [Pa].
     pub deviatoric_stress: f64,
+    /// `hydrostatic_stress` averaged over the loading checks in the plateau window, with its standard
+    /// error (`Record::window_stress`).
+    pub window_hydrostatic_stress: MeanEstimate,
+    /// The same for `deviatoric_stress`.
+    pub window_deviatoric_stress: MeanEstimate,
     /// Spheres touching the indenter (the whole die's on a sector).
     pub contacts: usize,
     /// Kinetic energy of the bed, translational plus rotational (the whole die's on a sector) [J].
@@ -339,6 +360,8 @@ pub struct Indentation {
     /// The plateau of the last reading and how many loading samples it saw: a host reading at every
     /// short communication step does not repeat the autocorrelation sums (O(n W)) between checks.
     plateau_cache: Option<(usize, MeanEstimate)>,
+    /// The same for the window's bin stresses (`Indentation::window_stress`).
+    stress_cache: Option<(usize, [MeanEstimate; 2])>,
 }
 
 /// A(h) = pi (d h - h^2) (004 Eq. 2.9), 0 outside the indenter.
@@ -508,6 +531,7 @@ impl Indentation {
             time_debt: 0.0,
             steps: 0,
             loading: vec![],
+            window_stress: vec![],
         };
         let mut test = Indentation {
             engine,
@@ -519,6 +543,7 @@ impl Indentation {
             indenter_rolling_friction: rolling,
             die_pair: None,
             plateau_cache: None,
+            stress_cache: None,
         };
         if setup.motion == Motion::Prescribed {
             test.set_indenter_velocity(-setup.indentation_speed);
@@ -651,6 +676,13 @@ impl Indentation {
             self.record.contact_depth = None;
             self.record.tangent_done = false;
             self.record.loading.push((h, f));
+            // The bin's stresses where the plateau is read: a force evaluation per check there (about 1 % of
+            // the window's steps), none elsewhere.
+            let hr = h / (0.5 * self.setup.indenter_diameter);
+            if hr >= self.setup.plateau.0 && hr <= self.setup.plateau.1 && projected_area(self.setup.indenter_diameter, h) > 0.0 {
+                let stress = self.bin_stress();
+                self.record.window_stress.push((h, stress.hydrostatic(), stress.deviatoric()));
+            }
             if self.setup.motion == Motion::Prescribed && h >= self.setup.max_penetration * (1.0 - 1e-9) {
                 self.record.state = TestState::Unloading;
                 self.set_indenter_velocity(self.setup.indentation_speed);
@@ -692,6 +724,30 @@ impl Indentation {
         }
     }
 
+    /// Bagi's stress (004 Eq. 5.1) in the dynamic bin: BIN mean diameters wide and deep, directly under
+    /// the indenter and moving with it (004 Sec. 5.3, Fig. 5.18), as the whole die's on a sector. One extra
+    /// force evaluation, which leaves the state unchanged.
+    fn bin_stress(&mut self) -> super::stress::Stress {
+        let mean = self.scene.size_distribution.mean_diameter();
+        let bottom = self.indenter().position[2] - 0.5 * self.setup.indenter_diameter;
+        let bin = Cuboid { width_x: BIN[0] * mean, width_y: BIN[1] * mean, z_low: bottom - BIN[2] * mean, z_high: bottom };
+        assert!(bin.volume() > 0.0);
+        bagi(&mut self.engine, &bin).of_whole_die(self.scene.die_sector)
+    }
+
+    /// `Record::window_stress` with the set-up's window, computed again only when a sample has been added.
+    pub fn window_stress(&mut self) -> [MeanEstimate; 2] {
+        let n = self.record.window_stress.len();
+        match self.stress_cache {
+            Some((seen, s)) if seen == n => s,
+            _ => {
+                let s = self.record.window_stress(self.setup.indenter_diameter, self.setup.plateau);
+                self.stress_cache = Some((n, s));
+                s
+            }
+        }
+    }
+
     /// The outputs at the current state (one extra force evaluation for Bagi's stress, which leaves the
     /// state unchanged).
     pub fn reading(&mut self) -> Reading {
@@ -703,11 +759,8 @@ impl Indentation {
             TestState::Loading => (0.0, 0.0),
             _ => (self.record.hardness_after_turn(d), self.record.hardness_after_turn_error(d)),
         };
-        let mean = self.scene.size_distribution.mean_diameter();
-        let bottom = self.indenter().position[2] - 0.5 * d;
-        let bin = Cuboid { width_x: BIN[0] * mean, width_y: BIN[1] * mean, z_low: bottom - BIN[2] * mean, z_high: bottom };
-        assert!(bin.volume() > 0.0);
-        let stress = bagi(&mut self.engine, &bin).of_whole_die(self.scene.die_sector);
+        let stress = self.bin_stress();
+        let window_stress = self.window_stress();
         Reading {
             force: f,
             depth: h,
@@ -721,6 +774,8 @@ impl Indentation {
             constraint_factor_standard_error: c_error,
             hydrostatic_stress: stress.hydrostatic(),
             deviatoric_stress: stress.deviatoric(),
+            window_hydrostatic_stress: window_stress[0],
+            window_deviatoric_stress: window_stress[1],
             contacts: self.contacts(),
             kinetic_energy: self.engine.particles().kinetic_energy() / self.scene.die_sector,
             state: self.record.state,
@@ -800,6 +855,7 @@ impl Indentation {
             indenter_rolling_friction: saved.indenter_rolling_friction,
             die_pair,
             plateau_cache: None,
+            stress_cache: None,
         })
     }
 }
@@ -864,7 +920,45 @@ mod tests {
             (h, hardness(k) * projected_area(d, h))
         }).collect();
         let f_max = loading.iter().map(|p| p.1).fold(0.0, f64::max);
-        Record { state: TestState::Done, f_max, h_max, unloading: vec![], contact_depth: Some(contact_depth), tangent_done: true, touch: 0.0, origin: 0.0, time_debt: 0.0, steps: 0, loading }
+        Record {
+            state: TestState::Done,
+            f_max,
+            h_max,
+            unloading: vec![],
+            contact_depth: Some(contact_depth),
+            tangent_done: true,
+            touch: 0.0,
+            origin: 0.0,
+            time_debt: 0.0,
+            steps: 0,
+            loading,
+            window_stress: vec![],
+        }
+    }
+
+    #[test]
+    fn the_window_stresses_are_means_over_the_window_with_the_series_error() {
+        let d = 0.016;
+        let r = 0.5 * d;
+        let mut rec = record(d, 4e-3, 4e-3, 10, |_| 7e3);
+        // White noise of known variance around 5 and 3 kPa inside h/r 0.35-0.5; other levels outside it.
+        let mut x = 0.123f64;
+        for k in 0..2000 {
+            let hr = 0.3 + 0.25 * k as f64 / 2000.0;
+            x = (x * 9301.0 + 0.4927).fract();
+            let (hyd, dev) = if (0.35..=0.5).contains(&hr) { (5e3 + 600.0 * (x - 0.5), 3e3 - 600.0 * (x - 0.5)) } else { (9e4, 9e4) };
+            rec.window_stress.push((hr * r, hyd, dev));
+        }
+        let [hyd, dev] = rec.window_stress(d, (0.35, 0.5));
+        assert_eq!(hyd.samples, dev.samples);
+        assert!((1150..=1250).contains(&hyd.samples), "{}", hyd.samples);
+        // sigma = 600 / sqrt(12) = 173 Pa: the mean within 4 standard errors of white noise (5 Pa).
+        let se = 600.0 / 12f64.sqrt() / (hyd.samples as f64).sqrt();
+        assert!((hyd.mean - 5e3).abs() < 4.0 * se && (dev.mean - 3e3).abs() < 4.0 * se, "{hyd:?} {dev:?}");
+        assert!(hyd.standard_error > 0.5 * se && hyd.standard_error < 2.0 * se, "{} against {se}", hyd.standard_error);
+        // Before the window: no estimate, mean 0.
+        let empty = Record { window_stress: vec![], ..rec.clone() }.window_stress(d, (0.35, 0.5));
+        assert_eq!((empty[0].mean, empty[0].samples), (0.0, 0));
     }
 
     #[test]

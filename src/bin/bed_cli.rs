@@ -700,6 +700,11 @@ fn indent_cmd(a: IndentArgs) -> Result<(), String> {
                 test.record.steps,
                 particle_steps / wall
             );
+            let (hyd, dev) = (r.window_hydrostatic_stress, r.window_deviatoric_stress);
+            eprintln!(
+                "dynamic bin, h/r {}-{}: hydrostatic {:.4e} +- {:.2e} Pa, deviatoric {:.4e} +- {:.2e} Pa (standard errors; {} samples while loading; 004 Eqs. 5.2-5.3, Fig. 5.19)",
+                setup.plateau.0, setup.plateau.1, hyd.mean, hyd.standard_error, dev.mean, dev.standard_error, hyd.samples
+            );
             if let Some(path) = &a.samples_out {
                 let mut rows = String::from("depth_m,force_N\n");
                 for (h, f) in &test.record.loading {

@@ -155,6 +155,10 @@ variable_table! {
     plateau_samples: Variable::output("plateau_samples", VarType::Integer, "", "n, the samples behind plateau_hardness (over every replica)"),
     plateau_hardness_standard_error_over_beds: Variable::output("plateau_hardness_standard_error_over_beds", VarType::Real, "Pa", "with replicas > 1: the standard error of plateau_hardness from the replicas' spread, s / sqrt(replicas) with s the sample standard deviation of their plateaus; it holds the bed-to-bed scatter one bed cannot show (the shipped quarter beds differ by about 4 % in the seed's window, 11 % over h/r 0.1-0.2: docs/indentation.md). 0 with one replica"),
     depth_origin_offset: Variable::output("depth_origin_offset", VarType::Real, "m", "height of the indenter's first touch above the depth origin (0 with depth_origin = first_touch)"),
+    plateau_hydrostatic_stress: Variable::output("plateau_hydrostatic_stress", VarType::Real, "Pa", "hydrostatic_stress averaged over the loading samples (every 100 engine steps) in the plateau window, the level 004 reads from its dynamic bin (Fig. 5.19, Figs. 7.3-7.5); 0 before the window (plateau_samples 0); the mean over the replicas"),
+    plateau_hydrostatic_stress_standard_error: Variable::output("plateau_hydrostatic_stress_standard_error", VarType::Real, "Pa", "standard error of plateau_hydrostatic_stress from this run's fluctuations, the estimator of plateau_hardness_standard_error (the replicas' own combined as independent)"),
+    plateau_deviatoric_stress: Variable::output("plateau_deviatoric_stress", VarType::Real, "Pa", "deviatoric_stress averaged as plateau_hydrostatic_stress is"),
+    plateau_deviatoric_stress_standard_error: Variable::output("plateau_deviatoric_stress_standard_error", VarType::Real, "Pa", "standard error of plateau_deviatoric_stress, as plateau_hydrostatic_stress_standard_error"),
     indenter_motion: Variable::parameter("indenter_motion", Value::String("prescribed".into()), "", "prescribed (load at indentation_speed to max_penetration, unload at the same speed until the indenter leaves the bed) or input (follow indenter_displacement and indenter_velocity)"),
     indenter_diameter: Variable::parameter("indenter_diameter", Value::Real(0.016), "m", "d, diameter of the spherical indenter, narrower than the die (default 16 mm, 16 mean diameters of the shipped bed: 004 Ch. 5's smallest reliable size)")
         .with_range(Some(0.0), None),
@@ -498,6 +502,10 @@ impl Model for BallIndentation {
             (REFS.plateau_hardness_standard_error, r.plateau.standard_error),
             (REFS.depth_origin_offset, r.depth_origin_offset),
             (REFS.plateau_hardness_standard_error_over_beds, over_beds.standard_error),
+            (REFS.plateau_hydrostatic_stress, r.window_hydrostatic_stress.mean),
+            (REFS.plateau_hydrostatic_stress_standard_error, r.window_hydrostatic_stress.standard_error),
+            (REFS.plateau_deviatoric_stress, r.window_deviatoric_stress.mean),
+            (REFS.plateau_deviatoric_stress_standard_error, r.window_deviatoric_stress.standard_error),
         ] {
             values[vr] = Value::Real(x);
         }

@@ -86,6 +86,22 @@ def test_the_default_outputs_are_a_measurement(default_run):
     assert last["unconfined_yield_strength_standard_error"] == pytest.approx(hse / 3.0, rel=1e-12)
 
 
+def test_the_window_stresses_are_the_dynamic_bins_mean_with_its_error(default_run):
+    """plateau_hydrostatic_stress and plateau_deviatoric_stress are the dynamic bin's stresses (004 Eqs.
+    5.2-5.3, Fig. 5.19) averaged over the samples of the plateau window; the unit's rows every 1e-4 s (every
+    fourth sample, the same states) average to the same level within its standard error; and the bin's
+    stresses are positive, the hydrostatic below the hardness (the indenter's load spreads under it)."""
+    last = default_run[-1]
+    r = 0.008
+    loading = default_run[(default_run["test_state"] == 0) & (default_run["penetration_depth"] / r >= WINDOW[0]) & (default_run["penetration_depth"] / r <= WINDOW[1])]
+    assert len(loading) > 100
+    for name, column in [("plateau_hydrostatic_stress", "hydrostatic_stress"), ("plateau_deviatoric_stress", "deviatoric_stress")]:
+        level, se = last[name], last[name + "_standard_error"]
+        assert 0.01 * level < se < 0.5 * level, (name, level, se)
+        assert abs(loading[column].mean() - level) < se, (name, loading[column].mean(), level, se)
+    assert 0 < last["plateau_deviatoric_stress"] and 0 < last["plateau_hydrostatic_stress"] < last["plateau_hardness"]
+
+
 def test_the_default_test_is_the_command_line_run_of_the_same_settings(default_run):
     """The FMU and `powderfmu bed indent` step the same engine: their force records agree to the CSV's
     seven digits at every loading row, and so does the final hardness."""
