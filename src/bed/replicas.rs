@@ -269,6 +269,9 @@ mod tests {
         assert!((m.hardness_standard_error / both - 1.0).abs() < 1e-12, "{}", m.hardness_standard_error);
         assert!((m.unconfined_yield_strength_standard_error / (both / 3.0) - 1.0).abs() < 1e-12);
         assert_eq!(m.plateau.samples, 220);
+        // The window's bin stresses are combined as the plateau is (2 x and 1 x the plateau in `reading`).
+        assert_eq!((m.window_hydrostatic_stress.mean, m.window_deviatoric_stress.mean), (16000.0, 8000.0));
+        assert!((m.window_hydrostatic_stress.standard_error - 250.0).abs() < 1e-9 && m.window_deviatoric_stress.samples == 220);
         assert_eq!(m.contacts, 3);
         let alone = mean_reading(&[a]);
         assert_eq!(alone, a, "one bed's reading is its own");
