@@ -15,6 +15,9 @@ is A(h - OFFSET) (docs/indentation.md, "The depth origin").
 
     python3 benches/indentation_windows.py seed1=docs/data/ch5_quarter45_13mm_edem_friction.csv \
         seed2=docs/data/ch5_quarter45_13mm_edem_friction_seed2.csv
+
+`--quantity hydrostatic` or `--quantity deviatoric` (first) reads the dynamic bin's stresses of the same
+rows instead (004 Eqs. 5.2-5.3, Sec. 5.3).
 """
 
 import math
@@ -40,17 +43,24 @@ def from_origin(rows, offset):
     return out
 
 
-def window_means(path, offset=0.0):
-    """Mean hardness [Pa] of the loading rows in each of WINDOWS; NaN where a window has no row."""
+def window_means(path, offset=0.0, quantity="plateau"):
+    """Mean hardness [Pa] (or `quantity` of `summary`) of the loading rows in each of WINDOWS; NaN where a
+    window has no row."""
     rows = load(path)
     if not any(r["state"] == 0 for r in rows):
         sys.exit(f"{path}: no loading rows (state 0); is it a `bed indent --out` CSV?")
     if offset != 0.0:
         rows = from_origin(rows, offset)
-    return [summary(rows, window)["plateau"] for window in WINDOWS]
+    return [summary(rows, window)[quantity] for window in WINDOWS]
 
 
 def main(args):
+    quantity, name = "plateau", "hardness"
+    if args and args[0] == "--quantity":
+        if len(args) < 2 or args[1] not in ("hydrostatic", "deviatoric"):
+            sys.exit("--quantity takes hydrostatic or deviatoric")
+        quantity = name = args[1]
+        args = args[2:]
     if not args or any("=" not in a for a in args):
         sys.exit("usage: indentation_windows.py LABEL=CSV[@OFFSET_M] [LABEL=CSV[@OFFSET_M] ...]")
     labels, table = [], []
@@ -61,9 +71,9 @@ def main(args):
             path, off = path.rsplit("@", 1)
             offset = float(off)
         labels.append(label)
-        table.append(window_means(path, offset))
+        table.append(window_means(path, offset, quantity))
     head = " | ".join(f"{lo}-{hi}" for lo, hi in WINDOWS)
-    print(f"| bed | {head} |")
+    print(f"| bed ({name}) | {head} |")
     print("|---" + "|---:" * len(WINDOWS) + "|")
     for label, row in zip(labels, table):
         print(f"| {label} [Pa] | " + " | ".join(f"{v:.0f}" for v in row) + " |")
