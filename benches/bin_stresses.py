@@ -18,7 +18,11 @@ import csv
 import math
 import re
 import statistics
+import sys
 from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from indentation_rate import load  # noqa: E402  (a `bed indent --out` CSV as rows of floats)
 
 ROOT = Path(__file__).resolve().parent.parent
 RUNS = ROOT / "docs" / "data" / "ch6_indentation" / "window"
@@ -26,9 +30,7 @@ WINDOW = (0.35, 0.5)
 
 
 def window_rows(path):
-    with open(path) as f:
-        rows = [{k: float(v) for k, v in r.items()} for r in csv.DictReader(f)]
-    return [r for r in rows if r["state"] == 0 and WINDOW[0] <= r["depth_over_r"] <= WINDOW[1]]
+    return [r for r in load(path) if r["state"] == 0 and WINDOW[0] <= r["depth_over_r"] <= WINDOW[1]]
 
 
 def main():

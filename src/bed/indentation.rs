@@ -199,11 +199,10 @@ impl Record {
     /// The plateau hardness: the mean of F/A(h) over the loading samples at h/r within `window` (004
     /// Figs. 5.2-5.3), its standard error and the number of samples (mean 0 before the first) [Pa].
     pub fn plateau(&self, d: f64, window: (f64, f64)) -> MeanEstimate {
-        let r = 0.5 * d;
         let samples: Vec<f64> = self
             .loading
             .iter()
-            .filter(|&&(h, _)| h / r >= window.0 && h / r <= window.1 && projected_area(d, h) > 0.0)
+            .filter(|&&(h, _)| in_window(d, h, window))
             .map(|&(h, f)| f / projected_area(d, h))
             .collect();
         series::mean_with_error(&samples)
@@ -214,8 +213,7 @@ impl Record {
     /// (`series::mean_with_error`; mean 0 before the first) [Pa]: the levels 004 reads from its dynamic bin
     /// (Fig. 5.19, Figs. 7.3-7.5). Only checks within the test's own window were sampled.
     pub fn window_stress(&self, d: f64, window: (f64, f64)) -> [MeanEstimate; 2] {
-        let r = 0.5 * d;
-        let inside: Vec<&(f64, f64, f64)> = self.window_stress.iter().filter(|s| s.0 / r >= window.0 && s.0 / r <= window.1).collect();
+        let inside: Vec<&(f64, f64, f64)> = self.window_stress.iter().filter(|s| in_window(d, s.0, window)).collect();
         [
             series::mean_with_error(&inside.iter().map(|s| s.1).collect::<Vec<_>>()),
             series::mean_with_error(&inside.iter().map(|s| s.2).collect::<Vec<_>>()),
@@ -357,11 +355,17 @@ pub struct Indentation {
     indenter_pair: Map<String, Value>,
     indenter_rolling_friction: f64,
     die_pair: Option<Map<String, Value>>,
-    /// The plateau of the last reading and how many loading samples it saw: a host reading at every
-    /// short communication step does not repeat the autocorrelation sums (O(n W)) between checks.
-    plateau_cache: Option<(usize, MeanEstimate)>,
-    /// The same for the window's bin stresses (`Indentation::window_stress`).
-    stress_cache: Option<(usize, [MeanEstimate; 2])>,
+    /// The window's estimates of the last reading (the plateau, the bin's two levels) and how many loading
+    /// samples they saw (the bin is sampled with them): a host reading at every short communication step
+    /// does not repeat the autocorrelation sums (O(n W)) between checks.
+    window_cache: Option<(usize, MeanEstimate, [MeanEstimate; 2])>,
+}
+
+/// Whether depth h [m] of an indenter of diameter d [m] lies in `window` (h/r, both ends included) with
+/// the indenter in the bed: the samples the plateau and the bin's levels are read from.
+fn in_window(d: f64, h: f64, window: (f64, f64)) -> bool {
+    let hr = h / (0.5 * d);
+    hr >= window.0 && hr <= window.1 && projected_area(d, h) > 0.0
 }
 
 /// A(h) = pi (d h - h^2) (004 Eq. 2.9), 0 outside the indenter.
@@ -542,8 +546,7 @@ impl Indentation {
             indenter_pair: pair,
             indenter_rolling_friction: rolling,
             die_pair: None,
-            plateau_cache: None,
-            stress_cache: None,
+            window_cache: None,
         };
         if setup.motion == Motion::Prescribed {
             test.set_indenter_velocity(-setup.indentation_speed);
@@ -678,8 +681,7 @@ impl Indentation {
             self.record.loading.push((h, f));
             // The bin's stresses where the plateau is read: a force evaluation per check there (about 1 % of
             // the window's steps), none elsewhere.
-            let hr = h / (0.5 * self.setup.indenter_diameter);
-            if hr >= self.setup.plateau.0 && hr <= self.setup.plateau.1 && projected_area(self.setup.indenter_diameter, h) > 0.0 {
+            if in_window(self.setup.indenter_diameter, h, self.setup.plateau) {
                 let stress = self.bin_stress();
                 self.record.window_stress.push((h, stress.hydrostatic(), stress.deviatoric()));
             }
@@ -710,18 +712,25 @@ impl Indentation {
         }
     }
 
-    /// The plateau hardness of the record so far (`Record::plateau` with the set-up's window), computed
-    /// again only when a loading sample has been added.
-    pub fn plateau(&mut self) -> MeanEstimate {
+    /// The plateau hardness and the bin's levels of the record so far (`Record::plateau` and
+    /// `Record::window_stress` with the set-up's window), computed again only when a loading sample has
+    /// been added.
+    fn window_estimates(&mut self) -> (MeanEstimate, [MeanEstimate; 2]) {
         let n = self.record.loading.len();
-        match self.plateau_cache {
-            Some((seen, p)) if seen == n => p,
+        match self.window_cache {
+            Some((seen, p, s)) if seen == n => (p, s),
             _ => {
-                let p = self.record.plateau(self.setup.indenter_diameter, self.setup.plateau);
-                self.plateau_cache = Some((n, p));
-                p
+                let (d, window) = (self.setup.indenter_diameter, self.setup.plateau);
+                let (p, s) = (self.record.plateau(d, window), self.record.window_stress(d, window));
+                self.window_cache = Some((n, p, s));
+                (p, s)
             }
         }
+    }
+
+    /// The plateau hardness of the record so far (`window_estimates`).
+    pub fn plateau(&mut self) -> MeanEstimate {
+        self.window_estimates().0
     }
 
     /// Bagi's stress (004 Eq. 5.1) in the dynamic bin: BIN mean diameters wide and deep, directly under
@@ -735,17 +744,9 @@ impl Indentation {
         bagi(&mut self.engine, &bin).of_whole_die(self.scene.die_sector)
     }
 
-    /// `Record::window_stress` with the set-up's window, computed again only when a sample has been added.
+    /// The bin's hydrostatic and deviatoric levels of the record so far (`window_estimates`).
     pub fn window_stress(&mut self) -> [MeanEstimate; 2] {
-        let n = self.record.window_stress.len();
-        match self.stress_cache {
-            Some((seen, s)) if seen == n => s,
-            _ => {
-                let s = self.record.window_stress(self.setup.indenter_diameter, self.setup.plateau);
-                self.stress_cache = Some((n, s));
-                s
-            }
-        }
+        self.window_estimates().1
     }
 
     /// The outputs at the current state (one extra force evaluation for Bagi's stress, which leaves the
@@ -854,8 +855,7 @@ impl Indentation {
             indenter_pair,
             indenter_rolling_friction: saved.indenter_rolling_friction,
             die_pair,
-            plateau_cache: None,
-            stress_cache: None,
+            window_cache: None,
         })
     }
 }
