@@ -50,6 +50,19 @@ fn prepare_then_info_snapshot_render_export_and_bench() {
     let (code, _, err) = run(&["bed", "prepare", "--resume", settled.to_str().unwrap(), "--consolidation-stress", "0"]);
     assert_eq!(code, 2);
     assert!(err.contains("--consolidation-stress") && err.contains("allowed"), "{err}");
+    // A looser rest threshold for the phases still to run: the relax ends at the first check after its
+    // minimum time (1 ms; checks every 2e-4 s or 50 steps).
+    let relax = |out: &str| -> f64 { out.lines().find(|l| l.starts_with("relax")).unwrap().split_whitespace().nth(1).unwrap().parse().unwrap() };
+    let loose = d.join("loose.bed");
+    let (code, out3, err) = run(&["bed", "prepare", "--resume", settled.to_str().unwrap(), "--settle-energy-ratio", "0.9", "-o", loose.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    assert!(relax(&out3) < 1.5e-3 && relax(&out) > 2.0 * relax(&out3), "relax {} s with the ratio 0.9 against {} s with the scene's", relax(&out3), relax(&out));
+    for bad in ["0", "1", "2"] {
+        let (code, _, err) = run(&["bed", "prepare", "--resume", settled.to_str().unwrap(), "--settle-energy-ratio", bad, "-o", d.join("bad.bed").to_str().unwrap()]);
+        assert_eq!(code, 2, "--settle-energy-ratio {bad}: {err}");
+        assert!(err.contains("--settle-energy-ratio") && err.contains("allowed"), "{err}");
+    }
+    assert!(!d.join("bad.bed").exists());
     let (code, out, err) = run(&["bed", "info", bed.to_str().unwrap()]);
     assert_eq!(code, 0, "{err}");
     assert!(prepared.is_some() && prepared == memory(&out), "bed prepare and bed info give one memory per particle: {prepared:?} vs {:?}", memory(&out));

@@ -20,31 +20,7 @@ pub enum BedCommand {
     /// A preparation of hours runs in parts: every --checkpoint minutes the bed goes to
     /// OUT.checkpoint.pfbed, and `--resume` goes on from a checkpoint or from a bed saved with --until.
     #[command(after_long_help = powderfmu::bed::scene_keys_help())]
-    Prepare {
-        /// The bed scene (JSON; `--help` lists its keys with their ranges); not with --resume
-        #[arg(required_unless_present = "resume", conflicts_with = "resume")]
-        scene: Option<PathBuf>,
-        /// The bed file to write (default: the scene's name with .bed, or the resumed file)
-        #[arg(short, long, value_name = "BED")]
-        output: Option<PathBuf>,
-        /// Threads of the force loop (default: the scene's `threads`)
-        #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..=256))]
-        threads: Option<u16>,
-        /// The last phase to run
-        #[arg(long, value_name = "PHASE", default_value = "relax", value_parser = clap::builder::PossibleValuesParser::new(prepare::PHASES))]
-        until: String,
-        /// Continue a saved bed or checkpoint after the phase it went through
-        #[arg(long, value_name = "BED")]
-        resume: Option<PathBuf>,
-        /// Minutes between checkpoints [min]
-        #[arg(long, value_name = "MIN", default_value_t = 10.0, value_parser = options::positive("min"))]
-        checkpoint: f64,
-        /// With --resume of a bed not yet consolidated (saved with --until fill or settle): consolidate
-        /// to this piston stress instead of its scene's [Pa]. One settled fill branched to several
-        /// stresses (a flow function on the same fill); the bed written holds the new stress
-        #[arg(long, value_name = "PA", value_parser = options::in_range(0.0, 1e9, false, "Pa"))]
-        consolidation_stress: Option<f64>,
-    },
+    Prepare(PrepareArgs),
     /// Count, height, solid fraction, coordination, overlap, stress of a bed file
     Info {
         /// The bed file
@@ -89,6 +65,39 @@ pub enum BedCommand {
     /// Translational shear cell (`003` Sec. 5.1, `004` Sec. 2.2): the die split into two rings, preshear at
     /// sigma_pre, shears to failure at lower normal stresses; the yield locus, phi_i, c, sigma_c, sigma_1
     Shear(crate::bed_shear::ShearArgs),
+}
+
+#[derive(clap::Args)]
+pub struct PrepareArgs {
+    /// The bed scene (JSON; `--help` lists its keys with their ranges); not with --resume
+    #[arg(required_unless_present = "resume", conflicts_with = "resume")]
+    scene: Option<PathBuf>,
+    /// The bed file to write (default: the scene's name with .bed, or the resumed file)
+    #[arg(short, long, value_name = "BED")]
+    output: Option<PathBuf>,
+    /// Threads of the force loop (default: the scene's `threads`)
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..=256))]
+    threads: Option<u16>,
+    /// The last phase to run
+    #[arg(long, value_name = "PHASE", default_value = "relax", value_parser = clap::builder::PossibleValuesParser::new(prepare::PHASES))]
+    until: String,
+    /// Continue a saved bed or checkpoint after the phase it went through
+    #[arg(long, value_name = "BED")]
+    resume: Option<PathBuf>,
+    /// Minutes between checkpoints [min]
+    #[arg(long, value_name = "MIN", default_value_t = 10.0, value_parser = options::positive("min"))]
+    checkpoint: f64,
+    /// With --resume of a bed not yet consolidated (saved with --until fill or settle): consolidate
+    /// to this piston stress instead of its scene's [Pa]. One settled fill branched to several
+    /// stresses (a flow function on the same fill); the bed written holds the new stress
+    #[arg(long, value_name = "PA", value_parser = options::in_range(0.0, 1e9, false, "Pa"))]
+    consolidation_stress: Option<f64>,
+    /// The kinetic energy, as a fraction of sum(m g d_mean), under which the phases still to run
+    /// (settle, relax) count as at rest, instead of the scene's `settle_energy_ratio`: for a bed
+    /// whose kinetic energy stopped falling just above it (resume its checkpoint with this). The bed
+    /// written holds the new ratio [-]
+    #[arg(long, value_name = "RATIO", value_parser = options::in_range(0.0, 1.0, false, "-"))]
+    settle_energy_ratio: Option<f64>,
 }
 
 #[derive(clap::Args)]
@@ -205,9 +214,7 @@ pub struct BenchArgs {
 
 pub fn run(command: BedCommand) -> Result<(), String> {
     match command {
-        BedCommand::Prepare { scene, output, threads, until, resume, checkpoint, consolidation_stress } => {
-            prepare_cmd(scene, output, threads.map(usize::from), &until, resume, checkpoint, consolidation_stress)
-        }
+        BedCommand::Prepare(a) => prepare_cmd(a),
         BedCommand::Info { bed } => info_cmd(&bed),
         BedCommand::Params { bed } => params_cmd(&bed),
         BedCommand::Snapshot { bed, out } => snapshot_cmd(&bed, &out),
@@ -279,15 +286,10 @@ fn clock(s: f64) -> String {
     }
 }
 
-fn prepare_cmd(
-    scene_path: Option<PathBuf>,
-    output: Option<PathBuf>,
-    threads: Option<usize>,
-    until: &str,
-    resume: Option<PathBuf>,
-    every: f64,
-    consolidation_stress: Option<f64>,
-) -> Result<(), String> {
+fn prepare_cmd(a: PrepareArgs) -> Result<(), String> {
+    let PrepareArgs { scene: scene_path, output, threads, until, resume, checkpoint: every, consolidation_stress, settle_energy_ratio } = a;
+    let threads = threads.map(usize::from);
+    let until = until.as_str();
     if consolidation_stress.is_some() && resume.is_none() {
         return Err("--consolidation-stress goes with --resume of a bed saved with --until fill or settle; a new preparation consolidates to its scene's consolidation_stress".into());
     }
@@ -315,6 +317,9 @@ fn prepare_cmd(
     };
     if let Some(t) = threads {
         scene.threads = t;
+    }
+    if let Some(r) = settle_energy_ratio {
+        scene.settle_energy_ratio = r;
     }
     let out = output.unwrap_or(default_out);
     eprintln!(
@@ -349,7 +354,17 @@ fn prepare_cmd(
         }
         None => prepare::prepare_until(&scene, until, &mut show),
     }
-    .map_err(|e| if checkpoint.exists() { format!("{e}\nthe last checkpoint is {}", checkpoint.display()) } else { e.to_string() })?;
+    .map_err(|e| {
+        if checkpoint.exists() {
+            // A bed that stopped calming just above the threshold goes on from its checkpoint with a looser one.
+            format!(
+                "{e}\nthe last checkpoint is {0}: go on from it with `powderfmu bed prepare --resume {0}` (with --settle-energy-ratio above the ratio printed, if the bed did not come to rest)",
+                checkpoint.display()
+            )
+        } else {
+            e.to_string()
+        }
+    })?;
     bar.finish();
     file::save(&out, &engine, &scene).map_err(|e| format!("cannot write bed file `{}`: {e}", out.display()))?;
     let _ = std::fs::remove_file(&checkpoint);
