@@ -104,6 +104,40 @@ fn prepare_then_info_snapshot_render_export_and_bench() {
     assert_eq!(code, 2);
     assert!(err.contains("normal_stresses") && err.contains("preshear_stress"), "{err}");
     assert!(!sheared.exists());
+    // ... and refuses it before the preshear, so no saved preshear is written either.
+    let saved = d.join("preshear.pfshear");
+    let (code, _, err) = run(&["bed", "shear", bed.to_str().unwrap(), "--normal-fractions", "0.5,1.2", "--save-preshear", saved.to_str().unwrap()]);
+    assert_eq!(code, 2, "{err}");
+    assert!(!saved.exists());
+    // A short test with its preshear saved, then the shears again from the saved preshear alone: the
+    // same CSV to the byte (the state restores with its neighbour list as it was).
+    let short = ["--preshear-travel", "0.5", "--shear-travel", "0.2", "--shear-speed", "0.02", "--normal-fractions", "0.3,0.6"];
+    let (whole, again) = (d.join("whole.csv"), d.join("again.csv"));
+    let mut args = vec!["bed", "shear", bed.to_str().unwrap(), "--save-preshear", saved.to_str().unwrap(), "--out", whole.to_str().unwrap()];
+    args.extend(short);
+    let (code, _, err) = run(&args);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("preshear's end saved in") && saved.exists(), "{err}");
+    let from = ["bed", "shear", "--from-preshear", saved.to_str().unwrap(), "--shear-travel", "0.2", "--shear-speed", "0.02", "--normal-fractions", "0.3,0.6"];
+    let mut args = from.to_vec();
+    args.extend(["--out", again.to_str().unwrap()]);
+    let (code, _, err) = run(&args);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("the shears only") && err.contains("sigma_n"), "{err}");
+    let (a, b) = (std::fs::read(&whole).unwrap(), std::fs::read(&again).unwrap());
+    assert!(a.len() > 1000 && a == b, "the CSVs differ ({} and {} bytes)", a.len(), b.len());
+    // The saved preshear fixes its stress; a bed file is not a saved preshear; a bed with a saved one is refused.
+    let mut args = from.to_vec();
+    args.extend(["--preshear-stress", "5000"]);
+    let (code, _, err) = run(&args);
+    assert_eq!(code, 2);
+    assert!(err.contains("--preshear-stress") && err.contains("--from-preshear"), "{err}");
+    let (code, _, err) = run(&["bed", "shear", "--from-preshear", bed.to_str().unwrap()]);
+    assert_eq!(code, 2);
+    assert!(err.contains("it is a bed file"), "{err}");
+    let (code, _, err) = run(&["bed", "shear", bed.to_str().unwrap(), "--from-preshear", saved.to_str().unwrap()]);
+    assert_eq!(code, 2);
+    assert!(err.contains("--from-preshear"), "{err}");
     std::fs::remove_dir_all(&d).unwrap();
 }
 

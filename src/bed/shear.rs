@@ -31,12 +31,15 @@
 //!   force taken off), the lid brought to sigma_n, and the shear forward to `shear_displacement` or failure;
 //!   tau_peak is the largest mean over a window of `window` displacement (not the largest sample:
 //!   `compression`'s reasoning), with that window's standard error (`series`).
+//! - In two parts: `preshear` returns the cell at the preshear's end (`shear_state::Presheared`, which
+//!   a file can hold), `shears` runs the shears from it; `run` is the two.
 
 use super::any::{AnyEngine, BedError};
-use super::file::{self, BedFile};
+use super::file;
 use super::prepare::{bed_height, DIE, PISTON};
 use super::scene::BedScene;
 use super::series::{self, MeanEstimate};
+use super::shear_state::{Presheared, SavedCell};
 use super::stress::{bagi, Region};
 use super::walls::{Shape, Wall};
 use super::yield_locus::{Point, YieldLocus};
@@ -127,7 +130,7 @@ impl Setup {
 }
 
 /// One sample of a phase.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize, serde::Deserialize)]
 pub struct Sample {
     /// Time [s].
     pub time: f64,
@@ -367,34 +370,8 @@ fn has_failed(samples: &[Sample], w: usize) -> bool {
     series::has_softened(samples, w, |s| s.shear_stress, SOFTENING)
 }
 
-/// The engine's whole state, to start each shear from the preshear's end: the bed file's bytes and the
-/// list's build positions (so each restored state steps as the original would).
-struct Snapshot {
-    bed: Vec<u8>,
-    list: Vec<Vec3>,
-    walls: Vec<Vec3>,
-}
-
-fn snapshot(e: &AnyEngine, scene: &BedScene) -> Result<Snapshot, BedError> {
-    let (list, walls) = e.list_reference();
-    Ok(Snapshot { bed: file::encode(&e.to_file(scene)?)?, list, walls })
-}
-
-fn restore(s: &Snapshot, dt: f64, threads: Option<usize>) -> Result<AnyEngine, BedError> {
-    let bed: BedFile = file::decode(&s.bed)?;
-    let (mut e, scene) = AnyEngine::from_file(&bed, threads)?;
-    e.set_time_step(&scene, dt)?;
-    if !e.rebuild_at(&s.list, &s.walls) {
-        return Err(BedError::Setup("the shear cell's preshear state did not restore".into()));
-    }
-    Ok(e)
-}
-
-/// The whole test on a prepared bed (`engine`, its `scene`): loading, preshear, and one shear to failure
-/// per normal stress; `threads` for the restored states; `progress` every sample.
-pub fn run(engine: &mut AnyEngine, scene: &BedScene, setup: &Setup, threads: Option<usize>, mut progress: impl FnMut(Progress)) -> Result<Reading, BedError> {
-    setup.check()?;
-    let dt = engine.dt();
+/// Refuses a `window` of fewer than `series::MIN_SAMPLES` samples at time step `dt`.
+fn check_window(setup: &Setup, dt: f64) -> Result<(), BedError> {
     let per_sample = setup.shear_speed * dt * CHECK_EVERY as f64;
     if setup.window / per_sample < series::MIN_SAMPLES as f64 - 0.5 {
         return Err(ParamError::OutOfRange {
@@ -404,6 +381,22 @@ pub fn run(engine: &mut AnyEngine, scene: &BedScene, setup: &Setup, threads: Opt
         }
         .into());
     }
+    Ok(())
+}
+
+/// The whole test on a prepared bed (`engine`, its `scene`): loading, preshear, and one shear to failure
+/// per normal stress; `threads` for the restored states; `progress` every sample.
+pub fn run(engine: &mut AnyEngine, scene: &BedScene, setup: &Setup, threads: Option<usize>, mut progress: impl FnMut(Progress)) -> Result<Reading, BedError> {
+    let state = preshear(engine, scene, setup, &mut progress)?;
+    shears(&state, setup, threads, progress)
+}
+
+/// The test's first part on a prepared bed: the cell built, the lid loaded to sigma_pre and the preshear
+/// run; returns the cell at the preshear's end (`shear_state`), from which `shears` starts each shear.
+/// Checks the whole setup first, so that no bad shear setting is found after the preshear's hour.
+pub fn preshear(engine: &mut AnyEngine, scene: &BedScene, setup: &Setup, mut progress: impl FnMut(Progress)) -> Result<Presheared, BedError> {
+    setup.check()?;
+    check_window(setup, engine.dt())?;
     let mut cell = Cell::new(engine, scene, setup)?;
     let p = engine.particles();
     let volume: f64 = p.radius.iter().map(|r| 4.0 / 3.0 * std::f64::consts::PI * r.powi(3)).sum();
@@ -416,15 +409,64 @@ pub fn run(engine: &mut AnyEngine, scene: &BedScene, setup: &Setup, threads: Opt
     let preshear = cell.shear(engine, setup, pre, setup.preshear_displacement, false, |s| {
         progress(Progress { phase: "preshear", target: pre, sample: s, fraction: s.displacement / total })
     });
-    let steady: Vec<&Sample> = preshear.iter().filter(|s| s.displacement >= (1.0 - setup.steady_fraction) * setup.preshear_displacement).collect();
+    let (list, walls) = engine.list_reference();
+    let slab = cell.slab;
+    Ok(Presheared {
+        preshear_stress: pre,
+        shear_speed: setup.shear_speed,
+        split: setup.split,
+        preshear_displacement: setup.preshear_displacement,
+        time_step: engine.dt(),
+        solid_fraction,
+        preshear,
+        cell: SavedCell { upper: cell.upper as u32, area: cell.area, slab: [slab.radius, slab.z_low, slab.z_high], sector: cell.sector },
+        bed: file::encode(&engine.to_file(scene)?)?,
+        list,
+        walls,
+    })
+}
+
+/// The test's second part: from the cell at the preshear's end (`state`, of this run or a saved one),
+/// tau_pre over the preshear's last `setup.steady_fraction`, and for each of `setup.normal_stresses` the
+/// shear force taken off (the drive reversed until tau is zero), the lid brought to sigma_n and the shear
+/// to failure, each from the same state; `threads` for the restored states. The setup's preshear (its
+/// stress, split and travel) must be the state's; its drive speed, window and the shears' settings are
+/// the shears' own.
+pub fn shears(state: &Presheared, setup: &Setup, threads: Option<usize>, mut progress: impl FnMut(Progress)) -> Result<Reading, BedError> {
+    setup.check()?;
+    let differs = |a: f64, b: f64| (a - b).abs() > 1e-12 * a.abs().max(b.abs());
+    for (name, asked, saved, unit) in [
+        ("preshear_stress", setup.preshear_stress, state.preshear_stress, "Pa"),
+        ("split", setup.split, state.split, "of the bed's height"),
+        ("preshear_displacement", setup.preshear_displacement, state.preshear_displacement, "m"),
+    ] {
+        if differs(asked, saved) {
+            return Err(ParamError::Inconsistent { name, why: format!("the saved preshear ran with {saved:.6e} {unit}, the setup asks {asked:.6e}") }.into());
+        }
+    }
+    let dt = state.time_step;
+    check_window(setup, dt)?;
+    let steady: Vec<&Sample> = state.preshear.iter().filter(|s| s.displacement >= (1.0 - setup.steady_fraction) * setup.preshear_displacement).collect();
+    if steady.len() < series::MIN_SAMPLES {
+        return Err(ParamError::OutOfRange { name: "steady_fraction", value: setup.steady_fraction, allowed: format!("a steady end of at least {} samples of the preshear's {}", series::MIN_SAMPLES, state.preshear.len()) }.into());
+    }
     let preshear_normal = series::mean_with_error(&steady.iter().map(|s| s.normal_stress).collect::<Vec<_>>());
     let preshear_shear = series::mean_with_error(&steady.iter().map(|s| s.shear_stress).collect::<Vec<_>>());
     let preshear_major = series::mean_with_error(&steady.iter().map(|s| s.major_principal_stress).collect::<Vec<_>>());
-    let state = snapshot(engine, scene)?;
+    let saved = state.cell;
+    let cell = Cell {
+        upper: saved.upper as usize,
+        area: saved.area,
+        slab: Region { radius: saved.slab[0], z_low: saved.slab[1], z_high: saved.slab[2] },
+        sector: saved.sector,
+        check: (0.0, 0),
+        integral: 0.0,
+    };
+    let total = setup.preshear_displacement + setup.normal_stresses.len() as f64 * setup.shear_displacement;
     let mut failures = Vec::new();
     for (k, &target) in setup.normal_stresses.iter().enumerate() {
-        let mut e = restore(&state, dt, threads)?;
-        let mut c = Cell { check: (0.0, 0), integral: 0.0, ..cell };
+        let mut e = state.engine(threads)?;
+        let mut c = cell;
         // The shear force taken off (the drive reversed until tau is zero), the lid brought to sigma_n.
         let done = setup.preshear_displacement + k as f64 * setup.shear_displacement;
         c.settle(&mut e, setup, -setup.shear_speed, target, true, |s| {
@@ -445,7 +487,7 @@ pub fn run(engine: &mut AnyEngine, scene: &BedScene, setup: &Setup, threads: Opt
             samples,
         });
     }
-    let mut reading = Reading { preshear_normal, preshear_shear, preshear_major, preshear, failures, locus: None, solid_fraction };
+    let mut reading = Reading { preshear_normal, preshear_shear, preshear_major, preshear: state.preshear.clone(), failures, locus: None, solid_fraction: state.solid_fraction };
     reading.locus = YieldLocus::fit(&reading.points());
     Ok(reading)
 }
@@ -488,6 +530,22 @@ mod tests {
             let e = s.check().unwrap_err().to_string();
             assert!(e.contains(name), "{e}");
         }
+    }
+
+    #[test]
+    fn shears_refuse_a_setup_whose_preshear_is_not_the_saved_one() {
+        let state = crate::bed::shear_state::tests::state();
+        for (s, name) in [
+            (Setup { preshear_stress: 2e4, normal_stresses: vec![5e3, 8e3], ..setup() }, "preshear_stress"),
+            (Setup { split: 0.4, ..setup() }, "split"),
+            (Setup { preshear_displacement: 3e-3, ..setup() }, "preshear_displacement"),
+        ] {
+            let e = shears(&state, &s, None, |_| {}).unwrap_err().to_string();
+            assert!(e.contains(name) && e.contains("the saved preshear ran with"), "{e}");
+        }
+        // The three saved samples are fewer than a steady end needs.
+        let e = shears(&state, &setup(), None, |_| {}).unwrap_err().to_string();
+        assert!(e.contains("steady_fraction"), "{e}");
     }
 
     #[test]

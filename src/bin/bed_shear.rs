@@ -6,13 +6,22 @@ use crate::options;
 use powderfmu::bed::file;
 use powderfmu::bed::series::MeanEstimate;
 use powderfmu::bed::shear::{self, Setup};
+use powderfmu::bed::shear_state::Presheared;
 use std::path::PathBuf;
 use std::time::Instant;
 
 #[derive(clap::Args)]
 pub struct ShearArgs {
-    /// A prepared bed file (a whole die or a half: the shear runs along the half's mirror plane)
-    bed: PathBuf,
+    /// A prepared bed file (a whole die or a half: the shear runs along the half's mirror plane); not with --from-preshear
+    #[arg(required_unless_present = "from_preshear", conflicts_with = "from_preshear")]
+    bed: Option<PathBuf>,
+    /// Start from a preshear saved with --save-preshear: its cell, stress, split, travel and time step;
+    /// only the shears run (the preshear's curve and tau_pre are the saved run's)
+    #[arg(long, value_name = "FILE", conflicts_with_all = ["preshear_stress", "split", "preshear_travel", "time_step", "save_preshear"])]
+    from_preshear: Option<PathBuf>,
+    /// Save the cell at the preshear's end to this file before the shears, for `--from-preshear`
+    #[arg(long, value_name = "FILE")]
+    save_preshear: Option<PathBuf>,
     /// Normal stress of the preshear, sigma_pre [Pa] (default: the bed's consolidation_stress)
     #[arg(long, value_name = "PA", value_parser = options::positive("Pa"))]
     preshear_stress: Option<f64>,
@@ -22,13 +31,13 @@ pub struct ShearArgs {
     /// Speed of the drive [m/s]
     #[arg(long, value_name = "M_PER_S", default_value_t = 0.005, value_parser = options::positive("m/s"))]
     shear_speed: f64,
-    /// Height of the rings' meeting, a fraction of the bed's height
-    #[arg(long, value_name = "F", default_value_t = 0.5, value_parser = options::in_range(0.1, 0.9, false, "-"))]
-    split: f64,
+    /// Height of the rings' meeting, a fraction of the bed's height [default: 0.5]
+    #[arg(long, value_name = "F", value_parser = options::in_range(0.1, 0.9, false, "-"))]
+    split: Option<f64>,
     /// Travel of the preshear, in mean sphere diameters (on the Ch. 6 specimen 2 were not enough for steady
-    /// flow and 5 were: docs/bed.md "The shear cell")
-    #[arg(long, value_name = "D", default_value_t = 5.0, value_parser = options::positive("mean diameters"))]
-    preshear_travel: f64,
+    /// flow and 5 were: docs/bed.md "The shear cell") [default: 5]
+    #[arg(long, value_name = "D", value_parser = options::positive("mean diameters"))]
+    preshear_travel: Option<f64>,
     /// Fraction of the preshear's travel over which tau_pre is averaged
     #[arg(long, value_name = "F", default_value_t = 0.3, value_parser = options::in_range(0.0, 1.0, false, "-"))]
     steady_fraction: f64,
@@ -61,18 +70,38 @@ fn pm(x: &MeanEstimate) -> String {
 
 pub fn shear_cmd(a: ShearArgs) -> Result<(), String> {
     let threads = a.threads.map(usize::from);
-    let (mut engine, scene) = load(&a.bed, threads)?;
-    if let Some(dt) = a.time_step {
-        engine.set_time_step(&scene, dt).map_err(|e| format!("--time-step: {e}"))?;
-    }
+    // The cell to start from: a prepared bed (the whole test), or a saved preshear (the shears only).
+    let (bed, saved) = match (&a.bed, &a.from_preshear) {
+        (Some(path), _) => {
+            let (mut engine, scene) = load(path, threads)?;
+            if let Some(dt) = a.time_step {
+                engine.set_time_step(&scene, dt).map_err(|e| format!("--time-step: {e}"))?;
+            }
+            (Some((engine, scene)), None)
+        }
+        (None, Some(path)) => {
+            let bytes = std::fs::read(path).map_err(|e| format!("{}: {e}", path.display()))?;
+            let state = Presheared::decode(&bytes).map_err(|e| format!("{}: {e}", path.display()))?;
+            (None, Some(state))
+        }
+        (None, None) => unreachable!("clap requires BED or --from-preshear"),
+    };
+    let scene = match (&bed, &saved) {
+        (Some((_, scene)), _) => scene.clone(),
+        (None, Some(state)) => state.scene().map_err(|e| e.to_string())?,
+        (None, None) => unreachable!(),
+    };
     let d = scene.size_distribution.mean_diameter();
-    let pre = a.preshear_stress.unwrap_or(scene.consolidation_stress);
+    let pre = match &saved {
+        Some(state) => state.preshear_stress,
+        None => a.preshear_stress.unwrap_or(scene.consolidation_stress),
+    };
     let setup = Setup {
         preshear_stress: pre,
         normal_stresses: a.normal_fractions.iter().map(|f| f * pre).collect(),
         shear_speed: a.shear_speed,
-        split: a.split,
-        preshear_displacement: a.preshear_travel * d,
+        split: saved.as_ref().map_or(a.split.unwrap_or(0.5), |s| s.split),
+        preshear_displacement: saved.as_ref().map_or(a.preshear_travel.unwrap_or(5.0) * d, |s| s.preshear_displacement),
         steady_fraction: a.steady_fraction,
         shear_displacement: a.shear_travel * d,
         window: a.window * d,
@@ -83,16 +112,37 @@ pub fn shear_cmd(a: ShearArgs) -> Result<(), String> {
         "shear cell: die {:.4e} m split at {} of the bed's height; preshear at {pre:.4e} Pa over {:.3e} m, shears at {:?} Pa over up to {:.3e} m each, drive {} m/s",
         scene.die_diameter, setup.split, setup.preshear_displacement, setup.normal_stresses, setup.shear_displacement, setup.shear_speed
     );
+    if let (Some(path), Some(state)) = (&a.from_preshear, &saved) {
+        eprintln!(
+            "shear cell: from the preshear saved in {} (drive {} m/s, time step {:.4e} s): the shears only",
+            path.display(),
+            state.shear_speed,
+            state.time_step
+        );
+    }
     let started = Instant::now();
     let mut bar = Bar::new();
-    let reading = shear::run(&mut engine, &scene, &setup, threads, |p| {
+    let mut show = |p: shear::Progress| {
         let s = p.sample;
         bar.show_phase(p.phase, p.fraction, s.time, &format!("target {:.3e} Pa  lid {:.4e} Pa  travel {:.3e} m  sigma {:.4e} Pa  tau {:.4e} Pa  drive {:.4e} Pa", p.target, s.lid_stress, s.displacement, s.normal_stress, s.shear_stress, s.drive_stress));
         if std::env::var_os("POWDERFMU_SHEAR_TRACE").is_some() {
             eprintln!("{} {:.6e} {:.4e} {:.4e} {:.6e}", p.phase, s.time, s.lid_stress, s.drive_stress, s.lid);
         }
-    })
-    .map_err(|e| e.to_string())?;
+    };
+    let state = match (bed, saved) {
+        (_, Some(state)) => state,
+        (Some((mut engine, scene)), None) => {
+            let state = shear::preshear(&mut engine, &scene, &setup, &mut show).map_err(|e| e.to_string())?;
+            if let Some(path) = &a.save_preshear {
+                let bytes = state.encode().map_err(|e| e.to_string())?;
+                file::write_atomic(path, &bytes).map_err(|e| format!("--save-preshear: cannot write {}: {e}", path.display()))?;
+                eprintln!("shear cell: the cell at the preshear's end saved in {} ({} bytes)", path.display(), bytes.len());
+            }
+            state
+        }
+        (None, None) => unreachable!(),
+    };
+    let reading = shear::shears(&state, &setup, threads, &mut show).map_err(|e| e.to_string())?;
     bar.finish();
     let wall = started.elapsed().as_secs_f64();
     eprintln!(
