@@ -109,6 +109,10 @@ fn prepare_then_info_snapshot_render_export_and_bench() {
     let (code, _, err) = run(&["bed", "shear", bed.to_str().unwrap(), "--normal-fractions", "0.5,1.2", "--save-preshear", saved.to_str().unwrap()]);
     assert_eq!(code, 2, "{err}");
     assert!(!saved.exists());
+    let nowhere = d.join("no-such-folder").join("p.pfshear");
+    let (code, _, err) = run(&["bed", "shear", bed.to_str().unwrap(), "--save-preshear", nowhere.to_str().unwrap()]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("--save-preshear") && err.contains("does not exist"), "{err}");
     // A short test with its preshear saved, then the shears again from the saved preshear alone: the
     // same CSV to the byte (the state restores with its neighbour list as it was).
     let short = ["--preshear-travel", "0.5", "--shear-travel", "0.2", "--shear-speed", "0.02", "--normal-fractions", "0.3,0.6"];

@@ -120,6 +120,12 @@ pub fn shear_cmd(a: ShearArgs) -> Result<(), String> {
             state.time_step
         );
     }
+    if let Some(path) = &a.save_preshear {
+        let folder = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(std::path::Path::new("."));
+        if !folder.is_dir() {
+            return Err(format!("--save-preshear: the folder {} does not exist", folder.display()));
+        }
+    }
     let started = Instant::now();
     let mut bar = Bar::new();
     let mut show = |p: shear::Progress| {
@@ -135,8 +141,11 @@ pub fn shear_cmd(a: ShearArgs) -> Result<(), String> {
             let state = shear::preshear(&mut engine, &scene, &setup, &mut show).map_err(|e| e.to_string())?;
             if let Some(path) = &a.save_preshear {
                 let bytes = state.encode().map_err(|e| e.to_string())?;
-                file::write_atomic(path, &bytes).map_err(|e| format!("--save-preshear: cannot write {}: {e}", path.display()))?;
-                eprintln!("shear cell: the cell at the preshear's end saved in {} ({} bytes)", path.display(), bytes.len());
+                // The shears still run when the file cannot be written: the preshear is not thrown away with it.
+                match file::write_atomic(path, &bytes) {
+                    Ok(()) => eprintln!("shear cell: the cell at the preshear's end saved in {} ({} bytes)", path.display(), bytes.len()),
+                    Err(e) => eprintln!("shear cell: warning: --save-preshear: cannot write {} ({e}); the shears go on", path.display()),
+                }
             }
             state
         }
