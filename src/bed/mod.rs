@@ -18,7 +18,7 @@
 //! - `indentation`: the ball indentation test on a prepared bed (`004` Sec. 2.3.5, Chs. 5-7);
 //! - `compression`: the unconfined compression test on a prepared bed (`004` Sec. 2.1): sigma_c and ff_c;
 //! - `shear`: the translational (Jenike) shear cell on a prepared bed (`003` Sec. 5.1): the yield locus;
-//! - `shear_state`: the shear cell saved at the preshear's end, for shears without the preshear again;
+//! - `shear_state`: the file of the shear cell at the preshear's end, for shears without the preshear again;
 //! - `yield_locus`: the straight yield locus and its Mohr circles (sigma_c, sigma_1; `004` Sec. 2.2);
 //! - `series`: the mean of an autocorrelated series with its standard error;
 //! - `file`: the versioned bed file; `export`: VTK/CSV output; `render`: the PNG cross-section;

@@ -31,15 +31,14 @@
 //!   force taken off), the lid brought to sigma_n, and the shear forward to `shear_displacement` or failure;
 //!   tau_peak is the largest mean over a window of `window` displacement (not the largest sample:
 //!   `compression`'s reasoning), with that window's standard error (`series`).
-//! - In two parts: `preshear` returns the cell at the preshear's end (`shear_state::Presheared`, which
-//!   a file can hold), `shears` runs the shears from it; `run` is the two.
+//! - In two parts: `preshear` returns the cell at the preshear's end (`Presheared`, which a file can
+//!   hold: `shear_state`), `shears` runs the shears from it; `run` is the two.
 
 use super::any::{AnyEngine, BedError};
-use super::file;
+use super::file::{self, BedFile};
 use super::prepare::{bed_height, DIE, PISTON};
 use super::scene::BedScene;
 use super::series::{self, MeanEstimate};
-use super::shear_state::{Presheared, SavedCell};
 use super::stress::{bagi, Region};
 use super::walls::{Shape, Wall};
 use super::yield_locus::{Point, YieldLocus};
@@ -370,6 +369,68 @@ fn has_failed(samples: &[Sample], w: usize) -> bool {
     series::has_softened(samples, w, |s| s.shear_stress, SOFTENING)
 }
 
+/// The cell's geometry as the shears need it: the upper ring's wall index, the cross-section the lid and
+/// the drive act on, the measurement slab (radius, lower and upper height) and the die's sector.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct SavedCell {
+    /// Index of the upper ring among the walls.
+    pub upper: u32,
+    /// Cross-section of the (sector of the) die [m^2].
+    pub area: f64,
+    /// The slab about the shear plane: radius, lower height, upper height [m].
+    pub slab: [f64; 3],
+    /// Part of the die simulated.
+    pub sector: f64,
+}
+
+/// The shear cell at the preshear's end (`preshear`), from which `shears` starts each shear: the engine's
+/// state with the rings and the lid, the neighbour list's build positions (a restored state steps as the
+/// original would), the preshear's curve and settings; `shear_state` writes it to a file and reads it back.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct Presheared {
+    /// Normal stress the preshear ran at, sigma_pre [Pa].
+    pub preshear_stress: f64,
+    /// Drive speed of the preshear [m/s].
+    pub shear_speed: f64,
+    /// Height of the rings' meeting, a fraction of the bed's height [-].
+    pub split: f64,
+    /// Travel of the preshear [m].
+    pub preshear_displacement: f64,
+    /// The engine's time step [s].
+    pub time_step: f64,
+    /// Solid fraction of the bed in the cell under sigma_pre, at the preshear's start [-].
+    pub solid_fraction: f64,
+    /// The preshear's curve.
+    pub preshear: Vec<Sample>,
+    /// The cell's geometry.
+    pub cell: SavedCell,
+    /// The engine's state as a bed file's bytes (envelope included).
+    pub bed: Vec<u8>,
+    /// The neighbour list's build positions of the particles and the walls.
+    pub list: Vec<Vec3>,
+    /// The walls' positions at the list's build.
+    pub walls: Vec<Vec3>,
+}
+
+impl Presheared {
+    /// The bed scene the state was prepared with.
+    pub fn scene(&self) -> Result<BedScene, BedError> {
+        let bed: BedFile = file::decode(&self.bed)?;
+        Ok(BedScene::from_stored_json(&bed.scene)?)
+    }
+
+    /// The engine at the preshear's end, on `threads` (default: the scene's), with its list as it was.
+    pub fn engine(&self, threads: Option<usize>) -> Result<AnyEngine, BedError> {
+        let bed: BedFile = file::decode(&self.bed)?;
+        let (mut e, scene) = AnyEngine::from_file(&bed, threads)?;
+        e.set_time_step(&scene, self.time_step)?;
+        if !e.rebuild_at(&self.list, &self.walls) {
+            return Err(BedError::Setup("the shear cell's preshear state did not restore".into()));
+        }
+        Ok(e)
+    }
+}
+
 /// Refuses a `window` of fewer than `series::MIN_SAMPLES` samples at time step `dt`.
 fn check_window(setup: &Setup, dt: f64) -> Result<(), BedError> {
     let per_sample = setup.shear_speed * dt * CHECK_EVERY as f64;
@@ -392,7 +453,7 @@ pub fn run(engine: &mut AnyEngine, scene: &BedScene, setup: &Setup, threads: Opt
 }
 
 /// The test's first part on a prepared bed: the cell built, the lid loaded to sigma_pre and the preshear
-/// run; returns the cell at the preshear's end (`shear_state`), from which `shears` starts each shear.
+/// run; returns the cell at the preshear's end (`Presheared`), from which `shears` starts each shear.
 /// Checks the whole setup first, so that no bad shear setting is found after the preshear's hour.
 pub fn preshear(engine: &mut AnyEngine, scene: &BedScene, setup: &Setup, mut progress: impl FnMut(Progress)) -> Result<Presheared, BedError> {
     setup.check()?;
@@ -493,8 +554,25 @@ pub fn shears(state: &Presheared, setup: &Setup, threads: Option<usize>, mut pro
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
+
+    pub(crate) fn saved_state() -> Presheared {
+        let sample = Sample { time: 0.5, displacement: 1e-4, normal_stress: 1.1e4, shear_stress: 4.5e3, ..Default::default() };
+        Presheared {
+            preshear_stress: 1e4,
+            shear_speed: 0.01,
+            split: 0.5,
+            preshear_displacement: 2e-3,
+            time_step: 2.5e-7,
+            solid_fraction: 0.55,
+            preshear: vec![sample; 3],
+            cell: SavedCell { upper: 3, area: 1.7e-4, slab: [6e-3, 9e-3, 1.3e-2], sector: 0.5 },
+            bed: vec![1, 2, 3],
+            list: vec![Vec3::new(1.0, 2.0, 3.0)],
+            walls: vec![Vec3::zeros(); 4],
+        }
+    }
 
     fn setup() -> Setup {
         Setup {
@@ -534,7 +612,7 @@ mod tests {
 
     #[test]
     fn shears_refuse_a_setup_whose_preshear_is_not_the_saved_one() {
-        let state = crate::bed::shear_state::tests::state();
+        let state = saved_state();
         for (s, name) in [
             (Setup { preshear_stress: 2e4, normal_stresses: vec![5e3, 8e3], ..setup() }, "preshear_stress"),
             (Setup { split: 0.4, ..setup() }, "split"),

@@ -6,7 +6,7 @@ use crate::options;
 use powderfmu::bed::file;
 use powderfmu::bed::series::MeanEstimate;
 use powderfmu::bed::shear::{self, Setup};
-use powderfmu::bed::shear_state::Presheared;
+use powderfmu::bed::shear_state;
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -81,7 +81,7 @@ pub fn shear_cmd(a: ShearArgs) -> Result<(), String> {
         }
         (None, Some(path)) => {
             let bytes = std::fs::read(path).map_err(|e| format!("{}: {e}", path.display()))?;
-            let state = Presheared::decode(&bytes).map_err(|e| format!("{}: {e}", path.display()))?;
+            let state = shear_state::decode(&bytes).map_err(|e| format!("{}: {e}", path.display()))?;
             (None, Some(state))
         }
         (None, None) => unreachable!("clap requires BED or --from-preshear"),
@@ -140,7 +140,7 @@ pub fn shear_cmd(a: ShearArgs) -> Result<(), String> {
         (Some((mut engine, scene)), None) => {
             let state = shear::preshear(&mut engine, &scene, &setup, &mut show).map_err(|e| e.to_string())?;
             if let Some(path) = &a.save_preshear {
-                let bytes = state.encode().map_err(|e| e.to_string())?;
+                let bytes = shear_state::encode(&state).map_err(|e| e.to_string())?;
                 // The shears still run when the file cannot be written: the preshear is not thrown away with it.
                 match file::write_atomic(path, &bytes) {
                     Ok(()) => eprintln!("shear cell: the cell at the preshear's end saved in {} ({} bytes)", path.display(), bytes.len()),
