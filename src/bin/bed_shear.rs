@@ -68,6 +68,17 @@ fn pm(x: &MeanEstimate) -> String {
     format!("{:.4e} +- {:.1e}", x.mean, x.standard_error)
 }
 
+/// ff_c = sigma_1 / sigma_c (004 Eq. 2.2), or why there is none: a sigma_c not above zero by two of its
+/// standard errors (a cohesionless bed's locus through the origin) gives no finite ratio, and a negative
+/// one no meaningful one.
+fn flow_factor(sigma_1: f64, sc: f64, sc_e: f64) -> String {
+    if sc > 2.0 * sc_e {
+        format!("{:.3}", sigma_1 / sc)
+    } else {
+        "none: sigma_c is zero within two standard errors (a locus through the origin; free flowing)".into()
+    }
+}
+
 pub fn shear_cmd(a: ShearArgs) -> Result<(), String> {
     let threads = a.threads.map(usize::from);
     // The cell to start from: a prepared bed (the whole test), or a saved preshear (the shears only).
@@ -188,8 +199,8 @@ pub fn shear_cmd(a: ShearArgs) -> Result<(), String> {
             eprintln!("shear cell: the preshear point against the locus extended to it: tau_pre {:.4e} Pa, locus {on:.4e} +- {on_e:.1e} Pa ({gap:+.1} standard errors)", reading.preshear_shear.mean);
             match yl.major_consolidation_stress(reading.preshear_normal.mean, reading.preshear_shear.mean) {
                 Some((s1, s1_e)) => eprintln!(
-                    "shear cell: sigma_c = {sc:.4e} +- {sc_e:.1e} Pa, sigma_1 = {s1:.4e} +- {s1_e:.1e} Pa (Mohr circles, 004 Fig. 2.5), ff_c = {:.3}; {wall:.1} s wall time",
-                    s1 / sc
+                    "shear cell: sigma_c = {sc:.4e} +- {sc_e:.1e} Pa, sigma_1 = {s1:.4e} +- {s1_e:.1e} Pa (Mohr circles, 004 Fig. 2.5), ff_c = {}; {wall:.1} s wall time",
+                    flow_factor(s1, sc, sc_e)
                 ),
                 None => eprintln!("shear cell: sigma_c = {sc:.4e} +- {sc_e:.1e} Pa; no Mohr circle through the preshear point is tangent to the locus (the point lies above it): no sigma_1 by construction; {wall:.1} s wall time"),
             }
@@ -197,8 +208,8 @@ pub fn shear_cmd(a: ShearArgs) -> Result<(), String> {
         None => eprintln!("shear cell: the points give no yield locus"),
     }
     if let Some(yl) = &reading.locus {
-        let (sc, _) = yl.unconfined_yield_strength();
-        eprintln!("shear cell: with sigma_1 as measured (the slab's principal stress in the preshear), ff_c = {:.3}", reading.preshear_major.mean / sc);
+        let (sc, sc_e) = yl.unconfined_yield_strength();
+        eprintln!("shear cell: with sigma_1 as measured (the slab's principal stress in the preshear), ff_c = {}", flow_factor(reading.preshear_major.mean, sc, sc_e));
     }
     let mut csv = String::from("phase,normal_stress_target_Pa,time_s,displacement_m,normal_stress_Pa,shear_stress_Pa,major_principal_stress_Pa,lid_stress_Pa,drive_stress_Pa,lid_height_m\n");
     let mut rows = |phase: &str, target: f64, samples: &[shear::Sample]| {
@@ -218,6 +229,20 @@ pub fn shear_cmd(a: ShearArgs) -> Result<(), String> {
         None => {
             print!("{csv}");
             Ok(())
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::flow_factor;
+
+    #[test]
+    fn no_flow_factor_from_a_sigma_c_that_is_zero_within_its_error() {
+        assert_eq!(flow_factor(2e4, 2e3, 1e2), "10.000");
+        // 003's TiO2 case at k_c = 0 read sigma_c = -820 +- 660 Pa: no ff_c of -39.
+        for (sc, sc_e) in [(-820.0, 660.0), (100.0, 60.0), (0.0, 0.0)] {
+            assert!(flow_factor(3.2e4, sc, sc_e).starts_with("none: sigma_c is zero"), "{sc} +- {sc_e}");
         }
     }
 }
