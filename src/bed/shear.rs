@@ -445,6 +445,21 @@ fn check_window(setup: &Setup, dt: f64) -> Result<(), BedError> {
     Ok(())
 }
 
+/// Refuses a preshear whose steady end (`steady_fraction` of its travel) would hold fewer than
+/// `series::MIN_SAMPLES` samples at time step `dt`: checked before the preshear, not after it.
+fn check_steady_end(setup: &Setup, dt: f64) -> Result<(), BedError> {
+    let per_sample = setup.shear_speed * dt * CHECK_EVERY as f64;
+    if setup.steady_fraction * setup.preshear_displacement / per_sample < series::MIN_SAMPLES as f64 {
+        return Err(ParamError::OutOfRange {
+            name: "steady_fraction",
+            value: setup.steady_fraction,
+            allowed: format!("a steady end of at least {} samples: [{:.3e}, 1) at this preshear's travel {:.3e} m, step {dt:.3e} s and shear_speed {} m/s", series::MIN_SAMPLES, series::MIN_SAMPLES as f64 * per_sample / setup.preshear_displacement, setup.preshear_displacement, setup.shear_speed),
+        }
+        .into());
+    }
+    Ok(())
+}
+
 /// The whole test on a prepared bed (`engine`, its `scene`): loading, preshear, and one shear to failure
 /// per normal stress; `threads` for the restored states; `progress` every sample.
 pub fn run(engine: &mut AnyEngine, scene: &BedScene, setup: &Setup, threads: Option<usize>, mut progress: impl FnMut(Progress)) -> Result<Reading, BedError> {
@@ -458,6 +473,7 @@ pub fn run(engine: &mut AnyEngine, scene: &BedScene, setup: &Setup, threads: Opt
 pub fn preshear(engine: &mut AnyEngine, scene: &BedScene, setup: &Setup, mut progress: impl FnMut(Progress)) -> Result<Presheared, BedError> {
     setup.check()?;
     check_window(setup, engine.dt())?;
+    check_steady_end(setup, engine.dt())?;
     let mut cell = Cell::new(engine, scene, setup)?;
     let p = engine.particles();
     let volume: f64 = p.radius.iter().map(|r| 4.0 / 3.0 * std::f64::consts::PI * r.powi(3)).sum();
@@ -624,6 +640,14 @@ pub(crate) mod tests {
         // The three saved samples are fewer than a steady end needs.
         let e = shears(&state, &setup(), None, |_| {}).unwrap_err().to_string();
         assert!(e.contains("steady_fraction"), "{e}");
+    }
+
+    #[test]
+    fn a_steady_end_too_short_for_its_error_is_refused_before_the_preshear() {
+        // 2 mm at 10 mm/s, 100 steps of 1e-6 s a sample: 2000 samples, 600 in the default steady end.
+        assert!(check_steady_end(&setup(), 1e-6).is_ok());
+        let e = check_steady_end(&Setup { steady_fraction: 0.003, ..setup() }, 1e-6).unwrap_err().to_string();
+        assert!(e.contains("steady_fraction") && e.contains("at least 8 samples"), "{e}");
     }
 
     #[test]
