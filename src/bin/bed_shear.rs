@@ -7,6 +7,7 @@ use powderfmu::bed::file;
 use powderfmu::bed::series::MeanEstimate;
 use powderfmu::bed::shear::{self, Setup};
 use powderfmu::bed::shear_state;
+use powderfmu::bed::{AnyEngine, BedScene};
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -64,6 +65,12 @@ pub struct ShearArgs {
     out: Option<PathBuf>,
 }
 
+/// Where the test starts: a prepared bed (the whole test) or a saved preshear (the shears only).
+enum Start {
+    Bed(Box<AnyEngine>, BedScene),
+    Saved(shear::Presheared),
+}
+
 fn pm(x: &MeanEstimate) -> String {
     format!("{:.4e} +- {:.1e}", x.mean, x.standard_error)
 }
@@ -81,38 +88,36 @@ fn flow_factor(sigma_1: f64, sc: f64, sc_e: f64) -> String {
 
 pub fn shear_cmd(a: ShearArgs) -> Result<(), String> {
     let threads = a.threads.map(usize::from);
-    // The cell to start from: a prepared bed (the whole test), or a saved preshear (the shears only).
-    let (bed, saved) = match (&a.bed, &a.from_preshear) {
+    let start = match (&a.bed, &a.from_preshear) {
         (Some(path), _) => {
             let (mut engine, scene) = load(path, threads)?;
             if let Some(dt) = a.time_step {
                 engine.set_time_step(&scene, dt).map_err(|e| format!("--time-step: {e}"))?;
             }
-            (Some((engine, scene)), None)
+            Start::Bed(Box::new(engine), scene)
         }
         (None, Some(path)) => {
             let bytes = std::fs::read(path).map_err(|e| format!("{}: {e}", path.display()))?;
-            let state = shear_state::decode(&bytes).map_err(|e| format!("{}: {e}", path.display()))?;
-            (None, Some(state))
+            Start::Saved(shear_state::decode(&bytes).map_err(|e| format!("{}: {e}", path.display()))?)
         }
-        (None, None) => unreachable!("clap requires BED or --from-preshear"),
+        (None, None) => return Err("give a bed file or --from-preshear FILE".into()),
     };
-    let scene = match (&bed, &saved) {
-        (Some((_, scene)), _) => scene.clone(),
-        (None, Some(state)) => state.scene().map_err(|e| e.to_string())?,
-        (None, None) => unreachable!(),
+    let scene = match &start {
+        Start::Bed(_, scene) => scene.clone(),
+        Start::Saved(state) => state.scene().map_err(|e| e.to_string())?,
+    };
+    let saved = match &start {
+        Start::Saved(state) => Some(state),
+        Start::Bed(..) => None,
     };
     let d = scene.size_distribution.mean_diameter();
-    let pre = match &saved {
-        Some(state) => state.preshear_stress,
-        None => a.preshear_stress.unwrap_or(scene.consolidation_stress),
-    };
+    let pre = saved.map_or(a.preshear_stress.unwrap_or(scene.consolidation_stress), |s| s.preshear_stress);
     let setup = Setup {
         preshear_stress: pre,
         normal_stresses: a.normal_fractions.iter().map(|f| f * pre).collect(),
         shear_speed: a.shear_speed,
-        split: saved.as_ref().map_or(a.split.unwrap_or(0.5), |s| s.split),
-        preshear_displacement: saved.as_ref().map_or(a.preshear_travel.unwrap_or(5.0) * d, |s| s.preshear_displacement),
+        split: saved.map_or(a.split.unwrap_or(0.5), |s| s.split),
+        preshear_displacement: saved.map_or(a.preshear_travel.unwrap_or(5.0) * d, |s| s.preshear_displacement),
         steady_fraction: a.steady_fraction,
         shear_displacement: a.shear_travel * d,
         window: a.window * d,
@@ -123,7 +128,7 @@ pub fn shear_cmd(a: ShearArgs) -> Result<(), String> {
         "shear cell: die {:.4e} m split at {} of the bed's height; preshear at {pre:.4e} Pa over {:.3e} m, shears at {:?} Pa over up to {:.3e} m each, drive {} m/s",
         scene.die_diameter, setup.split, setup.preshear_displacement, setup.normal_stresses, setup.shear_displacement, setup.shear_speed
     );
-    if let (Some(path), Some(state)) = (&a.from_preshear, &saved) {
+    if let (Some(path), Some(state)) = (&a.from_preshear, saved) {
         eprintln!(
             "shear cell: from the preshear saved in {} (drive {} m/s, time step {:.4e} s): the shears only",
             path.display(),
@@ -146,9 +151,9 @@ pub fn shear_cmd(a: ShearArgs) -> Result<(), String> {
             eprintln!("{} {:.6e} {:.4e} {:.4e} {:.6e}", p.phase, s.time, s.lid_stress, s.drive_stress, s.lid);
         }
     };
-    let state = match (bed, saved) {
-        (_, Some(state)) => state,
-        (Some((mut engine, scene)), None) => {
+    let state = match start {
+        Start::Saved(state) => state,
+        Start::Bed(mut engine, scene) => {
             let state = shear::preshear(&mut engine, &scene, &setup, &mut show).map_err(|e| e.to_string())?;
             if let Some(path) = &a.save_preshear {
                 let bytes = shear_state::encode(&state).map_err(|e| e.to_string())?;
@@ -160,7 +165,6 @@ pub fn shear_cmd(a: ShearArgs) -> Result<(), String> {
             }
             state
         }
-        (None, None) => unreachable!(),
     };
     let reading = shear::shears(&state, &setup, threads, &mut show).map_err(|e| e.to_string())?;
     bar.finish();
