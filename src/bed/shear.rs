@@ -177,6 +177,10 @@ pub struct Reading {
     pub preshear_shear: MeanEstimate,
     /// The preshear's steady state: the largest principal stress in the slab, sigma_1 as measured [Pa].
     pub preshear_major: MeanEstimate,
+    /// The shears' tau_peak read off the steady preshear (`steady_peak`): the steady end cut into stretches
+    /// of one shear's travel, in each the largest window mean of tau; their mean and its standard error
+    /// over the stretches [Pa]. None with fewer than two stretches.
+    pub preshear_peak: Option<MeanEstimate>,
     /// The preshear's curve.
     pub preshear: Vec<Sample>,
     /// The shears to failure, one per normal stress.
@@ -358,6 +362,32 @@ impl Cell {
 /// Samples per displacement window.
 fn window_samples(setup: &Setup, dt: f64) -> usize {
     ((setup.window / (setup.shear_speed * dt * CHECK_EVERY as f64)).round() as usize).max(series::MIN_SAMPLES)
+}
+
+/// The shears' peak estimator on steady flow: `steady` cut into consecutive stretches of `travel`, in
+/// each the largest mean of tau over `w` samples (as `peak` reads tau_peak); the mean over the stretches and
+/// its standard error (the stretches taken as independent: each is a shear's travel, many correlation
+/// lengths of the flow's fluctuation). A stationary fluctuating tau has a largest window mean above its
+/// level: on the cells of docs/bed.md "The tangency check" 5-12 % of tau_pre. That is what a shear point
+/// carries from the fluctuation alone, and the preshear point to hold against the shears' locus when the
+/// two are to be read alike. None with fewer than two whole stretches.
+fn steady_peak(steady: &[&Sample], travel: f64, w: usize) -> Option<MeanEstimate> {
+    let mut peaks = Vec::new();
+    let mut start = 0;
+    for (i, s) in steady.iter().enumerate() {
+        if s.displacement - steady[start].displacement >= travel {
+            let stretch = &steady[start..i];
+            peaks.extend(series::largest_window_mean(stretch, w, |s| s.shear_stress).map(|(_, m)| m));
+            start = i;
+        }
+    }
+    let n = peaks.len();
+    if n < 2 {
+        return None;
+    }
+    let mean = peaks.iter().sum::<f64>() / n as f64;
+    let variance = peaks.iter().map(|p| (p - mean).powi(2)).sum::<f64>() / (n - 1) as f64;
+    Some(MeanEstimate { mean, standard_error: (variance / n as f64).sqrt(), samples: n, correlation_time: 0.0 })
 }
 
 /// The largest window mean of the shear stress: (first sample, mean).
@@ -564,7 +594,18 @@ pub fn shears(state: &Presheared, setup: &Setup, threads: Option<usize>, mut pro
             samples,
         });
     }
-    let mut reading = Reading { preshear_normal, preshear_shear, preshear_major, preshear: state.preshear.clone(), failures, locus: None, solid_fraction: state.solid_fraction };
+    let preshear_window = ((setup.window / (state.shear_speed * dt * CHECK_EVERY as f64)).round() as usize).max(series::MIN_SAMPLES);
+    let preshear_peak = steady_peak(&steady, setup.shear_displacement, preshear_window);
+    let mut reading = Reading {
+        preshear_normal,
+        preshear_shear,
+        preshear_major,
+        preshear_peak,
+        preshear: state.preshear.clone(),
+        failures,
+        locus: None,
+        solid_fraction: state.solid_fraction,
+    };
     reading.locus = YieldLocus::fit(&reading.points());
     Ok(reading)
 }
@@ -661,5 +702,31 @@ pub(crate) mod tests {
         assert!(!has_failed(&s, 4), "no window after the peak yet");
         tau.extend([50.0; 8]);
         assert!(has_failed(&at(&tau), 4));
+    }
+
+    #[test]
+    fn the_peak_estimator_on_steady_flow_reads_the_largest_window_mean_of_each_stretch() {
+        // A stick-slip sawtooth about a level L: ramps from L - A to L + A over P samples, then a slip.
+        // The largest mean of w samples is the ramp's top w: L + A (1 - (w - 1)/(P - 1)), above the level.
+        let (level, amplitude, period, w) = (1e4, 2e3, 50usize, 10usize);
+        let samples: Vec<Sample> = (0..1000)
+            .map(|k| Sample {
+                displacement: k as f64 * 1e-6,
+                shear_stress: level + amplitude * (2.0 * (k % period) as f64 / (period - 1) as f64 - 1.0),
+                ..Default::default()
+            })
+            .collect();
+        let steady: Vec<&Sample> = samples.iter().collect();
+        let peak = steady_peak(&steady, 2e-4, w).unwrap();
+        let want = level + amplitude * (1.0 - (w - 1) as f64 / (period - 1) as f64);
+        assert!((peak.mean - want).abs() < 1e-9 * want, "{peak:?} against {want}");
+        // 1000 samples of 1 um in stretches of 200 um: 4 whole stretches (the fifth is cut short), all alike.
+        assert_eq!(peak.samples, 4);
+        assert!(peak.standard_error < 1e-9 * want, "{peak:?}");
+        // Flat flow reads its level; less than two stretches give no estimate.
+        let flat: Vec<Sample> = (0..1000).map(|k| Sample { displacement: k as f64 * 1e-6, shear_stress: level, ..Default::default() }).collect();
+        let flat: Vec<&Sample> = flat.iter().collect();
+        assert_eq!(steady_peak(&flat, 2e-4, w).unwrap().mean, level);
+        assert!(steady_peak(&flat, 6e-4, w).is_none(), "one stretch of 600 um in 1 mm");
     }
 }

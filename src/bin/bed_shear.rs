@@ -176,6 +176,14 @@ pub fn shear_cmd(a: ShearArgs) -> Result<(), String> {
         pm(&reading.preshear_shear),
         pm(&reading.preshear_major)
     );
+    if let Some(pk) = &reading.preshear_peak {
+        eprintln!(
+            "shear cell: the steady preshear read as the shears read tau_peak (the largest window mean over each shear's travel, {} stretches): {} Pa, {:+.1} % of tau_pre from the fluctuation alone",
+            pk.samples,
+            pm(pk),
+            100.0 * (pk.mean / reading.preshear_shear.mean - 1.0)
+        );
+    }
     for f in &reading.failures {
         eprintln!(
             "shear cell: sigma_n {:.4e} Pa: on the plane sigma {} Pa, tau_peak {} Pa at travel {:.3e} m ({})",
@@ -201,6 +209,11 @@ pub fn shear_cmd(a: ShearArgs) -> Result<(), String> {
             let (on, on_e) = yl.at(reading.preshear_normal.mean);
             let gap = (reading.preshear_shear.mean - on) / (on_e.powi(2) + reading.preshear_shear.standard_error.powi(2)).sqrt();
             eprintln!("shear cell: the preshear point against the locus extended to it: tau_pre {:.4e} Pa, locus {on:.4e} +- {on_e:.1e} Pa ({gap:+.1} standard errors)", reading.preshear_shear.mean);
+            if let Some(pk) = &reading.preshear_peak {
+                // Like with like: the shears' points are largest window means, tau_pre is a mean.
+                let gap = (pk.mean - on) / (on_e.powi(2) + pk.standard_error.powi(2)).sqrt();
+                eprintln!("shear cell: the steady preshear read as a shear point against the locus: {:.4e} Pa ({gap:+.1} standard errors)", pk.mean);
+            }
             match yl.major_consolidation_stress(reading.preshear_normal.mean, reading.preshear_shear.mean) {
                 Some((s1, s1_e)) => eprintln!(
                     "shear cell: sigma_c = {sc:.4e} +- {sc_e:.1e} Pa, sigma_1 = {s1:.4e} +- {s1_e:.1e} Pa (Mohr circles, 004 Fig. 2.5), ff_c = {}; {wall:.1} s wall time",
