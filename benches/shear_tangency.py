@@ -28,13 +28,18 @@ def reading(log):
     text = open(log).read()
     points = [tuple(float(x) for x in m)
               for m in re.findall(rf"on the plane sigma {NUM} \+- {NUM} Pa, tau_peak {NUM} \+- {NUM} Pa", text)]
+    head = re.search(rf"preshear at {NUM} Pa", text)
+    targets = [float(t) for t in re.findall(rf"shear cell: sigma_n {NUM} Pa:", text)]
     pre = re.search(rf"preshear steady state on the plane sigma {NUM} \+- {NUM} Pa, tau {NUM} \+- {NUM} Pa", text)
+    like = re.search(rf"read as the shears read tau_peak [^:]*: {NUM} \+- {NUM} Pa", text)
     locus = re.search(rf"c = {NUM} \+- {NUM} Pa, phi_i = {NUM} \+- {NUM} deg", text)
-    if not pre or not points:
+    if not pre or not points or not head:
         sys.exit(f"{log}: no preshear reading or no shear points (the text `powderfmu bed shear` prints)")
     return {
         "points": points,
+        "fractions": [t / float(head.group(1)) for t in targets],
         "preshear": tuple(float(pre.group(k)) for k in (1, 2, 3, 4)),
+        "like": (float(like.group(1)), float(like.group(2))) if like else None,
         "locus": (float(locus.group(1)), math.radians(float(locus.group(3)))) if locus else None,
     }
 
@@ -49,22 +54,27 @@ def main():
     s_pre, s_pre_e, t_pre, t_pre_e = low["preshear"]
     kpa = 1e-3
     fig, (left, right) = plt.subplots(1, 2, figsize=(14, 5.4))
-    for pts, style, label in [(low["points"], "o", "shears at 0.25-0.8 sigma_pre"), (near["points"], "s", "shears at 0.8-0.99 sigma_pre")]:
+    span = lambda r: f"shears at {min(r['fractions']):.2f}-{max(r['fractions']):.2f} sigma_pre"  # noqa: E731
+    for pts, style, label in [(low["points"], "o", span(low)), (near["points"], "s", span(near))]:
         left.errorbar([p[0] * kpa for p in pts], [p[2] * kpa for p in pts], xerr=[p[1] * kpa for p in pts],
                       yerr=[p[3] * kpa for p in pts], fmt=style, capsize=3, label=label)
     left.errorbar([s_pre * kpa], [t_pre * kpa], xerr=[s_pre_e * kpa], yerr=[t_pre_e * kpa], fmt="*", ms=14,
                   color="k", capsize=3, label="preshear (steady flow): sigma_pre, tau_pre")
+    like = near["like"] or low["like"]
+    if like:
+        left.errorbar([s_pre * kpa], [like[0] * kpa], yerr=[like[1] * kpa], fmt="*", ms=14, mfc="none", color="k",
+                      capsize=3, label="the steady preshear read as a shear point (largest window mean per shear's travel)")
     if low["locus"]:
         c, phi = low["locus"]
         xs = [0.0, 1.1 * s_pre]
         left.plot([x * kpa for x in xs], [(c + x * math.tan(phi)) * kpa for x in xs], "--", color="C0",
-                  label=f"locus through the 0.25-0.8 points: c {c * kpa:.2f} kPa, phi_i {math.degrees(phi):.1f} deg")
+                  label=f"locus through the {span(low)}: c {c * kpa:.2f} kPa, phi_i {math.degrees(phi):.1f} deg")
     left.set_xlim(0, 1.15 * s_pre * kpa)
     left.set_ylim(0, None)
     left.set_xlabel("normal stress on the shear plane sigma [kPa]")
     left.set_ylabel("shear stress on the plane tau [kPa]")
     left.set_title("points on the plane (Bagi's slab), +- one standard error")
-    left.legend(fontsize=8, loc="upper left")
+    left.legend(fontsize=8, loc="lower right")
     left.grid(alpha=0.3)
 
     rows = list(csv.DictReader(open(near_csv)))
