@@ -41,7 +41,10 @@ pub struct YieldLocus {
 
 impl YieldLocus {
     /// The weighted least-squares line through at least two points (three for an error from the
-    /// scatter), or None when the points cannot give one (fewer than two distinct normal stresses).
+    /// scatter), or None when the points cannot give one: fewer than two distinct normal stresses, or a
+    /// line that does not rise with sigma (phi_i <= 0 is no Mohr-Coulomb locus, and sigma_c read off it
+    /// nonsense; four shears within 0.8-0.99 sigma_pre of 003's TiO2 case, 2.7 kPa apart in sigma against
+    /// errors of 0.3-1.2 kPa in tau, gave phi_i = -30 deg and sigma_c = 40 kPa).
     pub fn fit(points: &[Point]) -> Option<YieldLocus> {
         if points.len() < 2 {
             return None;
@@ -63,6 +66,9 @@ impl YieldLocus {
             return None;
         }
         let slope = (s * sxy - sx * sy) / det;
+        if !(slope > 0.0) {
+            return None;
+        }
         let cohesion = (sxx * sy - sx * sxy) / det;
         let chi2: f64 = points.iter().zip(&w).map(|(p, w)| w * (p.shear_stress - cohesion - slope * p.normal_stress).powi(2)).sum();
         let dof = points.len() - 2;
@@ -203,5 +209,14 @@ mod tests {
         let yl = YieldLocus::fit(&pts).unwrap();
         let (sc, e) = yl.unconfined_yield_strength();
         assert!(sc.abs() < 1e-6 && e > 0.0, "{sc} +- {e}");
+    }
+
+    #[test]
+    fn a_line_that_does_not_rise_with_sigma_is_no_locus() {
+        // 003's TiO2 case sheared at 0.8-0.99 sigma_pre: points too close in sigma for their scatter.
+        let pts = [point(18634.0, 24086.0, 620.0), point(20551.0, 22664.0, 320.0), point(19827.0, 23439.0, 350.0), point(21300.0, 24277.0, 1200.0)];
+        assert!(YieldLocus::fit(&pts).is_none());
+        assert!(YieldLocus::fit(&[point(1e3, 2e3, 10.0), point(2e3, 2e3, 10.0)]).is_none(), "a flat line");
+        assert!(YieldLocus::fit(&[point(1e3, 2e3, 10.0), point(2e3, 2.5e3, 10.0)]).is_some());
     }
 }

@@ -226,7 +226,7 @@ pub fn shear_cmd(a: ShearArgs) -> Result<(), String> {
                 None => eprintln!("shear cell: sigma_c = {sc:.4e} +- {sc_e:.1e} Pa; no Mohr circle through the preshear point is tangent to the locus (the point lies above it): no sigma_1 by construction; {wall:.1} s wall time"),
             }
         }
-        None => eprintln!("shear cell: the points give no yield locus"),
+        None => eprintln!("shear cell: the points give no yield locus (fewer than two distinct normal stresses, or a line that does not rise with sigma: the points span too little normal stress for their scatter)"),
     }
     if let Some(yl) = &reading.locus {
         let (sc, sc_e) = yl.unconfined_yield_strength();
