@@ -8,7 +8,10 @@ latter against tau_pre. Nothing is fitted here: the numbers are the command's (`
 The two runs must share their preshear (the same bed, one thread, or `--from-preshear`): the script
 refuses two different preshear readings.
 
-Usage: .venv/bin/python benches/shear_tangency.py OUT.png LOW.txt NEAR.txt NEAR.csv "TITLE"
+Usage: .venv/bin/python benches/shear_tangency.py OUT.png LOW.txt NEAR.txt NEAR.csv "TITLE" [MORE.txt]
+
+MORE.txt, a third reading of the same preshear, is where the steady preshear read as a shear point is
+taken from when neither LOW nor NEAR prints it (runs of a binary before that line).
 """
 
 import csv
@@ -45,12 +48,14 @@ def reading(log):
 
 
 def main():
-    if len(sys.argv) != 6:
+    if len(sys.argv) not in (6, 7):
         sys.exit(__doc__)
-    out, low_log, near_log, near_csv, title = sys.argv[1:]
+    out, low_log, near_log, near_csv, title = sys.argv[1:6]
     low, near = reading(low_log), reading(near_log)
-    if low["preshear"] != near["preshear"]:
-        sys.exit(f"the two runs have different preshears: {low['preshear']} and {near['preshear']}")
+    more = reading(sys.argv[6]) if len(sys.argv) == 7 else near
+    for other in (near, more):
+        if low["preshear"] != other["preshear"]:
+            sys.exit(f"the runs have different preshears: {low['preshear']} and {other['preshear']}")
     s_pre, s_pre_e, t_pre, t_pre_e = low["preshear"]
     kpa = 1e-3
     fig, (left, right) = plt.subplots(1, 2, figsize=(14, 5.4))
@@ -60,7 +65,7 @@ def main():
                       yerr=[p[3] * kpa for p in pts], fmt=style, capsize=3, label=label)
     left.errorbar([s_pre * kpa], [t_pre * kpa], xerr=[s_pre_e * kpa], yerr=[t_pre_e * kpa], fmt="*", ms=14,
                   color="k", capsize=3, label="preshear (steady flow): sigma_pre, tau_pre")
-    like = near["like"] or low["like"]
+    like = near["like"] or low["like"] or more["like"]
     if like:
         left.errorbar([s_pre * kpa], [like[0] * kpa], yerr=[like[1] * kpa], fmt="*", ms=14, mfc="none", color="k",
                       capsize=3, label="the steady preshear read as a shear point (largest window mean per shear's travel)")
