@@ -364,23 +364,28 @@ fn window_samples(setup: &Setup, dt: f64) -> usize {
     ((setup.window / (setup.shear_speed * dt * CHECK_EVERY as f64)).round() as usize).max(series::MIN_SAMPLES)
 }
 
-/// The shears' peak estimator on steady flow: `steady` cut into consecutive stretches of `travel`, in
-/// each the largest mean of tau over `w` samples (as `peak` reads tau_peak); the mean over the stretches and
+/// The shears' peak estimator on steady flow: `steady` cut into as many stretches of `travel` as it holds
+/// (equal sample counts), in each the largest mean of tau over `w` samples (as `peak` reads tau_peak); the
+/// mean over the stretches and
 /// its standard error (the stretches taken as independent: each is a shear's travel, many correlation
 /// lengths of the flow's fluctuation). A stationary fluctuating tau has a largest window mean above its
 /// level: on the cells of docs/bed.md "The tangency check" 5-12 % of tau_pre. That is what a shear point
 /// carries from the fluctuation alone, and the preshear point to hold against the shears' locus when the
 /// two are to be read alike. None with fewer than two whole stretches.
 fn steady_peak(steady: &[&Sample], travel: f64, w: usize) -> Option<MeanEstimate> {
-    let mut peaks = Vec::new();
-    let mut start = 0;
-    for (i, s) in steady.iter().enumerate() {
-        if s.displacement - steady[start].displacement >= travel {
-            let stretch = &steady[start..i];
-            peaks.extend(series::largest_window_mean(stretch, w, |s| s.shear_stress).map(|(_, m)| m));
-            start = i;
-        }
+    let (first, last) = (steady.first()?, steady.last()?);
+    if steady.len() < 2 {
+        return None;
     }
+    // Each sample stands for one spacing of travel: N samples cover N spacings (the default's 1.5 d steady end
+    // holds three 0.5 d shears' travel, not two and a bit). Equal counts, the drive's speed being constant.
+    let spacing = (last.displacement - first.displacement) / (steady.len() - 1) as f64;
+    let whole = ((steady.len() as f64 * spacing) / travel + 1e-9).floor() as usize;
+    if whole < 2 {
+        return None;
+    }
+    let per = steady.len() / whole;
+    let peaks: Vec<f64> = steady.chunks_exact(per).take(whole).filter_map(|stretch| series::largest_window_mean(stretch, w, |s| s.shear_stress).map(|(_, m)| m)).collect();
     let n = peaks.len();
     if n < 2 {
         return None;
@@ -720,13 +725,17 @@ pub(crate) mod tests {
         let peak = steady_peak(&steady, 2e-4, w).unwrap();
         let want = level + amplitude * (1.0 - (w - 1) as f64 / (period - 1) as f64);
         assert!((peak.mean - want).abs() < 1e-9 * want, "{peak:?} against {want}");
-        // 1000 samples of 1 um in stretches of 200 um: 4 whole stretches (the fifth is cut short), all alike.
-        assert_eq!(peak.samples, 4);
+        // 1000 samples of 1 um in stretches of 200 um: 5 whole stretches, all alike.
+        assert_eq!(peak.samples, 5);
         assert!(peak.standard_error < 1e-9 * want, "{peak:?}");
         // Flat flow reads its level; less than two stretches give no estimate.
         let flat: Vec<Sample> = (0..1000).map(|k| Sample { displacement: k as f64 * 1e-6, shear_stress: level, ..Default::default() }).collect();
         let flat: Vec<&Sample> = flat.iter().collect();
         assert_eq!(steady_peak(&flat, 2e-4, w).unwrap().mean, level);
         assert!(steady_peak(&flat, 6e-4, w).is_none(), "one stretch of 600 um in 1 mm");
+        // 1.5 mm of steady end in 0.5 mm shears (the default's 0.3 of 5 d, 0.5 d): three stretches, not two.
+        let default: Vec<Sample> = (0..1500).map(|k| Sample { displacement: 3.5e-3 + k as f64 * 1e-6, shear_stress: level, ..Default::default() }).collect();
+        let default: Vec<&Sample> = default.iter().collect();
+        assert_eq!(steady_peak(&default, 5e-4, w).unwrap().samples, 3);
     }
 }
