@@ -86,6 +86,12 @@ pub struct Setup {
 }
 
 impl Setup {
+    /// The drive's travel over the whole test, preshear and every shear at its longest [m]: what progress
+    /// is counted against.
+    pub fn total_travel(&self) -> f64 {
+        self.preshear_displacement + self.normal_stresses.len() as f64 * self.shear_displacement
+    }
+
     /// Every value in its range, or the first that is not, by name.
     pub fn check(&self) -> Result<(), ParamError> {
         let out = |name: &'static str, value: f64, allowed: String| ParamError::OutOfRange { name, value, allowed };
@@ -344,7 +350,7 @@ impl Cell {
     /// failure; calls `progress` every sample.
     fn shear(&mut self, e: &mut AnyEngine, setup: &Setup, target: f64, travel: f64, stop_on_failure: bool, mut progress: impl FnMut(&Sample)) -> Vec<Sample> {
         let x0 = e.walls()[self.upper].position[0];
-        let w = window_samples(setup, e.dt());
+        let w = window_samples(setup.window, setup.shear_speed, e.dt());
         let mut samples = Vec::new();
         loop {
             let s = self.sample(e, setup, setup.shear_speed, target, x0);
@@ -359,24 +365,20 @@ impl Cell {
     }
 }
 
-/// Samples per displacement window.
-fn window_samples(setup: &Setup, dt: f64) -> usize {
-    ((setup.window / (setup.shear_speed * dt * CHECK_EVERY as f64)).round() as usize).max(series::MIN_SAMPLES)
+/// Samples per displacement `window` at drive speed `speed`.
+fn window_samples(window: f64, speed: f64, dt: f64) -> usize {
+    ((window / (speed * dt * CHECK_EVERY as f64)).round() as usize).max(series::MIN_SAMPLES)
 }
 
 /// The shears' peak estimator on steady flow: `steady` cut into as many stretches of `travel` as it holds
 /// (equal sample counts), in each the largest mean of tau over `w` samples (as `peak` reads tau_peak); the
-/// mean over the stretches and
-/// its standard error (the stretches taken as independent: each is a shear's travel, many correlation
-/// lengths of the flow's fluctuation). A stationary fluctuating tau has a largest window mean above its
+/// mean over the stretches and its standard error (the stretches taken as independent: each is a shear's
+/// travel, many correlation lengths of the flow's fluctuation). A stationary fluctuating tau has a largest window mean above its
 /// level: on the cells of docs/bed.md "The tangency check" 5-12 % of tau_pre. That is what a shear point
 /// carries from the fluctuation alone, and the preshear point to hold against the shears' locus when the
 /// two are to be read alike. None with fewer than two whole stretches.
 fn steady_peak(steady: &[&Sample], travel: f64, w: usize) -> Option<MeanEstimate> {
-    let (first, last) = (steady.first()?, steady.last()?);
-    if steady.len() < 2 {
-        return None;
-    }
+    let [first, .., last] = steady else { return None };
     // Each sample stands for one spacing of travel: N samples cover N spacings (the default's 1.5 d steady end
     // holds three 0.5 d shears' travel, not two and a bit). Equal counts, the drive's speed being constant.
     let spacing = (last.displacement - first.displacement) / (steady.len() - 1) as f64;
@@ -512,7 +514,7 @@ pub fn preshear(engine: &mut AnyEngine, scene: &BedScene, setup: &Setup, mut pro
     let mut cell = Cell::new(engine, scene, setup)?;
     let p = engine.particles();
     let volume: f64 = p.radius.iter().map(|r| 4.0 / 3.0 * std::f64::consts::PI * r.powi(3)).sum();
-    let total = setup.preshear_displacement + setup.normal_stresses.len() as f64 * setup.shear_displacement;
+    let total = setup.total_travel();
     cell.settle(engine, setup, 0.0, setup.preshear_stress, false, |s| {
         progress(Progress { phase: "load", target: setup.preshear_stress, sample: s, fraction: 0.0 })
     })?;
@@ -574,7 +576,7 @@ pub fn shears(state: &Presheared, setup: &Setup, threads: Option<usize>, mut pro
         check: (0.0, 0),
         integral: 0.0,
     };
-    let total = setup.preshear_displacement + setup.normal_stresses.len() as f64 * setup.shear_displacement;
+    let total = setup.total_travel();
     let mut failures = Vec::new();
     for (k, &target) in setup.normal_stresses.iter().enumerate() {
         let mut e = state.engine(threads)?;
@@ -587,7 +589,7 @@ pub fn shears(state: &Presheared, setup: &Setup, threads: Option<usize>, mut pro
         let samples = c.shear(&mut e, setup, target, setup.shear_displacement, true, |s| {
             progress(Progress { phase: "shear", target, sample: s, fraction: (done + s.displacement) / total })
         });
-        let w = window_samples(setup, dt);
+        let w = window_samples(setup.window, setup.shear_speed, dt);
         let (i, _) = peak(&samples, w).ok_or_else(|| BedError::Setup(format!("shear cell: the shear at {target:.4e} Pa ended before a window of {} m", setup.window)))?;
         let window = &samples[i..i + w];
         failures.push(Failure {
@@ -599,8 +601,8 @@ pub fn shears(state: &Presheared, setup: &Setup, threads: Option<usize>, mut pro
             samples,
         });
     }
-    let preshear_window = ((setup.window / (state.shear_speed * dt * CHECK_EVERY as f64)).round() as usize).max(series::MIN_SAMPLES);
-    let preshear_peak = steady_peak(&steady, setup.shear_displacement, preshear_window);
+    // The preshear's samples are spaced by its own drive speed, which a saved one may not share with the shears.
+    let preshear_peak = steady_peak(&steady, setup.shear_displacement, window_samples(setup.window, state.shear_speed, dt));
     let mut reading = Reading {
         preshear_normal,
         preshear_shear,

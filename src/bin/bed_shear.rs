@@ -144,8 +144,7 @@ pub fn shear_cmd(a: ShearArgs) -> Result<(), String> {
     }
     // From a saved preshear its travel is done before the clock starts: the bar counts the shears' travel
     // alone, so that the time it says is left is theirs (it said 1.5 minutes of a 20-minute run).
-    let total = setup.preshear_displacement + setup.normal_stresses.len() as f64 * setup.shear_displacement;
-    let skip = if saved.is_some() { setup.preshear_displacement / total } else { 0.0 };
+    let skip = if saved.is_some() { setup.preshear_displacement / setup.total_travel() } else { 0.0 };
     let started = Instant::now();
     let mut bar = Bar::new();
     let mut show = |p: shear::Progress| {
