@@ -33,6 +33,10 @@
 #            for the test, on the default beds 1-4 as they were prepared
 #   fric     the same limit from the fill on: beds prepared with it, fill seeds 1-4
 #   fric_d45h13, fric_d45h20  the 45 mm die's 13 and 20 mm beds prepared with that limit (fill seeds 1-4)
+#   fric_psd, fric_nine  the `fric` beds with Table 5.1 read as the continuous normal it samples ("a Gaussian size
+#            distribution", Sec. 5.1.3): 43 classes 0.02 mm apart over 0.58-1.42 mm, the table's mean
+#            (0.9989 mm) and standard deviation (0.1385 mm) by number, against the table's nine classes
+#            (`fric_nine`: the `fric` scene again, seeds 1-8 on one build and one thread)
 # The other rows' scenes name the interface energy and the walls' contact for the indenter explicitly,
 # so they mean the same whatever the bed scene's defaults. Every row but the `fric` ones names 004 Eq. 3.49's
 # friction limit (`pull_off`), the bed scene's default when they ran; the default is EDEM's since.
@@ -48,24 +52,26 @@ scene() { # name gamma seed; gamma "default": the bed scene's own interface ener
     # "whole": the same on the whole die (scenes/bed_004_indentation.json, 16000 spheres); "d45_13",
     # "d45_20", "d45_30", "d45_50": a quarter of the 45 mm die's 13-50 mm beds (scenes/bed_004_ch5_45mm_*.json)
     # "fric", "fric_d45_13", "fric_d45_20": the quarter and those beds with EDEM's friction limit from the fill on
-    case "$2" in default | fric | fric_d45_13 | fric_d45_20 | whole | d45_13 | d45_20 | d45_30 | d45_50)
+    case "$2" in default | fric | fric_psd | fric_d45_13 | fric_d45_20 | whole | d45_13 | d45_20 | d45_30 | d45_50)
         local count=4000 sector='"die_sector": 0.25,' of=bed_004_indentation_quarter.json die='' law=', "jkr_friction_limit": "pull_off"'
-        local kind=$2
+        local kind=$2 psd=''
         case "$kind" in fric*) law=', "jkr_friction_limit": "repulsive"'; kind=${kind#fric_} ;; esac
         case "$kind" in
             fric) of="bed_004_indentation_quarter.json with EDEM's friction limit" ;;
+            psd) of="bed_004_indentation_quarter.json with EDEM's friction limit and Table 5.1 as a continuous normal"
+                psd="\"size_distribution\": $(python3 benches/ch5_normal_psd.py)," ;;
             whole) count=16000 sector='' of=bed_004_indentation.json ;;
             d45_13) count=5325 of="bed_004_ch5_45mm_13mm.json, a quarter" die='"die_diameter": 0.045,' ;;
             d45_20) count=8200 of="bed_004_ch5_45mm_20mm.json, a quarter" die='"die_diameter": 0.045,' ;;
             d45_30) count=11750 of="bed_004_ch5_45mm_30mm.json, a quarter" die='"die_diameter": 0.045,' ;;
             d45_50) count=19575 of="bed_004_ch5_45mm_50mm.json, a quarter" die='"die_diameter": 0.045, "die_height": 0.1,' ;;
         esac
-        [ "$2" = "fric_$kind" ] && of="$of, with EDEM's friction limit"
+        [ "$2" = "fric_$kind" ] && [ "$kind" != psd ] && of="$of, with EDEM's friction limit"
         cat >"$OUT/$1.json" <<JSON
 {
   "comment": "Soft proxy of scenes/$of (E = 55 MPa) with the bed scene's defaults, fill seed $3",
   "particle_count": $count,
-  $sector $die
+  $sector $die $psd
   "seed": $3,
   "particle_particle": {"particle_youngs_modulus": 55e6$law}
 }
@@ -171,4 +177,13 @@ for s in 1 2 3 4; do
     bed "fric_d45_20_s$s" fric_d45_20 "$s"
     run "fric_d45h13_s$s" "fric_d45_13_s$s"
     run "fric_d45h20_s$s" "fric_d45_20_s$s"
+done
+# Table 5.1 as the continuous normal it samples, with EDEM's limit from the fill: does the PSD's reading
+# move the hardness? Eight fill seeds of each reading, side by side on one build (`fric_nine`: the `fric`
+# scene, the table's nine classes, again with seeds 1-8).
+for s in 1 2 3 4 5 6 7 8; do
+    bed "fric_psd_s$s" fric_psd "$s"
+    run "fric_psd_s$s" "fric_psd_s$s"
+    bed "fric_nine_s$s" fric "$s"
+    run "fric_nine_s$s" "fric_nine_s$s"
 done
