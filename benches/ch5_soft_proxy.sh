@@ -37,6 +37,8 @@
 #            distribution", Sec. 5.1.3): 43 classes 0.02 mm apart over 0.58-1.42 mm, the table's mean
 #            (0.9989 mm) and standard deviation (0.1385 mm) by number, against the table's nine classes
 #            (`fric_nine`: the `fric` scene again, seeds 1-8 on one build and one thread)
+#   fric_e550m, fric_e5500m  the `fric` beds with the spheres' Young's modulus 550 and 5500 MPa: between the
+#            proxy (55 MPa) and the seed's glass (55 GPa, the stiff beds), does the hardness fall smoothly?
 # The other rows' scenes name the interface energy and the walls' contact for the indenter explicitly,
 # so they mean the same whatever the bed scene's defaults. Every row but the `fric` ones names 004 Eq. 3.49's
 # friction limit (`pull_off`), the bed scene's default when they ran; the default is EDEM's since.
@@ -51,29 +53,32 @@ D=0.013 # indenter diameter [m]; every test goes to h/r 0.5
 scene() { # name gamma seed; gamma "default": the bed scene's own interface energy and indenter;
     # "whole": the same on the whole die (scenes/bed_004_indentation.json, 16000 spheres); "d45_13",
     # "d45_20", "d45_30", "d45_50": a quarter of the 45 mm die's 13-50 mm beds (scenes/bed_004_ch5_45mm_*.json)
-    # "fric", "fric_d45_13", "fric_d45_20": the quarter and those beds with EDEM's friction limit from the fill on
-    case "$2" in default | fric | fric_psd | fric_d45_13 | fric_d45_20 | whole | d45_13 | d45_20 | d45_30 | d45_50)
+    # "fric", "fric_d45_13", "fric_d45_20": the quarter and those beds with EDEM's friction limit from the fill on;
+    # "fric_psd": the quarter with Table 5.1 as a continuous normal; "fric_e550m", "fric_e5500m": E = 550, 5500 MPa
+    case "$2" in default | fric | fric_psd | fric_e550m | fric_e5500m | fric_d45_13 | fric_d45_20 | whole | d45_13 | d45_20 | d45_30 | d45_50)
         local count=4000 sector='"die_sector": 0.25,' of=bed_004_indentation_quarter.json die='' law=', "jkr_friction_limit": "pull_off"'
-        local kind=$2 psd=''
+        local kind=$2 psd='' youngs=55e6 elabel='55 MPa'
         case "$kind" in fric*) law=', "jkr_friction_limit": "repulsive"'; kind=${kind#fric_} ;; esac
         case "$kind" in
             fric) of="bed_004_indentation_quarter.json with EDEM's friction limit" ;;
             psd) of="bed_004_indentation_quarter.json with EDEM's friction limit and Table 5.1 as a continuous normal"
                 psd="\"size_distribution\": $(python3 benches/ch5_normal_psd.py)," ;;
+            e550m | e5500m) youngs=${kind#e}; youngs=${youngs%m}e6 elabel="${youngs%e6} MPa"
+                of="bed_004_indentation_quarter.json with EDEM's friction limit" ;;
             whole) count=16000 sector='' of=bed_004_indentation.json ;;
             d45_13) count=5325 of="bed_004_ch5_45mm_13mm.json, a quarter" die='"die_diameter": 0.045,' ;;
             d45_20) count=8200 of="bed_004_ch5_45mm_20mm.json, a quarter" die='"die_diameter": 0.045,' ;;
             d45_30) count=11750 of="bed_004_ch5_45mm_30mm.json, a quarter" die='"die_diameter": 0.045,' ;;
             d45_50) count=19575 of="bed_004_ch5_45mm_50mm.json, a quarter" die='"die_diameter": 0.045, "die_height": 0.1,' ;;
         esac
-        [ "$2" = "fric_$kind" ] && [ "$kind" != psd ] && of="$of, with EDEM's friction limit"
+        [ "$2" = "fric_$kind" ] && [[ $kind != psd && $kind != e*m ]] && of="$of, with EDEM's friction limit"
         cat >"$OUT/$1.json" <<JSON
 {
-  "comment": "Soft proxy of scenes/$of (E = 55 MPa) with the bed scene's defaults, fill seed $3",
+  "comment": "Soft proxy of scenes/$of (E = $elabel) with the bed scene's defaults, fill seed $3",
   "particle_count": $count,
   $sector $die $psd
   "seed": $3,
-  "particle_particle": {"particle_youngs_modulus": 55e6$law}
+  "particle_particle": {"particle_youngs_modulus": $youngs$law}
 }
 JSON
         return
@@ -186,4 +191,15 @@ for s in 1 2 3 4 5 6 7 8; do
     run "fric_psd_s$s" "fric_psd_s$s"
     bed "fric_nine_s$s" fric "$s"
     run "fric_nine_s$s" "fric_nine_s$s"
+done
+# The spheres' stiffness between the proxy and the seed's glass (the stiff quarter beds read 0.79 of the
+# proxy's): Young's modulus 550 MPa (fill seeds 1-4) and 5500 MPa (1 and 2: seed 3's settling stayed at a
+# kinetic energy ratio of 2.8e-6 for ten minutes, where seeds 1 and 2 prepared in four and five, and was stopped).
+for s in 1 2 3 4; do
+    bed "fric_e550m_s$s" fric_e550m "$s"
+    run "fric_e550m_s$s" "fric_e550m_s$s"
+done
+for s in 1 2; do
+    bed "fric_e5500m_s$s" fric_e5500m "$s"
+    run "fric_e5500m_s$s" "fric_e5500m_s$s"
 done
