@@ -193,13 +193,13 @@ for s in 1 2 3 4 5 6 7 8; do
     run "fric_nine_s$s" "fric_nine_s$s"
 done
 # The spheres' stiffness between the proxy and the seed's glass (the stiff quarter beds read 0.79 of the
-# proxy's): Young's modulus 550 MPa (fill seeds 1-4) and 5500 MPa (1 and 2: seed 3's settling stayed at a
-# kinetic energy ratio of 2.8e-6 for ten minutes, where seeds 1 and 2 prepared in four and five, and was stopped).
+# proxy's): Young's modulus 550 MPa (fill seeds 1-4) and 5500 MPa (1, 2, 4, 5: seed 3's settling stayed at a
+# kinetic energy ratio of 2.8e-6 for ten minutes, where the others prepared in four to five, and was stopped).
 for s in 1 2 3 4; do
     bed "fric_e550m_s$s" fric_e550m "$s"
     run "fric_e550m_s$s" "fric_e550m_s$s"
 done
-for s in 1 2; do
+for s in 1 2 4 5; do
     bed "fric_e5500m_s$s" fric_e5500m "$s"
     run "fric_e5500m_s$s" "fric_e5500m_s$s"
 done
