@@ -298,7 +298,8 @@ impl AnyEngine {
 
     /// A new Verlet skin [m] (`Engine::set_skin`; a scene's `skin` key changed on a prepared bed). Not
     /// called from `set_scene`: with it there the two-thread force loop ran 25 % slower on the same
-    /// work (the rayon schedule's regime moved with the code's layout; docs/benchmarks.md, eleventh round).
+    /// work (the schedule of the rayon pool the engine then had moved with the code's layout; docs/benchmarks.md,
+    /// eleventh round).
     pub fn set_skin(&mut self, skin: f64) -> Result<(), String> {
         with_engine!(self, e => e.set_skin(skin))
     }

@@ -19,7 +19,6 @@ use super::lanes::LaneRow;
 use super::near::{self, Near};
 use super::partition::{own_rows, Sink};
 use super::Engine;
-use rayon::prelude::*;
 
 /// Everything the force loop reads.
 struct Shared<'a, L: BedLaw> {
@@ -67,10 +66,6 @@ type WallMemory<'a, H> = (&'a [u32], &'a mut [H], &'a mut [Vec3], &'a mut [f64])
 impl<L: BedLaw> Engine<L> {
     /// The force loop over pairs and wall contacts, then (with threads) the ordered sum of the parts.
     pub fn compute_forces(&mut self) {
-        self.with_pool(|e| e.forces_inner());
-    }
-
-    pub(super) fn forces_inner(&mut self) {
         self.forces_after_kick(false, false);
     }
 
@@ -165,7 +160,7 @@ impl<L: BedLaw> Engine<L> {
             consumed += take;
         }
         if self.threads > 1 {
-            parts.into_par_iter().for_each(|part| run_part(&shared, part));
+            self.team.map(parts, |_, part| run_part(&shared, part));
             self.add_buffers();
         } else {
             parts.into_iter().for_each(|part| run_part(&shared, part));
@@ -196,7 +191,7 @@ impl<L: BedLaw> Engine<L> {
             pack_from(0, &mut self.records);
         } else {
             let chunk = n.div_ceil(self.threads).max(1);
-            self.records.par_chunks_mut(chunk).enumerate().for_each(|(k, out)| pack_from(k * chunk, out));
+            self.team.map(self.records.chunks_mut(chunk).collect(), |k, out| pack_from(k * chunk, out));
         }
     }
 }

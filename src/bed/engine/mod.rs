@@ -33,11 +33,10 @@ pub use partition::{Accum, Load};
 use super::interaction::{BedLaw, Interaction};
 use super::neighbors::NeighborList;
 use super::particles::Particles;
-use super::pool::Pool;
+use super::team::Team;
 use super::walls::Wall;
 use super::{Tensor, Vec3, ZERO};
 use crate::law;
-use rayon::prelude::*;
 
 /// The DEM engine for one normal law `L` (particle-particle and particle-wall contacts both use it,
 /// each pair of species and each species-wall pair with its own parameters).
@@ -82,7 +81,8 @@ pub struct Engine<L: BedLaw> {
     parts: Vec<usize>,
     /// One past the last particle each part writes (its last row or its rows' last partner).
     span_end: Vec<usize>,
-    pool: Option<Pool>,
+    /// The threads of the parallel phases (the caller's and its helpers).
+    team: Team,
     threads: usize,
     record_dipoles: bool,
     /// The force on each held sphere when it was held (`hold`).
@@ -138,7 +138,7 @@ impl<L: BedLaw> Engine<L> {
         if !(1..=256).contains(&threads) {
             return Err(format!("threads = {threads} is out of range: allowed [1, 256]"));
         }
-        let pool = if threads > 1 { Some(Pool::new(threads)?) } else { None };
+        let team = Team::new(threads)?;
         let n_walls = walls.len();
         let mut e = Engine {
             particles,
@@ -160,7 +160,7 @@ impl<L: BedLaw> Engine<L> {
             buffers: vec![],
             parts: vec![],
             span_end: vec![],
-            pool,
+            team,
             threads,
             record_dipoles: false,
             held_reference: vec![],
@@ -382,22 +382,9 @@ impl<L: BedLaw> Engine<L> {
         }
     }
 
-    /// Runs `f` with the engine's workers ready: every parallel loop inside it runs on the engine's own
-    /// pool, in one `install` per call, so the workers do not fall asleep between the loops of a step.
-    fn with_pool<R: Send>(&mut self, f: impl FnOnce(&mut Self) -> R + Send) -> R {
-        match self.pool.take() {
-            Some(pool) => {
-                let r = pool.install(|| f(&mut *self));
-                self.pool = Some(pool);
-                r
-            }
-            None => f(self),
-        }
-    }
-
     /// One step of velocity Verlet.
     pub fn step(&mut self) {
-        self.with_pool(|e| e.step_inner());
+        self.step_parts(false, false);
     }
 
     /// Holds the spheres marked in `held` where they are, at rest, until disturbed (`release_disturbed`):
@@ -460,11 +447,9 @@ impl<L: BedLaw> Engine<L> {
 
     /// Several steps.
     pub fn run(&mut self, steps: u64) {
-        self.with_pool(|e| {
-            for k in 0..steps {
-                e.step_parts(k > 0, k + 1 < steps);
-            }
-        });
+        for k in 0..steps {
+            self.step_parts(k > 0, k + 1 < steps);
+        }
     }
 
     /// Steps until `go_on`, called after each step with the walls (their forces those of that step) and
@@ -476,22 +461,16 @@ impl<L: BedLaw> Engine<L> {
         if steps == 0 {
             return 0;
         }
-        self.with_pool(|e| {
-            let mut taken = 0;
-            loop {
-                e.step_parts(taken > 0, true);
-                taken += 1;
-                if !go_on(&e.walls, e.time) || taken == steps {
-                    // The closing half kick the last step left open.
-                    e.kick(0.5 * e.dt, false, false);
-                    return taken;
-                }
+        let mut taken = 0;
+        loop {
+            self.step_parts(taken > 0, true);
+            taken += 1;
+            if !go_on(&self.walls, self.time) || taken == steps {
+                // The closing half kick the last step left open.
+                self.kick(0.5 * self.dt, false, false);
+                return taken;
             }
-        })
-    }
-
-    fn step_inner(&mut self) {
-        self.step_parts(false, false);
+        }
     }
 
     /// One step of velocity Verlet. `closed_before`: the last step left its closing half kick to this
@@ -549,18 +528,25 @@ impl<L: BedLaw> Engine<L> {
         if threads == 1 {
             return kick_range(isa, 0, &mut p.velocity, &mut p.angular_velocity, &mut p.position, body, load, refs, kick, records);
         }
-        let chunk = p.len().div_ceil(threads).max(1);
-        // The records cut as the spheres are (without records, an empty slice per chunk).
-        let mut record_chunks: Vec<&mut [lanes::record::Record]> = records.chunks_mut(chunk).collect();
-        record_chunks.resize_with(p.velocity.len().div_ceil(chunk), || &mut []);
-        p.velocity
-            .par_chunks_mut(chunk)
-            .zip(p.angular_velocity.par_chunks_mut(chunk))
-            .zip(p.position.par_chunks_mut(chunk))
-            .zip(record_chunks.into_par_iter())
-            .enumerate()
-            .map(|(k, (((v, w), x), out))| kick_range(isa, k * chunk, v, w, x, body, load, refs, kick, out))
-            .reduce(|| (0.0, 0.0), |a, b| (a.0.max(b.0), a.1.max(b.1)))
+        // Each thread kicks the spheres of its part of the force loop (whose loads it has just summed, still in
+        // its core's cache); before the first cut, equal chunks.
+        let n = p.len();
+        let cuts: Vec<usize> = if self.parts.len() == threads + 1 && self.parts[threads] == n {
+            self.parts.clone()
+        } else {
+            (0..=threads).map(|k| n * k / threads).collect()
+        };
+        let records: Vec<&mut [lanes::record::Record]> = if records.is_empty() { (0..threads).map(|_| &mut [][..]).collect() } else { split_at_cuts(records, &cuts) };
+        let chunks: Vec<_> = split_at_cuts(&mut p.velocity, &cuts)
+            .into_iter()
+            .zip(split_at_cuts(&mut p.angular_velocity, &cuts))
+            .zip(split_at_cuts(&mut p.position, &cuts))
+            .zip(records)
+            .collect();
+        self.team
+            .map(chunks, |k, (((v, w), x), out)| kick_range(isa, cuts[k], v, w, x, body, load, refs, kick, out))
+            .into_iter()
+            .fold((0.0, 0.0), |a, b| (a.0.max(b.0), a.1.max(b.1)))
     }
 
     fn move_walls(&mut self) {
@@ -627,6 +613,17 @@ impl<L: BedLaw> Engine<L> {
         let words = vectors.flat_map(|v| [v.x, v.y, v.z]).chain(self.total.load.iter().map(|l| l.rolling));
         words.fold(0xcbf2_9ce4_8422_2325u64, |h, x| x.to_bits().to_le_bytes().iter().fold(h, |h, &b| (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3)))
     }
+}
+
+/// `s` cut at `cuts` (the first 0, the last `s.len()`, none decreasing): `cuts.len() - 1` slices.
+fn split_at_cuts<'a, T>(mut s: &'a mut [T], cuts: &[usize]) -> Vec<&'a mut [T]> {
+    let mut out = Vec::with_capacity(cuts.len().saturating_sub(1));
+    for w in cuts.windows(2) {
+        let (mine, rest) = std::mem::take(&mut s).split_at_mut(w[1] - w[0]);
+        out.push(mine);
+        s = rest;
+    }
+    out
 }
 
 /// One kick: gravity, the half step h, how many half kicks (1, or 2 joined), the drift's dt (0: none).

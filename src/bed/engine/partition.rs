@@ -8,7 +8,6 @@
 use super::super::interaction::BedLaw;
 use super::super::{Tensor, Vec3, ZERO};
 use super::Engine;
-use rayon::prelude::*;
 
 /// What the contacts of a step give one particle. One record per particle, so a contact's share is one
 /// index (and one cache line) per body, and the kick reads one record. Laid out as eight f64 (force,
@@ -239,7 +238,7 @@ impl<L: BedLaw> Engine<L> {
     pub(super) fn add_buffers(&mut self) {
         let (parts, ends, buffers) = (&self.parts, &self.span_end, &self.buffers);
         let dipoles = self.record_dipoles;
-        own_rows(&mut self.total, parts, dipoles).into_par_iter().enumerate().for_each(|(k, (load, dipole))| {
+        self.team.map(own_rows(&mut self.total, parts, dipoles), |k, (load, dipole)| {
             let a = parts[k];
             for m in 0..k {
                 let end = ends[m].min(a + load.len());
