@@ -89,8 +89,8 @@ impl<L: BedLaw> Engine<L> {
         }
         // The near lists: reused where the step allows it (`near::NearLists::reusable`), else each part
         // builds its own first.
-        let reuse = reuse && lanes && self.near.parts.len() == self.threads;
-        self.near.parts.resize_with(self.threads, Near::default);
+        let reuse = reuse && lanes && self.near.parts.len() == self.team.threads();
+        self.near.parts.resize_with(self.team.threads(), Near::default);
         let shared = Shared {
             p: &self.particles,
             list: &self.list,
@@ -110,7 +110,7 @@ impl<L: BedLaw> Engine<L> {
         let mut near_parts = self.near.parts.iter_mut();
         // Cut the contact memory into the parts' pieces; each part's sink is its own rows of the totals
         // and its spill buffer (one thread: the totals).
-        let mut parts: Vec<Part<L::History>> = Vec::with_capacity(self.threads);
+        let mut parts: Vec<Part<L::History>> = Vec::with_capacity(self.team.threads());
         let mut normal: &mut [L::History] = &mut self.memory.history;
         let mut spring: &mut [Vec3] = &mut self.memory.spring;
         let mut radius: &mut [f64] = &mut self.memory.contact_radius;
@@ -120,7 +120,7 @@ impl<L: BedLaw> Engine<L> {
             .map(|wc| (&wc.particle[..], &mut wc.memory.history[..], &mut wc.memory.spring[..], &mut wc.memory.contact_radius[..]))
             .collect();
         let mut consumed = 0usize;
-        let mut sinks: Vec<Sink> = if self.threads == 1 {
+        let mut sinks: Vec<Sink> = if self.team.threads() == 1 {
             let t = &mut self.total;
             vec![Sink { base: 0, load: &mut t.load, spill: &mut [], dipole: &mut t.dipole, dipole_spill: &mut [], wall_force: &mut t.wall_force }]
         } else {
@@ -159,7 +159,7 @@ impl<L: BedLaw> Engine<L> {
             parts.push(Part { rows: (a, b), slot0: consumed, normal: mine_n, spring: mine_s, radius: mine_r, walls, sink, near, reuse });
             consumed += take;
         }
-        if self.threads > 1 {
+        if self.team.threads() > 1 {
             self.team.map(parts, |_, part| run_part(&shared, part));
             self.add_buffers();
         } else {
@@ -178,7 +178,7 @@ impl<L: BedLaw> Engine<L> {
 }
 
 impl<L: BedLaw> Engine<L> {
-    /// The spheres' records for the lane loop (`lanes::record`), each thread packing a chunk.
+    /// The spheres' records for the lane loop (`lanes::record`), each thread packing its spheres (`sphere_cuts`).
     fn pack_records(&mut self) {
         let n = self.particles.len();
         self.records.resize(n, Record::default());
@@ -187,11 +187,11 @@ impl<L: BedLaw> Engine<L> {
             let at = first..n;
             pack(&p.position[at.clone()], &p.velocity[at.clone()], &p.angular_velocity[at.clone()], &p.radius[at], out);
         };
-        if self.threads == 1 {
+        if self.team.threads() == 1 {
             pack_from(0, &mut self.records);
         } else {
-            let chunk = n.div_ceil(self.threads).max(1);
-            self.team.map(self.records.chunks_mut(chunk).collect(), |k, out| pack_from(k * chunk, out));
+            let cuts = self.sphere_cuts();
+            self.team.map(super::split_at_cuts(&mut self.records, &cuts), |k, out| pack_from(cuts[k], out));
         }
     }
 }

@@ -83,7 +83,6 @@ pub struct Engine<L: BedLaw> {
     span_end: Vec<usize>,
     /// The threads of the parallel phases (the caller's and its helpers).
     team: Team,
-    threads: usize,
     record_dipoles: bool,
     /// The force on each held sphere when it was held (`hold`).
     held_reference: Vec<Vec3>,
@@ -103,7 +102,7 @@ pub struct Engine<L: BedLaw> {
 
 impl<L: BedLaw> std::fmt::Debug for Engine<L> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "Engine({} particles, {} walls, {} threads)", self.particles.len(), self.walls.len(), self.threads)
+        write!(f, "Engine({} particles, {} walls, {} threads)", self.particles.len(), self.walls.len(), self.team.threads())
     }
 }
 
@@ -161,7 +160,6 @@ impl<L: BedLaw> Engine<L> {
             parts: vec![],
             span_end: vec![],
             team,
-            threads,
             record_dipoles: false,
             held_reference: vec![],
             any_held: false,
@@ -177,7 +175,7 @@ impl<L: BedLaw> Engine<L> {
 
     /// Number of threads the force loop and the kick run on (1: no pool).
     pub fn threads(&self) -> usize {
-        self.threads
+        self.team.threads()
     }
 
     /// The instruction set the force loop and the kick run with.
@@ -505,7 +503,8 @@ impl<L: BedLaw> Engine<L> {
     /// since the last near list build (with drift; infinite for the near list when it is not valid). A drifting kick on an engine that may run its pairs on eight lanes also writes the
     /// spheres' records for them (`lanes::record`), saving the force loop a pass over every sphere.
     fn kick(&mut self, h: f64, drift: bool, twice: bool) -> (f64, f64) {
-        let threads = self.threads;
+        let threads = self.team.threads();
+        let cuts = if threads > 1 { self.sphere_cuts() } else { vec![] };
         let write_records = drift && self.records_used();
         let load = &self.total.load[..];
         let p = &mut self.particles;
@@ -528,14 +527,6 @@ impl<L: BedLaw> Engine<L> {
         if threads == 1 {
             return kick_range(isa, 0, &mut p.velocity, &mut p.angular_velocity, &mut p.position, body, load, refs, kick, records);
         }
-        // Each thread kicks the spheres of its part of the force loop (whose loads it has just summed, still in
-        // its core's cache); before the first cut, equal chunks.
-        let n = p.len();
-        let cuts: Vec<usize> = if self.parts.len() == threads + 1 && self.parts[threads] == n {
-            self.parts.clone()
-        } else {
-            (0..=threads).map(|k| n * k / threads).collect()
-        };
         let records: Vec<&mut [lanes::record::Record]> = if records.is_empty() { (0..threads).map(|_| &mut [][..]).collect() } else { split_at_cuts(records, &cuts) };
         let chunks: Vec<_> = split_at_cuts(&mut p.velocity, &cuts)
             .into_iter()
@@ -547,6 +538,18 @@ impl<L: BedLaw> Engine<L> {
             .map(chunks, |k, (((v, w), x), out)| kick_range(isa, cuts[k], v, w, x, body, load, refs, kick, out))
             .into_iter()
             .fold((0.0, 0.0), |a, b| (a.0.max(b.0), a.1.max(b.1)))
+    }
+
+    /// Where the spheres are cut among the threads for the kick and the records: each thread takes the spheres
+    /// of its part of the force loop (whose loads it has just summed, still in its core's cache); before the
+    /// first cut of the parts, equal chunks. Which thread handles a sphere does not change its bits.
+    fn sphere_cuts(&self) -> Vec<usize> {
+        let (n, threads) = (self.particles.len(), self.team.threads());
+        if self.parts.len() == threads + 1 && self.parts[threads] == n {
+            self.parts.clone()
+        } else {
+            (0..=threads).map(|k| n * k / threads).collect()
+        }
     }
 
     fn move_walls(&mut self) {
@@ -616,7 +619,7 @@ impl<L: BedLaw> Engine<L> {
 }
 
 /// `s` cut at `cuts` (the first 0, the last `s.len()`, none decreasing): `cuts.len() - 1` slices.
-fn split_at_cuts<'a, T>(mut s: &'a mut [T], cuts: &[usize]) -> Vec<&'a mut [T]> {
+pub(super) fn split_at_cuts<'a, T>(mut s: &'a mut [T], cuts: &[usize]) -> Vec<&'a mut [T]> {
     let mut out = Vec::with_capacity(cuts.len().saturating_sub(1));
     for w in cuts.windows(2) {
         let (mine, rest) = std::mem::take(&mut s).split_at_mut(w[1] - w[0]);

@@ -186,7 +186,7 @@ impl<L: BedLaw> Engine<L> {
     /// `resize_buffers` sizes each part's spill buffer for the particles beyond its rows it touches.
     pub(super) fn cut_parts(&mut self) {
         let n = self.particles.len();
-        let t = self.threads;
+        let t = self.team.threads();
         let total = self.list.partner.len() + n;
         self.parts.clear();
         self.parts.push(0);
@@ -213,17 +213,17 @@ impl<L: BedLaw> Engine<L> {
         let d = self.record_dipoles;
         self.total.resize(n, w, d);
         self.span_end.clear();
-        for k in 0..self.threads {
+        for k in 0..self.team.threads() {
             let end = self.span_end(k);
             self.span_end.push(end);
         }
-        if self.threads == 1 {
+        if self.team.threads() == 1 {
             // The one part writes into the totals.
             self.buffers.clear();
             return;
         }
-        self.buffers.resize_with(self.threads, Accum::default);
-        for k in 0..self.threads {
+        self.buffers.resize_with(self.team.threads(), Accum::default);
+        for k in 0..self.team.threads() {
             let len = self.span_end[k] - self.parts[k + 1];
             let buffer = &mut self.buffers[k];
             buffer.load.clear();
