@@ -167,12 +167,8 @@ fn main() {
             Some(vs) => vec![("below", 0.5 * vs), ("near", 1.05 * vs), ("far", 20.0 * vs)],
             None => vec![("below", 0.1), ("near", 1.0), ("far", 10.0)],
         };
-        let rayleigh = time_step::rayleigh_time_step(
-            r,
-            case.scene.particle_density,
-            case.scene.particle_shear_modulus(),
-            case.scene.particle_poisson_ratio,
-        );
+        let rayleigh =
+            time_step::rayleigh_time_step(r, case.scene.particle_density, case.scene.particle_shear_modulus(), case.scene.particle_poisson_ratio);
         let undamped_linear = case.law.is_piecewise_linear() && case.scene.restitution_coefficient >= 1.0;
         for (name, v) in velocities {
             let t_end = case.end_time(v);

@@ -180,7 +180,15 @@ pub fn derived_line(scene: &Scene) -> Result<String, ParamError> {
     let items: Vec<String> = OUTPUTS
         .iter()
         .filter(|o| matches!(o.group, Group::Pair | Group::Nan | Group::ThorntonNing | Group::Jkr | Group::TimeStep))
-        .filter_map(|o| v.get(o.name).and_then(Value::as_f64).map(|x| if o.unit == "-" { format!("{} = {x:.6e}", o.name) } else { format!("{} = {x:.6e} {}", o.name, o.unit) }))
+        .filter_map(|o| {
+            v.get(o.name).and_then(Value::as_f64).map(|x| {
+                if o.unit == "-" {
+                    format!("{} = {x:.6e}", o.name)
+                } else {
+                    format!("{} = {x:.6e} {}", o.name, o.unit)
+                }
+            })
+        })
         .collect();
     Ok(format!("derived parameters ({}; Nan's law for these materials, 000 Sec. 3): {}", scene.contact_model.name(), items.join(", ")))
 }

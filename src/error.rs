@@ -1,6 +1,5 @@
 //! The one error type for bad input: it names the parameter, the value given and what is allowed.
 
-
 /// A parameter that is missing, out of range, or inconsistent with another.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum ParamError {

@@ -4,7 +4,7 @@
 //! its range checks are all generated from that one declaration. The laws declare their options with it,
 //! `scene::Scene` composes them, and `bed::scene` reads the bed's keys with its helpers.
 
-use crate::error::{check_closed_low, check_open, range_text, ParamError, check_open_closed, open_closed_text};
+use crate::error::{check_closed_low, check_open, check_open_closed, open_closed_text, range_text, ParamError};
 use serde_json::{Map, Value};
 
 /// What kind of value a key takes, and so how it reaches an FMU (`units::scene_params`).

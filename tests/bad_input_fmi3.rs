@@ -493,7 +493,15 @@ fn a_logger_that_calls_back_in_or_frees_the_instance_finds_it_consistent() {
         };
         let env = &mut r as *mut Reentrant as *mut c_void;
         let c = unsafe {
-            api.sym::<host::fmi3::InstantiateMe>(b"fmi3InstantiateModelExchange")(name.as_ptr(), token.as_ptr(), null(), false, false, env, Some(reentrant_logger))
+            api.sym::<host::fmi3::InstantiateMe>(b"fmi3InstantiateModelExchange")(
+                name.as_ptr(),
+                token.as_ptr(),
+                null(),
+                false,
+                false,
+                env,
+                Some(reentrant_logger),
+            )
         };
         assert!(!c.is_null());
         assert_eq!(api.enter_initialization(c), fmi3OK);

@@ -675,9 +675,7 @@ fn a_pair_forgets_at_the_forgetting_distance_not_at_the_skin() {
     let mut e = AnyEngine::build(&scene, p, vec![]).unwrap();
     assert_eq!(e.forgetting_distance(), forget);
     e.step();
-    let history = |e: &AnyEngine| {
-        with_engine!(e, x => x.list.row(0).binary_search(&1).ok().map(|k| (format!("{:?}", x.memory.history[x.list.start[0] as usize + k]), format!("{:?}", x.pairs[0].initial))))
-    };
+    let history = |e: &AnyEngine| with_engine!(e, x => x.list.row(0).binary_search(&1).ok().map(|k| (format!("{:?}", x.memory.history[x.list.start[0] as usize + k]), format!("{:?}", x.pairs[0].initial))));
     let (pressed, initial) = history(&e).expect("the pressed pair is listed");
     assert_ne!(pressed, initial, "the pressed pair yielded and remembers it");
     // Apart by 5 skins, half the forgetting distance: still listed after a rebuild, still remembering.
@@ -709,9 +707,7 @@ fn a_pair_forgets_at_the_forgetting_distance_not_at_the_skin() {
     let floor = Wall::plane("floor", Vec3::new(0.0, 0.0, 0.0), Vec3::new(0.0, 0.0, 1.0));
     let mut w = AnyEngine::build(&scene, p, vec![floor]).unwrap();
     w.step();
-    let wall_history = |e: &AnyEngine| {
-        with_engine!(e, x => x.wall_contacts[0].particle.binary_search(&0).ok().map(|k| format!("{:?}", x.wall_contacts[0].memory.history[k])))
-    };
+    let wall_history = |e: &AnyEngine| with_engine!(e, x => x.wall_contacts[0].particle.binary_search(&0).ok().map(|k| format!("{:?}", x.wall_contacts[0].memory.history[k])));
     let on_floor = wall_history(&w).expect("the pressed sphere is in the floor's list");
     assert_ne!(alpha_max(&on_floor), alpha_max(&initial), "it yielded on the floor");
     let lift = |e: &mut AnyEngine, gap: f64| {

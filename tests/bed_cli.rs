@@ -24,7 +24,8 @@ fn prepare_then_info_snapshot_render_export_and_bench() {
     let bed = d.join("small.bed");
     // In two parts: settled, with a checkpoint at every progress report, then resumed to the end.
     let settled = d.join("settled.bed");
-    let (code, out, err) = run(&["bed", "prepare", scene.to_str().unwrap(), "--until", "settle", "--checkpoint", "1e-6", "-o", settled.to_str().unwrap()]);
+    let (code, out, err) =
+        run(&["bed", "prepare", scene.to_str().unwrap(), "--until", "settle", "--checkpoint", "1e-6", "-o", settled.to_str().unwrap()]);
     assert_eq!(code, 0, "{err}");
     assert!(out.contains("settle") && !out.contains("consolidate"), "{out}");
     assert!(!d.join("settled.checkpoint.pfbed").exists(), "the checkpoint goes once the bed is written");
@@ -38,10 +39,12 @@ fn prepare_then_info_snapshot_render_export_and_bench() {
     let prepared = memory(&out);
     // The same settled fill branched to another consolidation stress; a bed consolidated already is refused.
     let other = d.join("other.bed");
-    let (code, out2, err) = run(&["bed", "prepare", "--resume", settled.to_str().unwrap(), "--consolidation-stress", "5e3", "-o", other.to_str().unwrap()]);
+    let (code, out2, err) =
+        run(&["bed", "prepare", "--resume", settled.to_str().unwrap(), "--consolidation-stress", "5e3", "-o", other.to_str().unwrap()]);
     assert_eq!(code, 0, "{err}");
     assert!(out2.contains("(target 5.0000e3 Pa)") && out.contains("(target 1.0000e4 Pa)"), "{out2}\n{out}");
-    let (code, _, err) = run(&["bed", "prepare", "--resume", bed.to_str().unwrap(), "--consolidation-stress", "5e3", "-o", d.join("again.bed").to_str().unwrap()]);
+    let (code, _, err) =
+        run(&["bed", "prepare", "--resume", bed.to_str().unwrap(), "--consolidation-stress", "5e3", "-o", d.join("again.bed").to_str().unwrap()]);
     assert_ne!(code, 0);
     assert!(err.contains("--consolidation-stress") && err.contains("consolidated (to 1e4 Pa) already"), "{err}");
     assert!(!d.join("again.bed").exists());
@@ -54,19 +57,38 @@ fn prepare_then_info_snapshot_render_export_and_bench() {
     // minimum time (1 ms; checks every 2e-4 s or 50 steps).
     let relax = |out: &str| -> f64 { out.lines().find(|l| l.starts_with("relax")).unwrap().split_whitespace().nth(1).unwrap().parse().unwrap() };
     let loose = d.join("loose.bed");
-    let (code, out3, err) = run(&["bed", "prepare", "--resume", settled.to_str().unwrap(), "--settle-energy-ratio", "0.9", "-o", loose.to_str().unwrap()]);
+    let (code, out3, err) =
+        run(&["bed", "prepare", "--resume", settled.to_str().unwrap(), "--settle-energy-ratio", "0.9", "-o", loose.to_str().unwrap()]);
     assert_eq!(code, 0, "{err}");
-    assert!(relax(&out3) < 1.5e-3 && relax(&out) > 2.0 * relax(&out3), "relax {} s with the ratio 0.9 against {} s with the scene's", relax(&out3), relax(&out));
+    assert!(
+        relax(&out3) < 1.5e-3 && relax(&out) > 2.0 * relax(&out3),
+        "relax {} s with the ratio 0.9 against {} s with the scene's",
+        relax(&out3),
+        relax(&out)
+    );
     for bad in ["0", "1", "2"] {
-        let (code, _, err) = run(&["bed", "prepare", "--resume", settled.to_str().unwrap(), "--settle-energy-ratio", bad, "-o", d.join("bad.bed").to_str().unwrap()]);
+        let (code, _, err) =
+            run(&["bed", "prepare", "--resume", settled.to_str().unwrap(), "--settle-energy-ratio", bad, "-o", d.join("bad.bed").to_str().unwrap()]);
         assert_eq!(code, 2, "--settle-energy-ratio {bad}: {err}");
         assert!(err.contains("--settle-energy-ratio") && err.contains("allowed"), "{err}");
     }
     assert!(!d.join("bad.bed").exists());
     let (code, out, err) = run(&["bed", "info", bed.to_str().unwrap()]);
     assert_eq!(code, 0, "{err}");
-    assert!(prepared.is_some() && prepared == memory(&out), "bed prepare and bed info give one memory per particle: {prepared:?} vs {:?}", memory(&out));
-    for field in ["particles:            120", "bed height:", "solid fraction:", "coordination number:", "mean overlap:", "sigma_zz", "prepared through `unload`"] {
+    assert!(
+        prepared.is_some() && prepared == memory(&out),
+        "bed prepare and bed info give one memory per particle: {prepared:?} vs {:?}",
+        memory(&out)
+    );
+    for field in [
+        "particles:            120",
+        "bed height:",
+        "solid fraction:",
+        "coordination number:",
+        "mean overlap:",
+        "sigma_zz",
+        "prepared through `unload`",
+    ] {
         assert!(out.contains(field), "`{field}` missing in\n{out}");
     }
     let solid: f64 = out.lines().find(|l| l.starts_with("solid fraction")).unwrap().split_whitespace().last().unwrap().parse().unwrap();
@@ -91,7 +113,23 @@ fn prepare_then_info_snapshot_render_export_and_bench() {
     assert_eq!(code, 0, "{err}");
     assert!(out.contains("particle_steps_per_s=") && out.contains("bytes_per_particle="), "{out}");
     let curve = d.join("indent.csv");
-    let indent = |fidelity: &str| run(&["bed", "indent", bed.to_str().unwrap(), "--diameter", "0.003", "--max-penetration", "0.0003", "--speed", "0.1", "--fidelity", fidelity, "--out", curve.to_str().unwrap()]);
+    let indent = |fidelity: &str| {
+        run(&[
+            "bed",
+            "indent",
+            bed.to_str().unwrap(),
+            "--diameter",
+            "0.003",
+            "--max-penetration",
+            "0.0003",
+            "--speed",
+            "0.1",
+            "--fidelity",
+            fidelity,
+            "--out",
+            curve.to_str().unwrap(),
+        ])
+    };
     let (code, _, err) = indent("fast");
     assert_eq!(code, 0, "{err}");
     assert!(err.contains("hardness") && err.contains("spheres moving"), "{err}");
@@ -122,7 +160,18 @@ fn prepare_then_info_snapshot_render_export_and_bench() {
     let (code, _, err) = run(&args);
     assert_eq!(code, 0, "{err}");
     assert!(err.contains("preshear's end saved in") && saved.exists(), "{err}");
-    let from = ["bed", "shear", "--from-preshear", saved.to_str().unwrap(), "--shear-travel", "0.2", "--shear-speed", "0.02", "--normal-fractions", "0.3,0.6"];
+    let from = [
+        "bed",
+        "shear",
+        "--from-preshear",
+        saved.to_str().unwrap(),
+        "--shear-travel",
+        "0.2",
+        "--shear-speed",
+        "0.02",
+        "--normal-fractions",
+        "0.3,0.6",
+    ];
     let mut args = from.to_vec();
     args.extend(["--out", again.to_str().unwrap()]);
     let (code, _, err) = run(&args);
@@ -213,7 +262,23 @@ fn indent_change_lays_a_scene_over_the_same_bed() {
     let bed = "beds/bed_004_ch6_quarter.pfbed";
     let indent = |name: &str, change: Option<&str>| {
         let out = d.join(name);
-        let mut args = vec!["bed", "indent", bed, "--speed", "0.5", "--max-penetration", "1e-4", "--every", "2e-5", "--fidelity", "fast", "--threads", "1", "--out", out.to_str().unwrap()];
+        let mut args = vec![
+            "bed",
+            "indent",
+            bed,
+            "--speed",
+            "0.5",
+            "--max-penetration",
+            "1e-4",
+            "--every",
+            "2e-5",
+            "--fidelity",
+            "fast",
+            "--threads",
+            "1",
+            "--out",
+            out.to_str().unwrap(),
+        ];
         if let Some(c) = change {
             args.extend(["--change", c]);
         }

@@ -137,7 +137,23 @@ fn the_skin_changes_no_force_under_any_law() {
     let laws = ["nan", "pasha", "pasha_simplified", "luding", "thornton_ning", "tomas", "hertz", "jkr", "jkr_modified", "hooke", "walton_braun"];
     let bench = |law: &str, skin: &str, forget: &str| -> (String, u64, u64, String) {
         let steps = if law == "pasha_simplified" { "2500" } else { "1000" };
-        let args = ["bed", "bench", BED, "--model", law, "--steps", steps, "--warmup", "0", "--threads", "1", "--skin", skin, "--forgetting-distance", forget];
+        let args = [
+            "bed",
+            "bench",
+            BED,
+            "--model",
+            law,
+            "--steps",
+            steps,
+            "--warmup",
+            "0",
+            "--threads",
+            "1",
+            "--skin",
+            skin,
+            "--forgetting-distance",
+            forget,
+        ];
         let out = run(&args, None);
         let near = (field(&out, "near_builds=").parse().unwrap(), field(&out, "near_mode=").to_string());
         (field(&out, "state_digest=").to_string(), field(&out, "list_builds=").parse().unwrap(), near.0, near.1)
@@ -171,7 +187,23 @@ fn the_skin_changes_no_force_under_any_law() {
     });
     assert_ne!(remembering, forgetting);
     // The lanes forget as the scalar loop does: the baseline steps to the same bits.
-    let args = ["bed", "bench", BED, "--model", "pasha_simplified", "--steps", "2500", "--warmup", "0", "--threads", "1", "--skin", "1e-4", "--forgetting-distance", "2e-6"];
+    let args = [
+        "bed",
+        "bench",
+        BED,
+        "--model",
+        "pasha_simplified",
+        "--steps",
+        "2500",
+        "--warmup",
+        "0",
+        "--threads",
+        "1",
+        "--skin",
+        "1e-4",
+        "--forgetting-distance",
+        "2e-6",
+    ];
     assert_eq!(field(&run(&args, Some("baseline")), "state_digest="), forgetting, "the baseline's scalar loop against the lanes");
     for (option, value) in [("--skin", "0"), ("--forgetting-distance", "0")] {
         let out = Command::new(env!("CARGO_BIN_EXE_powderfmu")).args(["bed", "bench", BED, "--model", "hertz", option, value]).output().unwrap();

@@ -13,7 +13,10 @@ fn the_helper_threads_are_joined_when_the_engine_is_dropped() {
     let before = threads();
     for _ in 0..3 {
         {
-            let scene = BedScene::from_json(r#"{"threads": 3, "particle_count": 50, "die_diameter": 0.008, "particle_particle": {"particle_youngs_modulus": 55e6}}"#).unwrap();
+            let scene = BedScene::from_json(
+                r#"{"threads": 3, "particle_count": 50, "die_diameter": 0.008, "particle_particle": {"particle_youngs_modulus": 55e6}}"#,
+            )
+            .unwrap();
             let mut e = AnyEngine::build(&scene, prepare::fill(&scene).unwrap(), prepare::die(&scene)).unwrap();
             e.run(10);
             // Three threads: the caller and two helpers.

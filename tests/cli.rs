@@ -260,7 +260,8 @@ fn jkr_sticking_velocities_name_their_reading() {
 fn a_closed_pipe_ends_the_tool_quietly() {
     use std::process::Stdio;
     // `powderfmu analyze --help | head -1`: the reader goes away after the first line.
-    let mut child = Command::new(env!("CARGO_BIN_EXE_powderfmu")).args(["analyze", "--help"]).stdout(Stdio::piped()).stderr(Stdio::piped()).spawn().unwrap();
+    let mut child =
+        Command::new(env!("CARGO_BIN_EXE_powderfmu")).args(["analyze", "--help"]).stdout(Stdio::piped()).stderr(Stdio::piped()).spawn().unwrap();
     drop(child.stdout.take());
     let out = child.wait_with_output().unwrap();
     let stderr = String::from_utf8_lossy(&out.stderr);
@@ -363,4 +364,3 @@ fn analyze_text_puts_each_unit_beside_its_value_under_its_law() {
     assert!(section("sticking_velocity").starts_with("the active law, nan"));
     assert!(section("restitution").starts_with("one undamped impact of nan"));
 }
-

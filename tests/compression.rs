@@ -83,10 +83,8 @@ fn more_cohesive() -> &'static (BedFile, BedScene) {
 fn sigma_c_rises_with_the_interface_energy() {
     // Issue 34's physical check: at one consolidation stress, sigma_c grows with the spheres' interface
     // energy (0, 0.5, 1 J/m^2), each step by more than three standard errors of the difference.
-    let readings: Vec<_> = [cohesionless(), cohesive(), more_cohesive()]
-        .into_iter()
-        .map(|bed| run(bed).1.reading().unwrap().unconfined_yield_strength)
-        .collect();
+    let readings: Vec<_> =
+        [cohesionless(), cohesive(), more_cohesive()].into_iter().map(|bed| run(bed).1.reading().unwrap().unconfined_yield_strength).collect();
     for pair in readings.windows(2) {
         let (lo, hi) = (pair[0], pair[1]);
         let se = lo.standard_error.hypot(hi.standard_error);

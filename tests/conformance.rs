@@ -391,7 +391,9 @@ fn invoke(api: &Api, name: &str, c: Comp, kind: fmi2Type, log: &Log) -> fmi2Stat
             "fmi2SetContinuousStates" => f!(api, b"fmi2SetContinuousStates", SetVector)(c, [2.45e-9, -1.0, 0.0, 0.0, 0.0, 0.0].as_ptr(), 6),
             // Six states (the normal three, the motion along the wall, the spin and the spring), four indicators.
             "fmi2GetEventIndicators" => f!(api, name.as_bytes(), Vector)(c, real.as_mut_ptr(), 4),
-            "fmi2GetDerivatives" | "fmi2GetContinuousStates" | "fmi2GetNominalsOfContinuousStates" => f!(api, name.as_bytes(), Vector)(c, real.as_mut_ptr(), 6),
+            "fmi2GetDerivatives" | "fmi2GetContinuousStates" | "fmi2GetNominalsOfContinuousStates" => {
+                f!(api, name.as_bytes(), Vector)(c, real.as_mut_ptr(), 6)
+            }
             "fmi2SetRealInputDerivatives" => f!(
                 api,
                 b"fmi2SetRealInputDerivatives",

@@ -357,7 +357,9 @@ fn invoke(api: &Api3, name: &str, c: Comp, me: bool, log: &Log) -> fmi3Status {
             }
             // Six states (the normal three, the motion along the wall, the spin and the spring), four indicators.
             "fmi3GetEventIndicators" => api.sym::<Vector>(n)(c, real.as_mut_ptr(), 4),
-            "fmi3GetContinuousStateDerivatives" | "fmi3GetContinuousStates" | "fmi3GetNominalsOfContinuousStates" => api.sym::<Vector>(n)(c, real.as_mut_ptr(), 6),
+            "fmi3GetContinuousStateDerivatives" | "fmi3GetContinuousStates" | "fmi3GetNominalsOfContinuousStates" => {
+                api.sym::<Vector>(n)(c, real.as_mut_ptr(), 6)
+            }
             "fmi3GetNumberOfEventIndicators" | "fmi3GetNumberOfContinuousStates" => api.sym::<Count>(n)(c, &mut size),
             "fmi3GetOutputDerivatives" => api.sym::<unsafe extern "C" fn(Comp, *const u32, usize, *const i32, *mut f64, usize) -> fmi3Status>(n)(
                 c,

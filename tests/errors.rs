@@ -1,7 +1,7 @@
 //! Bad input gives a typed error that names the parameter, for every law's own keys too.
 
-use powderfmu::law::AnyLaw;
 use powderfmu::law::pasha::PashaStiffnessLaw;
+use powderfmu::law::AnyLaw;
 use powderfmu::scene::{ModelKind, Scene};
 use powderfmu::ParamError;
 

@@ -6,6 +6,7 @@ mod common;
 use common::*;
 use powderfmu::law::jkr::{Jkr, JkrCurve};
 use powderfmu::law::nan::Nan;
+use powderfmu::law::nan::PullOffLaw;
 use powderfmu::law::nan_params::NanParams;
 use powderfmu::law::params::{f_y0, k_hjkr_at_zero, Effective};
 use powderfmu::law::thornton_ning::ThorntonNing;
@@ -13,7 +14,6 @@ use powderfmu::law::tomas::Tomas;
 use powderfmu::law::walton_braun::WaltonBraun;
 use powderfmu::law::{hertz::Hertz, luding::Luding, AnyLaw, Branch, NormalLaw};
 use powderfmu::numeric::tanh_sinh;
-use powderfmu::law::nan::PullOffLaw;
 use powderfmu::scene::{ModelKind, Scene};
 use powderfmu::theory::adhesion::{luding_adhesion_force, tomas_adhesion_force, tomas_adhesion_force_linear};
 use powderfmu::theory::sticking::{

@@ -89,7 +89,12 @@ fn exact_rebounds_as_the_closed_form_to_1e_12_for_every_piecewise_linear_law() {
         for v in [3.0, 5.0, 20.0] {
             let want = restitution::closed_form(&law, m, v).unwrap();
             let (y, max, _sp) = run_with(&s, v, Solver::Exact, 0.0);
-            assert!(rel(y.velocity, want.rebound_velocity) < 1e-12, "{model:?} at {v} m/s: rebound {} vs energy balance {}", y.velocity, want.rebound_velocity);
+            assert!(
+                rel(y.velocity, want.rebound_velocity) < 1e-12,
+                "{model:?} at {v} m/s: rebound {} vs energy balance {}",
+                y.velocity,
+                want.rebound_velocity
+            );
             assert!(rel(max, want.max_overlap) < 1e-12, "{model:?}: max overlap {max:e} vs {:e}", want.max_overlap);
             let lost = 0.5 * m * (v * v - y.velocity * y.velocity);
             assert!((y.work - lost).abs() < 1e-12 * 0.5 * m * v * v, "{model:?}: work {:e} vs {lost:e}", y.work);

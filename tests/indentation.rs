@@ -90,7 +90,13 @@ fn a_prescribed_test_loads_unloads_and_gives_the_hardness_at_the_turn() {
     // loading holds fewer than 8 samples, as on this short test.
     assert_eq!(last.hardness_standard_error, rec.hardness_after_turn_error(s.indenter_diameter));
     let turn_samples = rec.loading.iter().filter(|p| p.0 >= rec.h_max * (1.0 - powderfmu::bed::indentation::TURN_FIT)).count();
-    assert_eq!(last.hardness_standard_error == 0.0, turn_samples < 8, "{turn_samples} samples: {} +- {} Pa", last.hardness, last.hardness_standard_error);
+    assert_eq!(
+        last.hardness_standard_error == 0.0,
+        turn_samples < 8,
+        "{turn_samples} samples: {} +- {} Pa",
+        last.hardness,
+        last.hardness_standard_error
+    );
     assert_eq!(last.unconfined_yield_strength_standard_error, last.hardness_standard_error / 3.0);
     assert_eq!(last.contacts, 0, "done means the indenter has left the bed");
     // Once done, the prescribed test no longer steps the bed: a host's later steps change nothing.

@@ -100,7 +100,8 @@ fn a_sphere_rolling_in_without_slip_keeps_rolling() {
 fn rolling_friction_slows_the_spin_and_never_reverses_it() {
     let scene = alumina();
     let free = impact(&scene, 1.0, 1.0, &ImpactOptions { angular_velocity: 1.0 / RADIUS, ..ImpactOptions::default() }).unwrap();
-    let braked = impact(&scene, 1.0, 1.0, &ImpactOptions { angular_velocity: 1.0 / RADIUS, rolling_friction: 0.1, ..ImpactOptions::default() }).unwrap();
+    let braked =
+        impact(&scene, 1.0, 1.0, &ImpactOptions { angular_velocity: 1.0 / RADIUS, rolling_friction: 0.1, ..ImpactOptions::default() }).unwrap();
     assert!(braked.angular_velocity_out < free.angular_velocity_out && braked.angular_velocity_out > 0.0, "{free:?} {braked:?}");
     assert!(braked.dissipated_energy > free.dissipated_energy);
     // A strong brake stops a slow spin within the contact and leaves it at 0.
@@ -139,7 +140,8 @@ fn the_adaptive_integrator_lands_on_the_stick_slip_switches_and_converges() {
     let errors: Vec<f64> = [1e-6, 1e-8, 1e-10].iter().map(|&tol| (adaptive(15.0, tol).tangential_velocity_out - reference).abs()).collect();
     assert!(errors[0] < 1e-5 && errors[1] < 1e-7 && errors[2] < 1e-9, "errors at tolerances 1e-6, 1e-8, 1e-10: {errors:?}");
     // No rolling friction in it: refused by name.
-    let e = impact(&scene, 1.0, 1.0, &ImpactOptions { solver: ObliqueSolver::Adaptive(1e-8), rolling_friction: 0.1, ..ImpactOptions::default() }).unwrap_err();
+    let e = impact(&scene, 1.0, 1.0, &ImpactOptions { solver: ObliqueSolver::Adaptive(1e-8), rolling_friction: 0.1, ..ImpactOptions::default() })
+        .unwrap_err();
     assert!(e.to_string().contains("rolling_friction"), "{e}");
 }
 

@@ -3,8 +3,8 @@
 //! (which all sit at a boundary with the separated state), history monotone, and a history the law says
 //! rests apart left as it is at every negative overlap.
 
-use powderfmu::law::{AnyHistory, AnyLaw, Branch, Evaluation, NormalLaw};
 use powderfmu::law::nan::{PullOffLaw, UnloadingStiffnessLaw};
+use powderfmu::law::{AnyHistory, AnyLaw, Branch, Evaluation, NormalLaw};
 use powderfmu::scene::{ModelKind, Scene};
 use proptest::prelude::*;
 
@@ -50,7 +50,8 @@ fn scene(c: &Case) -> Scene {
     s.surface_energy = c.gamma;
     let k_el = std::f64::consts::PI * c.radius * p_y;
     s.laws.stiffness.plastic_stiffness = Some(c.kp_ratio * k_el);
-    s.laws.nan.unloading_stiffness_law = if c.variant.is_multiple_of(2) { UnloadingStiffnessLaw::Sqrt } else { UnloadingStiffnessLaw::SqrtPlusPlastic };
+    s.laws.nan.unloading_stiffness_law =
+        if c.variant.is_multiple_of(2) { UnloadingStiffnessLaw::Sqrt } else { UnloadingStiffnessLaw::SqrtPlusPlastic };
     s.laws.nan.pull_off_law = [PullOffLaw::Energy, PullOffLaw::Pasha, PullOffLaw::Curvature, PullOffLaw::WorkRatio][c.variant];
     s.laws.luding.luding_adhesion_stiffness = c.kp_ratio * k_el * 0.5;
     s.laws.pasha_simplified.pasha_pull_off_stiffness = c.kp_ratio * k_el * 0.1;

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Runs every test of the project: the Rust tests (crate and packaging tool, including the importer test
 # and the check of every FMI 2.0 and 3.0 signature against the official headers), then builds the .fmu files and runs
-# the fmpy suite (tests/python) against them; cargo clippy with warnings as errors runs in between.
+# the fmpy suite (tests/python) against them; cargo clippy with warnings as errors and the format check
+# (cargo fmt --check) run in between.
 # Installs what it needs: the project's Python virtual environment (.venv, pinned fmpy, numpy,
 # matplotlib, pytest) and the Windows toolchain of the win64 binaries and their test under wine (the Rust
 # target x86_64-pc-windows-gnu, Debian's gcc-mingw-w64-x86-64 and wine; tools/windows_toolchain.sh) and
@@ -55,6 +56,13 @@ if cargo clippy --version >/dev/null 2>&1; then
     cargo clippy --workspace --all-targets --locked --quiet -- -D warnings || status=1
 else
     echo "run_all.sh: cargo clippy is not installed (rustup component add clippy); lints skipped" >&2
+fi
+
+phase "Format (cargo fmt --check, rustfmt.toml)"
+if cargo fmt --version >/dev/null 2>&1; then
+    cargo fmt --all --check -- -l || { echo "run_all.sh: the files above are not formatted; run cargo fmt --all" >&2; status=1; }
+else
+    echo "run_all.sh: rustfmt is not installed (rustup component add rustfmt); the format check skipped" >&2
 fi
 
 phase "Building the FMUs (target/fmu)"

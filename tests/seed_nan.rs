@@ -4,9 +4,9 @@
 mod common;
 use common::*;
 use powderfmu::law::nan::Nan;
+use powderfmu::law::nan::{AdhesiveStiffnessLaw, UnloadingStiffnessLaw};
 use powderfmu::law::nan_params::NanParams;
 use powderfmu::law::params::{k_hertz, Effective};
-use powderfmu::law::nan::{AdhesiveStiffnessLaw, UnloadingStiffnessLaw};
 use powderfmu::scene::ModelKind;
 use powderfmu::theory::sticking::sticking_velocities;
 use powderfmu::theory::work::work_terms;

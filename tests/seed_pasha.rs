@@ -5,10 +5,10 @@ mod common;
 use common::*;
 use powderfmu::law::params::Effective;
 use powderfmu::law::pasha::Pasha;
+use powderfmu::law::pasha::PashaStiffnessLaw;
 use powderfmu::law::pasha_simplified::PashaSimplified;
 use powderfmu::law::LawInfo;
 use powderfmu::law::{luding::Luding, AnyLaw};
-use powderfmu::law::pasha::PashaStiffnessLaw;
 use powderfmu::scene::ModelKind;
 use powderfmu::theory::{energy_balance, restitution};
 

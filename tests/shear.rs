@@ -89,7 +89,12 @@ fn the_cell_shears_its_bed_under_the_normal_stress_it_was_asked() {
         assert!(f.normal_stress.mean > last_sigma, "sigma on the plane {:?} after {last_sigma} Pa", f.normal_stress);
         last_sigma = f.normal_stress.mean;
         // Incipient flow below the preshear's steady state, and more strength under more normal stress.
-        assert!(f.shear_stress.mean > last_tau && f.shear_stress.mean < r.preshear_shear.mean, "tau {:?} against tau_pre {:?}", f.shear_stress, r.preshear_shear);
+        assert!(
+            f.shear_stress.mean > last_tau && f.shear_stress.mean < r.preshear_shear.mean,
+            "tau {:?} against tau_pre {:?}",
+            f.shear_stress,
+            r.preshear_shear
+        );
         last_tau = f.shear_stress.mean;
     }
     // The largest principal stress of the preshear's steady flow exceeds the normal stress on the plane

@@ -37,7 +37,9 @@ pub fn docs_with_table(page: &str, unit: &UnitInfo) -> Result<String, String> {
 /// Writes both generated files of a unit; returns the paths that changed.
 pub fn update(unit: &UnitInfo) -> Result<Vec<PathBuf>, String> {
     let mut changed = Vec::new();
-    for (xml_path, xml) in [(model_description_path(unit), unit.model_description()), (model_description_fmi3_path(unit), unit.model_description_fmi3())] {
+    for (xml_path, xml) in
+        [(model_description_path(unit), unit.model_description()), (model_description_fmi3_path(unit), unit.model_description_fmi3())]
+    {
         if std::fs::read_to_string(&xml_path).ok().as_deref() != Some(xml.as_str()) {
             write_atomic(&xml_path, xml.as_bytes())?;
             changed.push(xml_path);

@@ -105,7 +105,12 @@ fn run() -> Result<(), String> {
         let path = o.out.join("fmi3").join(format!("{}.fmu", unit.model_identifier));
         let bytes = zip_bytes(entries(unit, &binaries, &root, Version::Fmi3)?).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
         interface::write_atomic(&path, &bytes)?;
-        println!("fmu_build: wrote {} ({:.1} MiB, instantiationToken {})", path.display(), bytes.len() as f64 / 1048576.0, unit.instantiation_token());
+        println!(
+            "fmu_build: wrote {} ({:.1} MiB, instantiationToken {})",
+            path.display(),
+            bytes.len() as f64 / 1048576.0,
+            unit.instantiation_token()
+        );
     }
     Ok(())
 }
@@ -126,12 +131,16 @@ fn build(root: &Path, target: Option<&str>) -> Result<(), String> {
 
 /// Says in one line what the Windows cross-build lacks, before cargo fails with pages of linker errors.
 fn windows_toolchain() -> Result<(), String> {
-    let installed = Command::new("rustup").args(["target", "list", "--installed"]).output().map(|o| String::from_utf8_lossy(&o.stdout).contains(WINDOWS_TARGET));
+    let installed =
+        Command::new("rustup").args(["target", "list", "--installed"]).output().map(|o| String::from_utf8_lossy(&o.stdout).contains(WINDOWS_TARGET));
     if installed.is_ok_and(|yes| !yes) {
         return Err(format!("the Windows cross-build needs the Rust target: `rustup target add {WINDOWS_TARGET}` (or build with --linux-only)"));
     }
     if Command::new("x86_64-w64-mingw32-gcc").arg("--version").output().is_err() {
-        return Err("the Windows cross-build needs the linker x86_64-w64-mingw32-gcc: `apt-get install gcc-mingw-w64-x86-64` (or build with --linux-only)".into());
+        return Err(
+            "the Windows cross-build needs the linker x86_64-w64-mingw32-gcc: `apt-get install gcc-mingw-w64-x86-64` (or build with --linux-only)"
+                .into(),
+        );
     }
     Ok(())
 }

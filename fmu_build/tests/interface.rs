@@ -20,7 +20,12 @@ fn checked_in_fmi3_model_descriptions_match_the_variable_tables() {
     for unit in units::all() {
         let path = interface::model_description_fmi3_path(unit);
         let checked_in = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}; {FIX}", path.display()));
-        assert!(checked_in == unit.model_description_fmi3(), "{} differs from the variable table of {}; {FIX}", path.display(), unit.model_identifier);
+        assert!(
+            checked_in == unit.model_description_fmi3(),
+            "{} differs from the variable table of {}; {FIX}",
+            path.display(),
+            unit.model_identifier
+        );
     }
 }
 

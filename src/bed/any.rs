@@ -179,7 +179,8 @@ fn make<L: BedLaw>(scene: &BedScene, particles: Particles, walls: Vec<Wall>) -> 
         None => scene.rayleigh_fraction * limit,
     };
     let reach = pairs.iter().chain(wall_pairs.iter().flatten()).map(|it| it.reach).fold(0.0, f64::max);
-    let (skin, forget) = (derived(scene.skin, DEFAULT_SKIN, scene, reach), derived(scene.forgetting_distance, DEFAULT_FORGETTING_DISTANCE, scene, reach));
+    let (skin, forget) =
+        (derived(scene.skin, DEFAULT_SKIN, scene, reach), derived(scene.forgetting_distance, DEFAULT_FORGETTING_DISTANCE, scene, reach));
     let species = scene.species().len();
     Ok(Engine::new(particles, walls, pairs, wall_pairs, species, Vec3::new(0.0, 0.0, -scene.gravity), dt, skin, forget, scene.threads)?)
 }

@@ -361,7 +361,8 @@ mod tests {
         let start = Start { height: 1.0, solid_fraction: 0.5, self_weight_stress: 0.0, consolidation_stress: 1e4 };
         let setup = Setup { strain_rate: 1.0, max_strain: 0.5, free_time: 0.0, window: 0.005, reading_start: 0.0 };
         let dt = 1e-5; // 100 steps of 1e-5 s at 1/s: 1e-3 strain per sample, a window of 5 samples
-        let samples = stresses.iter().enumerate().map(|(k, &s)| Sample { time: (k + 1) as f64 * 100.0 * dt, strain: k as f64 * 1e-3, stress: s }).collect();
+        let samples =
+            stresses.iter().enumerate().map(|(k, &s)| Sample { time: (k + 1) as f64 * 100.0 * dt, strain: k as f64 * 1e-3, stress: s }).collect();
         Compression { setup, start, samples, touch: Some(1.0), touch_at_the_latest: 0.99, sum: (0.0, 0), done: false, dt }
     }
 

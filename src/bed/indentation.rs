@@ -199,12 +199,7 @@ impl Record {
     /// The plateau hardness: the mean of F/A(h) over the loading samples at h/r within `window` (004
     /// Figs. 5.2-5.3), its standard error and the number of samples (mean 0 before the first) [Pa].
     pub fn plateau(&self, d: f64, window: (f64, f64)) -> MeanEstimate {
-        let samples: Vec<f64> = self
-            .loading
-            .iter()
-            .filter(|&&(h, _)| in_window(d, h, window))
-            .map(|&(h, f)| f / projected_area(d, h))
-            .collect();
+        let samples: Vec<f64> = self.loading.iter().filter(|&&(h, _)| in_window(d, h, window)).map(|&(h, f)| f / projected_area(d, h)).collect();
         series::mean_with_error(&samples)
     }
 
@@ -250,8 +245,12 @@ impl Record {
     pub fn hardness_after_turn_error(&self, d: f64) -> f64 {
         let a = projected_area(d, self.contact_depth_or_max());
         let m = self.turn_samples(d).len();
-        let deeper: Vec<f64> =
-            self.loading.iter().filter(|&&(h, _)| h >= 0.5 * self.h_max && projected_area(d, h) > 0.0).map(|&(h, f)| f / projected_area(d, h)).collect();
+        let deeper: Vec<f64> = self
+            .loading
+            .iter()
+            .filter(|&&(h, _)| h >= 0.5 * self.h_max && projected_area(d, h) > 0.0)
+            .map(|&(h, f)| f / projected_area(d, h))
+            .collect();
         let e = series::mean_with_error(&deeper);
         if !(a > 0.0) || m < series::MIN_SAMPLES || e.correlation_time == 0.0 {
             return 0.0;
@@ -915,10 +914,12 @@ mod tests {
 
     /// A finished record whose loading samples read F/A(h) = `hardness(k)` at sample k, h from 0 to h_max.
     fn record(d: f64, h_max: f64, contact_depth: f64, n: usize, mut hardness: impl FnMut(usize) -> f64) -> Record {
-        let loading: Vec<(f64, f64)> = (1..=n).map(|k| {
-            let h = h_max * k as f64 / n as f64;
-            (h, hardness(k) * projected_area(d, h))
-        }).collect();
+        let loading: Vec<(f64, f64)> = (1..=n)
+            .map(|k| {
+                let h = h_max * k as f64 / n as f64;
+                (h, hardness(k) * projected_area(d, h))
+            })
+            .collect();
         let f_max = loading.iter().map(|p| p.1).fold(0.0, f64::max);
         Record {
             state: TestState::Done,

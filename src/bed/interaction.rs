@@ -13,8 +13,8 @@
 use super::engine::LaneLaw;
 use crate::error::ParamError;
 use crate::law::damping::{gamma, NormalDamping};
-use crate::law::tangential::TangentialStiffness;
 use crate::law::params::Effective;
+use crate::law::tangential::TangentialStiffness;
 use crate::law::{AnyLaw, Branch, NormalLaw};
 use crate::scene::Scene;
 use serde::{de::DeserializeOwned, Serialize};

@@ -21,7 +21,16 @@ pub fn data_file(engine: &AnyEngine, density: f64) -> String {
     let m = 2e-3;
     let mut s = String::with_capacity(n * 100);
     let _ = writeln!(s, "LAMMPS data file: powderfmu bed\n\n{n} atoms\n1 atom types\n");
-    let _ = writeln!(s, "{:e} {:e} xlo xhi\n{:e} {:e} ylo yhi\n{:e} {:e} zlo zhi\n", lo[0] - m, hi[0] + m, lo[1] - m, hi[1] + m, lo[2].min(0.0) - m, hi[2] + 4.0 * m);
+    let _ = writeln!(
+        s,
+        "{:e} {:e} xlo xhi\n{:e} {:e} ylo yhi\n{:e} {:e} zlo zhi\n",
+        lo[0] - m,
+        hi[0] + m,
+        lo[1] - m,
+        hi[1] + m,
+        lo[2].min(0.0) - m,
+        hi[2] + 4.0 * m
+    );
     let _ = writeln!(s, "Atoms # sphere\n");
     for k in 0..n {
         let x = p.position[k];

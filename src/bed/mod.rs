@@ -37,7 +37,6 @@ mod kernel;
 pub mod lammps;
 mod neighbors;
 pub mod particles;
-mod team;
 pub mod prepare;
 mod psd;
 mod random;
@@ -48,12 +47,15 @@ pub mod series;
 pub mod shear;
 pub mod shear_state;
 pub mod stress;
+mod team;
 pub mod walls;
 pub mod yield_locus;
 
 pub use any::{AnyEngine, BedError};
 pub use engine::{Engine, Isa};
-pub use scene::{first_difference as scene_difference, keys_help as scene_keys_help, replica_difference, BedKeys, BedScene, IndenterMaterial, STRUCTURED_KEYS};
+pub use scene::{
+    first_difference as scene_difference, keys_help as scene_keys_help, replica_difference, BedKeys, BedScene, IndenterMaterial, STRUCTURED_KEYS,
+};
 
 /// A 3-vector [m], [m/s], [N], ...: nalgebra's, so the geometry reads as vector algebra (`x - wall.position`,
 /// `d.dot(&normal)`, `n * lever`, Bagi's `n F^T`). The engine still stores them structure-of-arrays

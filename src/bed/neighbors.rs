@@ -191,7 +191,12 @@ impl NeighborList {
 
     /// Bytes held.
     pub fn memory_bytes(&self) -> usize {
-        (self.start.capacity() + self.partner.capacity() + self.owner.capacity() + self.cell_start.capacity() + self.cell_items.capacity() + self.cell_of.capacity())
+        (self.start.capacity()
+            + self.partner.capacity()
+            + self.owner.capacity()
+            + self.cell_start.capacity()
+            + self.cell_items.capacity()
+            + self.cell_of.capacity())
             * std::mem::size_of::<u32>()
             + self.reference.capacity() * std::mem::size_of::<Vec3>()
     }
@@ -203,11 +208,7 @@ pub fn carry<T: Copy>(old_start: &[u32], old_partner: &[u32], old: &[T], new: &N
     let mut out = Vec::with_capacity(new.partner.len());
     for i in 0..new.rows() {
         let row = new.row(i);
-        let (mut a, a_end) = if i + 1 < old_start.len() {
-            (old_start[i] as usize, old_start[i + 1] as usize)
-        } else {
-            (0, 0)
-        };
+        let (mut a, a_end) = if i + 1 < old_start.len() { (old_start[i] as usize, old_start[i + 1] as usize) } else { (0, 0) };
         for &j in row {
             while a < a_end && old_partner[a] < j {
                 a += 1;

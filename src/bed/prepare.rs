@@ -88,9 +88,7 @@ pub fn fill(scene: &BedScene) -> Result<Particles, BedError> {
     let nx = ((2.0 * die_r) / cell).ceil() as usize + 1;
     let nz = (height / cell).ceil() as usize + 1;
     let mut grid: Vec<Vec<u32>> = vec![Vec::new(); nx * nx * nz];
-    let key = |x: Vec3| -> (usize, usize, usize) {
-        (((x[0] + die_r) / cell) as usize, ((x[1] + die_r) / cell) as usize, (x[2] / cell) as usize)
-    };
+    let key = |x: Vec3| -> (usize, usize, usize) { (((x[0] + die_r) / cell) as usize, ((x[1] + die_r) / cell) as usize, (x[2] / cell) as usize) };
     let mut placed: Vec<(Vec3, f64, u16)> = Vec::with_capacity(n);
     for &s in &order {
         let r = 0.5 * psd.diameters[s];
@@ -187,7 +185,14 @@ fn energy_ratio(e: &AnyEngine, scene: &BedScene) -> f64 {
 }
 
 /// Runs until the kinetic energy is negligible (and at least `min_time`), reporting progress.
-fn calm(e: &mut AnyEngine, scene: &BedScene, phase: &'static str, min_time: f64, max_time: f64, progress: &mut dyn FnMut(&Progress)) -> Result<(f64, u64), BedError> {
+fn calm(
+    e: &mut AnyEngine,
+    scene: &BedScene,
+    phase: &'static str,
+    min_time: f64,
+    max_time: f64,
+    progress: &mut dyn FnMut(&Progress),
+) -> Result<(f64, u64), BedError> {
     let t0 = e.time();
     let chunk = ((2e-4 / e.dt()) as u64).clamp(50, 5000);
     let mut steps = 0;
@@ -199,7 +204,9 @@ fn calm(e: &mut AnyEngine, scene: &BedScene, phase: &'static str, min_time: f64,
         let t = e.time() - t0;
         let ratio = energy_ratio(e, scene);
         if !ratio.is_finite() {
-            return Err(BedError::Setup(format!("{phase}: the bed blew up (kinetic energy not finite) after {t:.4e} s; lower rayleigh_fraction or time_step")));
+            return Err(BedError::Setup(format!(
+                "{phase}: the bed blew up (kinetic energy not finite) after {t:.4e} s; lower rayleigh_fraction or time_step"
+            )));
         }
         // Progress: time towards min_time, then kinetic energy towards the threshold on a log scale.
         let within = if t < min_time {
@@ -208,7 +215,14 @@ fn calm(e: &mut AnyEngine, scene: &BedScene, phase: &'static str, min_time: f64,
             let f = *first.get_or_insert(ratio.max(10.0 * scene.settle_energy_ratio));
             0.5 + 0.5 * ((f / ratio.max(1e-300)).ln() / (f / scene.settle_energy_ratio).ln()).clamp(0.0, 1.0)
         };
-        progress(&Progress { phase, fraction: overall(phase, within), time: e.time(), steps, detail: format!("kinetic energy ratio {ratio:.2e}"), bed: e });
+        progress(&Progress {
+            phase,
+            fraction: overall(phase, within),
+            time: e.time(),
+            steps,
+            detail: format!("kinetic energy ratio {ratio:.2e}"),
+            bed: e,
+        });
         if t >= min_time && ratio < scene.settle_energy_ratio {
             return Ok((t, steps));
         }
@@ -268,7 +282,14 @@ pub fn prepare_until(scene: &BedScene, last: &str, progress: &mut dyn FnMut(&Pro
     let particles = fill(scene)?;
     let fill_height = bed_height(&particles);
     let e = AnyEngine::build(scene, particles, die(scene))?;
-    progress(&Progress { phase: "fill", fraction: overall("fill", 1.0), time: 0.0, steps: 0, detail: format!("{} spheres, fill {fill_height:.4} m high", scene.particle_count), bed: &e });
+    progress(&Progress {
+        phase: "fill",
+        fraction: overall("fill", 1.0),
+        time: 0.0,
+        steps: 0,
+        detail: format!("{} spheres, fill {fill_height:.4} m high", scene.particle_count),
+        bed: &e,
+    });
     run_phases(e, scene, "fill", last, fill_height, progress)
 }
 
@@ -320,7 +341,14 @@ fn check_phase(last: &str) -> Result<(), BedError> {
 }
 
 /// Runs the phases after `done` up to and including `last`.
-fn run_phases(mut e: AnyEngine, scene: &BedScene, done: &str, last: &str, fill_height: f64, progress: &mut dyn FnMut(&Progress)) -> Result<(AnyEngine, Report), BedError> {
+fn run_phases(
+    mut e: AnyEngine,
+    scene: &BedScene,
+    done: &str,
+    last: &str,
+    fill_height: f64,
+    progress: &mut dyn FnMut(&Progress),
+) -> Result<(AnyEngine, Report), BedError> {
     let mut report = Report { time_step: e.dt(), ..Default::default() };
     let index = |name: &str| PHASES.iter().position(|&p| p == name).unwrap_or(0);
     let (first, last_index) = (index(done) + 1, index(last));
@@ -372,7 +400,14 @@ fn run_phases(mut e: AnyEngine, scene: &BedScene, done: &str, last: &str, fill_h
                 )));
             }
             if steps.is_multiple_of(REPORT_EVERY) {
-                progress(&Progress { phase: "consolidate", fraction: overall("consolidate", mean / scene.consolidation_stress), time: e.time(), steps, detail: format!("piston stress {mean:.4e} Pa"), bed: &e });
+                progress(&Progress {
+                    phase: "consolidate",
+                    fraction: overall("consolidate", mean / scene.consolidation_stress),
+                    time: e.time(),
+                    steps,
+                    detail: format!("piston stress {mean:.4e} Pa"),
+                    bed: &e,
+                });
             }
         }
         // The piston turns at once: a bed saved here says by its piston that it is consolidated.
@@ -398,7 +433,14 @@ fn run_phases(mut e: AnyEngine, scene: &BedScene, done: &str, last: &str, fill_h
             free_steps = if e.walls()[PISTON].force == ZERO { free_steps + 1 } else { 0 };
             if steps.is_multiple_of(REPORT_EVERY) {
                 let sigma = piston_stress(&e, scene);
-                progress(&Progress { phase: "unload", fraction: overall("unload", 1.0 - sigma / report.consolidation_stress), time: e.time(), steps, detail: format!("piston stress {sigma:.4e} Pa"), bed: &e });
+                progress(&Progress {
+                    phase: "unload",
+                    fraction: overall("unload", 1.0 - sigma / report.consolidation_stress),
+                    time: e.time(),
+                    steps,
+                    detail: format!("piston stress {sigma:.4e} Pa"),
+                    bed: &e,
+                });
             }
         }
         e.walls_mut()[PISTON].position[2] += scene.size_distribution.mean_diameter();

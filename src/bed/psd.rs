@@ -6,17 +6,8 @@
 use crate::error::ParamError;
 
 /// 004 Table 5.1: diameter [mm] and number frequency [%].
-pub const TABLE_5_1: [(f64, f64); 9] = [
-    (0.59, 0.33),
-    (0.72, 3.84),
-    (0.81, 11.24),
-    (0.90, 21.00),
-    (1.00, 27.75),
-    (1.10, 20.85),
-    (1.19, 10.95),
-    (1.28, 3.74),
-    (1.41, 0.29),
-];
+pub const TABLE_5_1: [(f64, f64); 9] =
+    [(0.59, 0.33), (0.72, 3.84), (0.81, 11.24), (0.90, 21.00), (1.00, 27.75), (1.10, 20.85), (1.19, 10.95), (1.28, 3.74), (1.41, 0.29)];
 
 #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct SizeDistribution {
@@ -41,11 +32,7 @@ impl SizeDistribution {
         if diameters.is_empty() || diameters.len() != frequencies.len() || diameters.len() > 64 {
             return Err(ParamError::Inconsistent {
                 name: "size_distribution",
-                why: format!(
-                    "give 1 to 64 diameters [m] and as many frequencies; got {} and {}",
-                    diameters.len(),
-                    frequencies.len()
-                ),
+                why: format!("give 1 to 64 diameters [m] and as many frequencies; got {} and {}", diameters.len(), frequencies.len()),
             });
         }
         for &d in &diameters {
@@ -96,11 +83,7 @@ impl SizeDistribution {
 
     /// Total solid volume of a bed of `count` spheres with `class_counts` [m^3].
     pub fn solid_volume(&self, count: usize) -> f64 {
-        self.class_counts(count)
-            .iter()
-            .zip(&self.diameters)
-            .map(|(&n, d)| n as f64 * std::f64::consts::PI / 6.0 * d.powi(3))
-            .sum()
+        self.class_counts(count).iter().zip(&self.diameters).map(|(&n, d)| n as f64 * std::f64::consts::PI / 6.0 * d.powi(3)).sum()
     }
 }
 

@@ -47,11 +47,7 @@ pub fn cross_section(engine: &mut AnyEngine, die_diameter: f64, width: u32) -> R
     let scale = width as f64 / (x1 - x0);
     let height = ((z1 - z0) * scale).ceil().max(1.0) as u32;
     let mut img = vec![255u8; (width * height * 3) as usize];
-    let stress: Vec<f64> = dipoles
-        .iter()
-        .zip(&radii)
-        .map(|(d, r)| (-d[(2, 2)] / (4.0 / 3.0 * std::f64::consts::PI * r.powi(3))).max(0.0))
-        .collect();
+    let stress: Vec<f64> = dipoles.iter().zip(&radii).map(|(d, r)| (-d[(2, 2)] / (4.0 / 3.0 * std::f64::consts::PI * r.powi(3))).max(0.0)).collect();
     let positive: Vec<f64> = stress.iter().cloned().filter(|s| *s > 0.0).collect();
     let high = positive.iter().cloned().fold(0.0, f64::max);
     let low = positive.iter().cloned().fold(f64::INFINITY, f64::min).max(high * 1e-4);

@@ -283,15 +283,26 @@ mod tests {
         let with_c = |r: Reading| {
             let (c, e) = (6.0, 0.6);
             let s = r.hardness / c;
-            Reading { unconfined_yield_strength: s, unconfined_yield_strength_standard_error: yield_strength_error(r.hardness_standard_error / c, s, e / c), constraint_factor: c, constraint_factor_standard_error: e, ..r }
+            Reading {
+                unconfined_yield_strength: s,
+                unconfined_yield_strength_standard_error: yield_strength_error(r.hardness_standard_error / c, s, e / c),
+                constraint_factor: c,
+                constraint_factor_standard_error: e,
+                ..r
+            }
         };
-        let (a, b) = (with_c(reading(0.2, TestState::Done, true, (7000.0, 300.0, 100))), with_c(reading(0.4, TestState::Done, true, (9000.0, 400.0, 120))));
+        let (a, b) =
+            (with_c(reading(0.2, TestState::Done, true, (7000.0, 300.0, 100))), with_c(reading(0.4, TestState::Done, true, (9000.0, 400.0, 120))));
         let m = mean_reading(&[a, b]);
         let from_hardness = (5e4f64.powi(2) + 1e5f64.powi(2)).sqrt() / 2.0 / 6.0;
         let s = 0.3 / 4e-5 / 6.0;
         assert!((m.unconfined_yield_strength - s).abs() < 1e-9);
         let expected = (from_hardness.powi(2) + (0.1 * s).powi(2)).sqrt();
-        assert!((m.unconfined_yield_strength_standard_error / expected - 1.0).abs() < 1e-12, "{} {expected}", m.unconfined_yield_strength_standard_error);
+        assert!(
+            (m.unconfined_yield_strength_standard_error / expected - 1.0).abs() < 1e-12,
+            "{} {expected}",
+            m.unconfined_yield_strength_standard_error
+        );
         assert_eq!((m.constraint_factor, m.constraint_factor_standard_error), (6.0, 0.6));
         // One bed: its own error, the hardness's and C's in quadrature.
         assert_eq!(mean_reading(&[a]), a);

@@ -202,7 +202,11 @@ impl Reading {
     pub fn points(&self) -> Vec<Point> {
         self.failures
             .iter()
-            .map(|f| Point { normal_stress: f.normal_stress.mean, shear_stress: f.shear_stress.mean, shear_stress_error: f.shear_stress.standard_error })
+            .map(|f| Point {
+                normal_stress: f.normal_stress.mean,
+                shear_stress: f.shear_stress.mean,
+                shear_stress_error: f.shear_stress.standard_error,
+            })
             .collect()
     }
 }
@@ -247,7 +251,11 @@ impl Cell {
         }
         if scene.die_sector < 0.5 {
             // A quarter's mirror plane x = 0 is across the shear's direction: no symmetry holds there.
-            return Err(ParamError::Inconsistent { name: "die_sector", why: "the shear cell runs on a whole die or a half (its mirror plane y = 0 along the shear), not a quarter".into() }.into());
+            return Err(ParamError::Inconsistent {
+                name: "die_sector",
+                why: "the shear cell runs on a whole die or a half (its mirror plane y = 0 along the shear), not a quarter".into(),
+            }
+            .into());
         }
         let height = bed_height(e.particles());
         let split_z = setup.split * height;
@@ -256,7 +264,12 @@ impl Cell {
         let thickness = radius;
         let top = scene.die_height.max(2.0 * height);
         e.walls_mut()[DIE] = Wall::ring("lower_ring", Vec3::new(0.0, 0.0, -top), radius, top + split_z, thickness);
-        e.add_wall(scene, Wall::ring("upper_ring", Vec3::new(0.0, 0.0, split_z), radius, top, thickness), &scene.particle_wall, scene.wall_rolling_friction)?;
+        e.add_wall(
+            scene,
+            Wall::ring("upper_ring", Vec3::new(0.0, 0.0, split_z), radius, top, thickness),
+            &scene.particle_wall,
+            scene.wall_rolling_friction,
+        )?;
         let upper = e.walls().len() - 1;
         let lid = &mut e.walls_mut()[PISTON];
         lid.position[2] = height + 0.02 * d_mean;
@@ -264,7 +277,11 @@ impl Cell {
         e.rebuild();
         let h = SLAB * d_mean;
         if radius <= h {
-            return Err(ParamError::Inconsistent { name: "die_diameter", why: format!("the die ({:.3e} m) holds no measurement slab {SLAB} mean diameters from its wall", 2.0 * radius) }.into());
+            return Err(ParamError::Inconsistent {
+                name: "die_diameter",
+                why: format!("the die ({:.3e} m) holds no measurement slab {SLAB} mean diameters from its wall", 2.0 * radius),
+            }
+            .into());
         }
         let slab = Region { radius: radius - h, z_low: split_z - h, z_high: split_z + h };
         Ok(Cell { upper, area: scene.sector_area(), slab, sector: scene.die_sector, check: (0.0, 0), integral: 0.0 })
@@ -316,7 +333,15 @@ impl Cell {
     /// Holds the drive at `vx` until the lid's stress has been within `SERVO_TOLERANCE` of `target` for
     /// `SETTLED_SAMPLES` samples (and, if `until_unloaded`, tau has fallen to zero); refused after
     /// `servo_time`.
-    fn settle(&mut self, e: &mut AnyEngine, setup: &Setup, vx: f64, target: f64, until_unloaded: bool, mut progress: impl FnMut(&Sample)) -> Result<(), BedError> {
+    fn settle(
+        &mut self,
+        e: &mut AnyEngine,
+        setup: &Setup,
+        vx: f64,
+        target: f64,
+        until_unloaded: bool,
+        mut progress: impl FnMut(&Sample),
+    ) -> Result<(), BedError> {
         let phase = if until_unloaded { "unloading to a normal stress" } else { "loading to preshear_stress" };
         let (start, x0) = (e.time(), e.walls()[self.upper].position[0]);
         let mut errors = std::collections::VecDeque::with_capacity(SETTLED_SAMPLES);
@@ -348,7 +373,15 @@ impl Cell {
 
     /// Shears at `setup.shear_speed` with the lid on `target` until `travel`, or (if `stop_on_failure`) the
     /// failure; calls `progress` every sample.
-    fn shear(&mut self, e: &mut AnyEngine, setup: &Setup, target: f64, travel: f64, stop_on_failure: bool, mut progress: impl FnMut(&Sample)) -> Vec<Sample> {
+    fn shear(
+        &mut self,
+        e: &mut AnyEngine,
+        setup: &Setup,
+        target: f64,
+        travel: f64,
+        stop_on_failure: bool,
+        mut progress: impl FnMut(&Sample),
+    ) -> Vec<Sample> {
         let x0 = e.walls()[self.upper].position[0];
         let w = window_samples(setup.window, setup.shear_speed, e.dt());
         let mut samples = Vec::new();
@@ -387,7 +420,11 @@ fn steady_peak(steady: &[&Sample], travel: f64, w: usize) -> Option<MeanEstimate
         return None;
     }
     let per = steady.len() / whole;
-    let peaks: Vec<f64> = steady.chunks_exact(per).take(whole).filter_map(|stretch| series::largest_window_mean(stretch, w, |s| s.shear_stress).map(|(_, m)| m)).collect();
+    let peaks: Vec<f64> = steady
+        .chunks_exact(per)
+        .take(whole)
+        .filter_map(|stretch| series::largest_window_mean(stretch, w, |s| s.shear_stress).map(|(_, m)| m))
+        .collect();
     let n = peaks.len();
     if n < 2 {
         return None;
@@ -475,7 +512,12 @@ fn check_window(setup: &Setup, dt: f64) -> Result<(), BedError> {
         return Err(ParamError::OutOfRange {
             name: "window",
             value: setup.window,
-            allowed: format!("at least {} samples: [{:.3e}, shear_displacement) m at this bed's step {dt:.3e} s and shear_speed {} m/s", series::MIN_SAMPLES, (series::MIN_SAMPLES as f64 - 0.5) * per_sample, setup.shear_speed),
+            allowed: format!(
+                "at least {} samples: [{:.3e}, shear_displacement) m at this bed's step {dt:.3e} s and shear_speed {} m/s",
+                series::MIN_SAMPLES,
+                (series::MIN_SAMPLES as f64 - 0.5) * per_sample,
+                setup.shear_speed
+            ),
         }
         .into());
     }
@@ -490,7 +532,13 @@ fn check_steady_end(setup: &Setup, dt: f64) -> Result<(), BedError> {
         return Err(ParamError::OutOfRange {
             name: "steady_fraction",
             value: setup.steady_fraction,
-            allowed: format!("a steady end of at least {} samples: [{:.3e}, 1) at this preshear's travel {:.3e} m, step {dt:.3e} s and shear_speed {} m/s", series::MIN_SAMPLES, series::MIN_SAMPLES as f64 * per_sample / setup.preshear_displacement, setup.preshear_displacement, setup.shear_speed),
+            allowed: format!(
+                "a steady end of at least {} samples: [{:.3e}, 1) at this preshear's travel {:.3e} m, step {dt:.3e} s and shear_speed {} m/s",
+                series::MIN_SAMPLES,
+                series::MIN_SAMPLES as f64 * per_sample / setup.preshear_displacement,
+                setup.preshear_displacement,
+                setup.shear_speed
+            ),
         }
         .into());
     }
@@ -499,7 +547,13 @@ fn check_steady_end(setup: &Setup, dt: f64) -> Result<(), BedError> {
 
 /// The whole test on a prepared bed (`engine`, its `scene`): loading, preshear, and one shear to failure
 /// per normal stress; `threads` for the restored states; `progress` every sample.
-pub fn run(engine: &mut AnyEngine, scene: &BedScene, setup: &Setup, threads: Option<usize>, mut progress: impl FnMut(Progress)) -> Result<Reading, BedError> {
+pub fn run(
+    engine: &mut AnyEngine,
+    scene: &BedScene,
+    setup: &Setup,
+    threads: Option<usize>,
+    mut progress: impl FnMut(Progress),
+) -> Result<Reading, BedError> {
     let state = preshear(engine, scene, setup, &mut progress)?;
     shears(&state, setup, threads, progress)
 }
@@ -555,14 +609,24 @@ pub fn shears(state: &Presheared, setup: &Setup, threads: Option<usize>, mut pro
         ("preshear_displacement", setup.preshear_displacement, state.preshear_displacement, "m"),
     ] {
         if differs(asked, saved) {
-            return Err(ParamError::Inconsistent { name, why: format!("the saved preshear ran with {saved:.6e} {unit}, the setup asks {asked:.6e}") }.into());
+            return Err(ParamError::Inconsistent {
+                name,
+                why: format!("the saved preshear ran with {saved:.6e} {unit}, the setup asks {asked:.6e}"),
+            }
+            .into());
         }
     }
     let dt = state.time_step;
     check_window(setup, dt)?;
-    let steady: Vec<&Sample> = state.preshear.iter().filter(|s| s.displacement >= (1.0 - setup.steady_fraction) * setup.preshear_displacement).collect();
+    let steady: Vec<&Sample> =
+        state.preshear.iter().filter(|s| s.displacement >= (1.0 - setup.steady_fraction) * setup.preshear_displacement).collect();
     if steady.len() < series::MIN_SAMPLES {
-        return Err(ParamError::OutOfRange { name: "steady_fraction", value: setup.steady_fraction, allowed: format!("a steady end of at least {} samples of the preshear's {}", series::MIN_SAMPLES, state.preshear.len()) }.into());
+        return Err(ParamError::OutOfRange {
+            name: "steady_fraction",
+            value: setup.steady_fraction,
+            allowed: format!("a steady end of at least {} samples of the preshear's {}", series::MIN_SAMPLES, state.preshear.len()),
+        }
+        .into());
     }
     let preshear_normal = series::mean_with_error(&steady.iter().map(|s| s.normal_stress).collect::<Vec<_>>());
     let preshear_shear = series::mean_with_error(&steady.iter().map(|s| s.shear_stress).collect::<Vec<_>>());
@@ -590,7 +654,8 @@ pub fn shears(state: &Presheared, setup: &Setup, threads: Option<usize>, mut pro
             progress(Progress { phase: "shear", target, sample: s, fraction: (done + s.displacement) / total })
         });
         let w = window_samples(setup.window, setup.shear_speed, dt);
-        let (i, _) = peak(&samples, w).ok_or_else(|| BedError::Setup(format!("shear cell: the shear at {target:.4e} Pa ended before a window of {} m", setup.window)))?;
+        let (i, _) = peak(&samples, w)
+            .ok_or_else(|| BedError::Setup(format!("shear cell: the shear at {target:.4e} Pa ended before a window of {} m", setup.window)))?;
         let window = &samples[i..i + w];
         failures.push(Failure {
             target,
@@ -700,7 +765,9 @@ pub(crate) mod tests {
 
     #[test]
     fn the_peak_is_a_window_mean_and_failure_needs_the_fall() {
-        let at = |tau: &[f64]| tau.iter().enumerate().map(|(k, &t)| Sample { displacement: k as f64, shear_stress: t, ..Default::default() }).collect::<Vec<_>>();
+        let at = |tau: &[f64]| {
+            tau.iter().enumerate().map(|(k, &t)| Sample { displacement: k as f64, shear_stress: t, ..Default::default() }).collect::<Vec<_>>()
+        };
         let mut tau: Vec<f64> = (0..10).map(|k| 10.0 * k as f64).collect();
         tau.extend([100.0, 100.0, 400.0, 100.0]);
         let s = at(&tau);
@@ -736,7 +803,8 @@ pub(crate) mod tests {
         assert_eq!(steady_peak(&flat, 2e-4, w).unwrap().mean, level);
         assert!(steady_peak(&flat, 6e-4, w).is_none(), "one stretch of 600 um in 1 mm");
         // 1.5 mm of steady end in 0.5 mm shears (the default's 0.3 of 5 d, 0.5 d): three stretches, not two.
-        let default: Vec<Sample> = (0..1500).map(|k| Sample { displacement: 3.5e-3 + k as f64 * 1e-6, shear_stress: level, ..Default::default() }).collect();
+        let default: Vec<Sample> =
+            (0..1500).map(|k| Sample { displacement: 3.5e-3 + k as f64 * 1e-6, shear_stress: level, ..Default::default() }).collect();
         let default: Vec<&Sample> = default.iter().collect();
         assert_eq!(steady_peak(&default, 5e-4, w).unwrap().samples, 3);
     }

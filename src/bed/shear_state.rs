@@ -32,7 +32,9 @@ pub fn decode(bytes: &[u8]) -> Result<Presheared, BedError> {
         EnvelopeError::NotThisKind(_) if bytes.starts_with(file::MAGIC) => {
             bad("it is a bed file; shear a bed with `powderfmu bed shear BED`, and save its preshear with --save-preshear".into())
         }
-        EnvelopeError::Version { found, .. } => bad(format!("format version {found}, this powderfmu reads version {VERSION}; run the preshear again")),
+        EnvelopeError::Version { found, .. } => {
+            bad(format!("format version {found}, this powderfmu reads version {VERSION}; run the preshear again"))
+        }
         other => bad(other.to_string()),
     })?;
     crate::codec::from_bytes(payload).map_err(|e| bad(format!("payload unreadable ({e})")))

@@ -50,9 +50,11 @@ impl YieldLocus {
             return None;
         }
         // Weights 1/se^2; a point without an error (too few samples) weighs as the mean of the others.
-        let known: Vec<f64> = points.iter().filter(|p| p.shear_stress_error > 0.0).map(|p| 1.0 / (p.shear_stress_error * p.shear_stress_error)).collect();
+        let known: Vec<f64> =
+            points.iter().filter(|p| p.shear_stress_error > 0.0).map(|p| 1.0 / (p.shear_stress_error * p.shear_stress_error)).collect();
         let fallback = if known.is_empty() { 1.0 } else { known.iter().sum::<f64>() / known.len() as f64 };
-        let w: Vec<f64> = points.iter().map(|p| if p.shear_stress_error > 0.0 { 1.0 / (p.shear_stress_error * p.shear_stress_error) } else { fallback }).collect();
+        let w: Vec<f64> =
+            points.iter().map(|p| if p.shear_stress_error > 0.0 { 1.0 / (p.shear_stress_error * p.shear_stress_error) } else { fallback }).collect();
         let (mut s, mut sx, mut sy, mut sxx, mut sxy) = (0.0, 0.0, 0.0, 0.0, 0.0);
         for (p, w) in points.iter().zip(&w) {
             s += w;

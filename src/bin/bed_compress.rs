@@ -37,7 +37,8 @@ pub struct CompressArgs {
 
 pub fn compress_cmd(a: CompressArgs) -> Result<(), String> {
     let (mut engine, scene) = load(&a.bed, a.threads.map(usize::from))?;
-    let setup = Setup { strain_rate: a.strain_rate, max_strain: a.max_strain, free_time: a.free_time, window: a.window, reading_start: a.reading_start };
+    let setup =
+        Setup { strain_rate: a.strain_rate, max_strain: a.max_strain, free_time: a.free_time, window: a.window, reading_start: a.reading_start };
     let started = Instant::now();
     let mut test = Compression::new(&mut engine, &scene, setup).map_err(|e| e.to_string())?;
     let s = test.start;
@@ -55,7 +56,12 @@ pub fn compress_cmd(a: CompressArgs) -> Result<(), String> {
         test.advance(&mut engine, &scene, chunk);
         steps += chunk;
         let last = test.samples.last().copied().unwrap_or_default();
-        bar.show_phase("loading", (last.strain / setup.max_strain).clamp(0.0, 1.0), last.time, &format!("strain {:.4}  stress {:.4e} Pa", last.strain, last.stress));
+        bar.show_phase(
+            "loading",
+            (last.strain / setup.max_strain).clamp(0.0, 1.0),
+            last.time,
+            &format!("strain {:.4}  stress {:.4e} Pa", last.strain, last.stress),
+        );
     }
     bar.finish();
     let mut csv = String::from("time_s,strain,stress_Pa\n");
@@ -89,4 +95,3 @@ pub fn compress_cmd(a: CompressArgs) -> Result<(), String> {
         }
     }
 }
-

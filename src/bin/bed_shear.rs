@@ -149,7 +149,15 @@ pub fn shear_cmd(a: ShearArgs) -> Result<(), String> {
     let mut bar = Bar::new();
     let mut show = |p: shear::Progress| {
         let s = p.sample;
-        bar.show_phase(p.phase, ((p.fraction - skip) / (1.0 - skip)).max(0.0), s.time, &format!("target {:.3e} Pa  lid {:.4e} Pa  travel {:.3e} m  sigma {:.4e} Pa  tau {:.4e} Pa  drive {:.4e} Pa", p.target, s.lid_stress, s.displacement, s.normal_stress, s.shear_stress, s.drive_stress));
+        bar.show_phase(
+            p.phase,
+            ((p.fraction - skip) / (1.0 - skip)).max(0.0),
+            s.time,
+            &format!(
+                "target {:.3e} Pa  lid {:.4e} Pa  travel {:.3e} m  sigma {:.4e} Pa  tau {:.4e} Pa  drive {:.4e} Pa",
+                p.target, s.lid_stress, s.displacement, s.normal_stress, s.shear_stress, s.drive_stress
+            ),
+        );
         if std::env::var_os("POWDERFMU_SHEAR_TRACE").is_some() {
             eprintln!("{} {:.6e} {:.4e} {:.4e} {:.6e}", p.phase, s.time, s.lid_stress, s.drive_stress, s.lid);
         }
@@ -194,7 +202,11 @@ pub fn shear_cmd(a: ShearArgs) -> Result<(), String> {
             pm(&f.normal_stress),
             pm(&f.shear_stress),
             f.displacement,
-            if f.failed { "failed: fell to 0.9 of the peak" } else { "no fall to 0.9 of the peak within the travel: the largest mean of a plateau or a rise, a lower bound" }
+            if f.failed {
+                "failed: fell to 0.9 of the peak"
+            } else {
+                "no fall to 0.9 of the peak within the travel: the largest mean of a plateau or a rise, a lower bound"
+            }
         );
     }
     match &reading.locus {
@@ -229,7 +241,10 @@ pub fn shear_cmd(a: ShearArgs) -> Result<(), String> {
     }
     if let Some(yl) = &reading.locus {
         let (sc, sc_e) = yl.unconfined_yield_strength();
-        eprintln!("shear cell: with sigma_1 as measured (the slab's principal stress in the preshear), ff_c = {}", flow_factor(reading.preshear_major.mean, sc, sc_e));
+        eprintln!(
+            "shear cell: with sigma_1 as measured (the slab's principal stress in the preshear), ff_c = {}",
+            flow_factor(reading.preshear_major.mean, sc, sc_e)
+        );
     }
     let mut csv = String::from("phase,normal_stress_target_Pa,time_s,displacement_m,normal_stress_Pa,shear_stress_Pa,major_principal_stress_Pa,lid_stress_Pa,drive_stress_Pa,lid_height_m\n");
     let mut rows = |phase: &str, target: f64, samples: &[shear::Sample]| {

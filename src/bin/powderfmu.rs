@@ -141,7 +141,9 @@ fn main() -> ExitCode {
                 print!("{}", to_text(&value));
             }
         }),
-        Command::Curve { scene, path, start, points } => with_scene(&scene, |s| force_overlap_csv(s, start, &path, points as usize)).map(|csv| print!("{csv}")),
+        Command::Curve { scene, path, start, points } => {
+            with_scene(&scene, |s| force_overlap_csv(s, start, &path, points as usize)).map(|csv| print!("{csv}"))
+        }
         Command::Restitution { scene, velocities } => with_scene(&scene, |s| restitution_csv(s, &velocities)).map(|csv| print!("{csv}")),
         Command::Oblique { scene, speed, angles, angular_velocity, rolling_friction, rayleigh_fraction, lever, solver, tolerance } => {
             let lever = if lever == "radius" { oblique::Lever::Radius } else { oblique::Lever::MidOverlap };

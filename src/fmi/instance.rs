@@ -467,7 +467,10 @@ impl Instance {
         if self.mode == Mode::IntermediateUpdate {
             // FMI 3.0 Sec. 4.2.5: only the variables marked intermediateUpdate, the outputs.
             if let Some(v) = vrs.iter().map(|&vr| &self.unit.variables[vr as usize]).find(|v| v.causality != Causality::Output) {
-                return error(format!("{function}: `{}` is not an output; in Intermediate Update Mode only the outputs (intermediateUpdate) can be read", v.name));
+                return error(format!(
+                    "{function}: `{}` is not an output; in Intermediate Update Mode only the outputs (intermediateUpdate) can be read",
+                    v.name
+                ));
             }
         }
         self.refresh(function)?;
@@ -671,14 +674,17 @@ impl Instance {
                 self.api.name("SetFMUstate")
             ));
         }
-        let result = if may_return_early { self.model.do_step_to_event(&self.values, t, h) } else { self.model.do_step(&self.values, t, h).map(|()| None) };
+        let result =
+            if may_return_early { self.model.do_step_to_event(&self.values, t, h) } else { self.model.do_step(&self.values, t, h).map(|()| None) };
         self.log_events();
         match result {
             Ok(event) => {
                 self.time = event.unwrap_or(t + h);
                 Ok(event)
             }
-            Err(message) => failed(format!("{} from t = {t:e} s by {h:e} s failed, the state is that of t = {t:e} s: {message}", self.api.name("DoStep"))),
+            Err(message) => {
+                failed(format!("{} from t = {t:e} s by {h:e} s failed, the state is that of t = {t:e} s: {message}", self.api.name("DoStep")))
+            }
         }
     }
 
@@ -707,7 +713,11 @@ impl Instance {
     /// The saved state; a model that cannot serialize itself is an error the host sees (fmi2Error), never
     /// an empty state that would restore as "not initialized".
     pub fn save(&self) -> Call<Vec<u8>> {
-        state_format::write(self).map_err(|m| Failure { status: Status::Error, message: format!("FMU state not saved: {m}"), enters_error_state: false })
+        state_format::write(self).map_err(|m| Failure {
+            status: Status::Error,
+            message: format!("FMU state not saved: {m}"),
+            enters_error_state: false,
+        })
     }
 
     /// Sets the instance to a saved state (fmi2SetFMUstate, fmi3SetFMUState): the model, the values, the mode

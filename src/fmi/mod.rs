@@ -4,8 +4,8 @@
 
 pub mod ffi;
 pub mod instance;
-pub(crate) mod state_format;
 pub mod state_calls;
+pub(crate) mod state_format;
 pub(crate) mod uri;
 
 /// The status of a call: fmi2Status and fmi3Status have the same numbers (FMI 2.0 Sec. 2.1.3, FMI 3.0

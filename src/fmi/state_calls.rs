@@ -3,7 +3,7 @@
 //! function's name and the name of its state argument, and casts its C state pointer (a `void *` in both).
 //! A state is the saved bytes (`state_format`) boxed behind the pointer handed to the host.
 
-use super::ffi::{self, out, saved, slice, slice_mut, Registry, FmuState};
+use super::ffi::{self, out, saved, slice, slice_mut, FmuState, Registry};
 use super::instance::{error, Call, Instance};
 use super::Status;
 use std::ffi::c_void;

@@ -8,8 +8,8 @@
 
 use super::instance::{Instance, Kind};
 use super::Api;
-use crate::units::variables::{Value, VarType};
 use crate::envelope::{self, EnvelopeError, Format};
+use crate::units::variables::{Value, VarType};
 use crate::units::UnitInfo;
 
 /// 4: in the saved-data envelope (its checksum over the payload); 3 had its own header, the checksum

@@ -38,7 +38,13 @@ fn uri_to_path(uri: &str, windows: bool) -> Result<PathBuf, String> {
     // `/C:/x` (or `/C|/x`, the old form) is the drive C: on Windows, where a leading `/` would mean the
     // root of the current drive.
     let b = path.as_bytes();
-    if windows && b.len() >= 3 && b[0] == b'/' && b[1].is_ascii_alphabetic() && (b[2] == b':' || b[2] == b'|') && !matches!(b.get(3), Some(c) if *c != b'/' && *c != b'\\') {
+    if windows
+        && b.len() >= 3
+        && b[0] == b'/'
+        && b[1].is_ascii_alphabetic()
+        && (b[2] == b':' || b[2] == b'|')
+        && !matches!(b.get(3), Some(c) if *c != b'/' && *c != b'\\')
+    {
         return Ok(PathBuf::from(format!("{}:{}", &path[1..2], &path[3..])));
     }
     Ok(PathBuf::from(path))

@@ -438,7 +438,9 @@ pub unsafe extern "C" fn fmi2SerializedFMUstateSize(c: fmi2Component, FMUstate: 
 pub unsafe extern "C" fn fmi2SerializeFMUstate(c: fmi2Component, FMUstate: fmi2FMUstate, serializedState: *mut fmi2Byte, size: usize) -> fmi2Status {
     const F: &str = "fmi2SerializeFMUstate";
     // SAFETY: the host passes an array of this length (FMI 2.0 Sec. 2.1); NULL and impossible lengths are refused inside.
-    call(c, F, allowed::ANY_LIVE, |_| unsafe { state_calls::serialize(&STATES, FMUstate, serializedState as *mut u8, size, F, "fmi2SerializedFMUstateSize") })
+    call(c, F, allowed::ANY_LIVE, |_| unsafe {
+        state_calls::serialize(&STATES, FMUstate, serializedState as *mut u8, size, F, "fmi2SerializedFMUstateSize")
+    })
 }
 
 /// Makes a new state from the `size` bytes at `serializedState` and puts it into `*FMUstate`:
@@ -453,7 +455,9 @@ pub unsafe extern "C" fn fmi2DeSerializeFMUstate(
 ) -> fmi2Status {
     const F: &str = "fmi2DeSerializeFMUstate";
     // SAFETY: the host passes an array of this length (FMI 2.0 Sec. 2.1) and its output argument; NULLs are refused inside.
-    call(c, F, allowed::ANY_LIVE, |inst| unsafe { state_calls::deserialize(&STATES, inst, serializedState as *const u8, size, FMUstate, F, "FMUstate") })
+    call(c, F, allowed::ANY_LIVE, |inst| unsafe {
+        state_calls::deserialize(&STATES, inst, serializedState as *const u8, size, FMUstate, F, "FMUstate")
+    })
 }
 
 /// fmi2GetDirectionalDerivative (FMI 2.0.4 Sec. 2.1.9) is not supported (providesDirectionalDerivative is

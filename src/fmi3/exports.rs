@@ -337,7 +337,11 @@ pub unsafe extern "C" fn fmi3EnterEventMode(c: fmi3Instance) -> fmi3Status {
     call(c, F, allowed::ENTER_EVENT_MODE_3, |inst| {
         // Model Exchange comes from Continuous-Time Mode; Co-Simulation from Step Mode, with Event Mode used.
         if inst.kind == Kind::CoSimulation && !inst.event_mode_used {
-            let why = if inst.unit.returns_early { "the master instantiated it with eventModeUsed = false" } else { "this unit has no events inside a step (hasEventMode is false)" };
+            let why = if inst.unit.returns_early {
+                "the master instantiated it with eventModeUsed = false"
+            } else {
+                "this unit has no events inside a step (hasEventMode is false)"
+            };
             return error(format!("{F}: Co-Simulation's Event Mode is not used: {why}"));
         }
         inst.mode = Mode::EventMode;
@@ -607,7 +611,13 @@ pub unsafe extern "C" fn fmi3SetString(
 /// does nothing, and any reference is refused with the type its variable has. Allowed in the modes of
 /// fmi3GetFloat64.
 #[no_mangle]
-pub unsafe extern "C" fn fmi3GetFloat32(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, _values: *mut fmi3Float32, _nValues: usize) -> fmi3Status {
+pub unsafe extern "C" fn fmi3GetFloat32(
+    c: fmi3Instance,
+    vr: *const fmi3ValueReference,
+    nvr: usize,
+    _values: *mut fmi3Float32,
+    _nValues: usize,
+) -> fmi3Status {
     // SAFETY: the host's arguments of this FMI function, passed on as they came.
     unsafe { other_type(c, "fmi3GetFloat32", allowed::GET, "Float32", vr, nvr) }
 }
@@ -616,7 +626,13 @@ pub unsafe extern "C" fn fmi3GetFloat32(c: fmi3Instance, vr: *const fmi3ValueRef
 /// does nothing, and any reference is refused with the type its variable has. Allowed in the modes of
 /// fmi3SetInt32.
 #[no_mangle]
-pub unsafe extern "C" fn fmi3SetFloat32(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, _values: *const fmi3Float32, _nValues: usize) -> fmi3Status {
+pub unsafe extern "C" fn fmi3SetFloat32(
+    c: fmi3Instance,
+    vr: *const fmi3ValueReference,
+    nvr: usize,
+    _values: *const fmi3Float32,
+    _nValues: usize,
+) -> fmi3Status {
     // SAFETY: the host's arguments of this FMI function, passed on as they came.
     unsafe { other_type(c, "fmi3SetFloat32", allowed::SET_OTHER, "Float32", vr, nvr) }
 }
@@ -625,7 +641,13 @@ pub unsafe extern "C" fn fmi3SetFloat32(c: fmi3Instance, vr: *const fmi3ValueRef
 /// nothing, and any reference is refused with the type its variable has. Allowed in the modes of
 /// fmi3GetFloat64.
 #[no_mangle]
-pub unsafe extern "C" fn fmi3GetInt8(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, _values: *mut fmi3Int8, _nValues: usize) -> fmi3Status {
+pub unsafe extern "C" fn fmi3GetInt8(
+    c: fmi3Instance,
+    vr: *const fmi3ValueReference,
+    nvr: usize,
+    _values: *mut fmi3Int8,
+    _nValues: usize,
+) -> fmi3Status {
     // SAFETY: the host's arguments of this FMI function, passed on as they came.
     unsafe { other_type(c, "fmi3GetInt8", allowed::GET, "Int8", vr, nvr) }
 }
@@ -634,7 +656,13 @@ pub unsafe extern "C" fn fmi3GetInt8(c: fmi3Instance, vr: *const fmi3ValueRefere
 /// nothing, and any reference is refused with the type its variable has. Allowed in the modes of
 /// fmi3SetInt32.
 #[no_mangle]
-pub unsafe extern "C" fn fmi3SetInt8(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, _values: *const fmi3Int8, _nValues: usize) -> fmi3Status {
+pub unsafe extern "C" fn fmi3SetInt8(
+    c: fmi3Instance,
+    vr: *const fmi3ValueReference,
+    nvr: usize,
+    _values: *const fmi3Int8,
+    _nValues: usize,
+) -> fmi3Status {
     // SAFETY: the host's arguments of this FMI function, passed on as they came.
     unsafe { other_type(c, "fmi3SetInt8", allowed::SET_OTHER, "Int8", vr, nvr) }
 }
@@ -643,7 +671,13 @@ pub unsafe extern "C" fn fmi3SetInt8(c: fmi3Instance, vr: *const fmi3ValueRefere
 /// nothing, and any reference is refused with the type its variable has. Allowed in the modes of
 /// fmi3GetFloat64.
 #[no_mangle]
-pub unsafe extern "C" fn fmi3GetUInt8(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, _values: *mut fmi3UInt8, _nValues: usize) -> fmi3Status {
+pub unsafe extern "C" fn fmi3GetUInt8(
+    c: fmi3Instance,
+    vr: *const fmi3ValueReference,
+    nvr: usize,
+    _values: *mut fmi3UInt8,
+    _nValues: usize,
+) -> fmi3Status {
     // SAFETY: the host's arguments of this FMI function, passed on as they came.
     unsafe { other_type(c, "fmi3GetUInt8", allowed::GET, "UInt8", vr, nvr) }
 }
@@ -652,7 +686,13 @@ pub unsafe extern "C" fn fmi3GetUInt8(c: fmi3Instance, vr: *const fmi3ValueRefer
 /// nothing, and any reference is refused with the type its variable has. Allowed in the modes of
 /// fmi3SetInt32.
 #[no_mangle]
-pub unsafe extern "C" fn fmi3SetUInt8(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, _values: *const fmi3UInt8, _nValues: usize) -> fmi3Status {
+pub unsafe extern "C" fn fmi3SetUInt8(
+    c: fmi3Instance,
+    vr: *const fmi3ValueReference,
+    nvr: usize,
+    _values: *const fmi3UInt8,
+    _nValues: usize,
+) -> fmi3Status {
     // SAFETY: the host's arguments of this FMI function, passed on as they came.
     unsafe { other_type(c, "fmi3SetUInt8", allowed::SET_OTHER, "UInt8", vr, nvr) }
 }
@@ -661,7 +701,13 @@ pub unsafe extern "C" fn fmi3SetUInt8(c: fmi3Instance, vr: *const fmi3ValueRefer
 /// nothing, and any reference is refused with the type its variable has. Allowed in the modes of
 /// fmi3GetFloat64.
 #[no_mangle]
-pub unsafe extern "C" fn fmi3GetInt16(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, _values: *mut fmi3Int16, _nValues: usize) -> fmi3Status {
+pub unsafe extern "C" fn fmi3GetInt16(
+    c: fmi3Instance,
+    vr: *const fmi3ValueReference,
+    nvr: usize,
+    _values: *mut fmi3Int16,
+    _nValues: usize,
+) -> fmi3Status {
     // SAFETY: the host's arguments of this FMI function, passed on as they came.
     unsafe { other_type(c, "fmi3GetInt16", allowed::GET, "Int16", vr, nvr) }
 }
@@ -670,7 +716,13 @@ pub unsafe extern "C" fn fmi3GetInt16(c: fmi3Instance, vr: *const fmi3ValueRefer
 /// nothing, and any reference is refused with the type its variable has. Allowed in the modes of
 /// fmi3SetInt32.
 #[no_mangle]
-pub unsafe extern "C" fn fmi3SetInt16(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, _values: *const fmi3Int16, _nValues: usize) -> fmi3Status {
+pub unsafe extern "C" fn fmi3SetInt16(
+    c: fmi3Instance,
+    vr: *const fmi3ValueReference,
+    nvr: usize,
+    _values: *const fmi3Int16,
+    _nValues: usize,
+) -> fmi3Status {
     // SAFETY: the host's arguments of this FMI function, passed on as they came.
     unsafe { other_type(c, "fmi3SetInt16", allowed::SET_OTHER, "Int16", vr, nvr) }
 }
@@ -679,7 +731,13 @@ pub unsafe extern "C" fn fmi3SetInt16(c: fmi3Instance, vr: *const fmi3ValueRefer
 /// nothing, and any reference is refused with the type its variable has. Allowed in the modes of
 /// fmi3GetFloat64.
 #[no_mangle]
-pub unsafe extern "C" fn fmi3GetUInt16(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, _values: *mut fmi3UInt16, _nValues: usize) -> fmi3Status {
+pub unsafe extern "C" fn fmi3GetUInt16(
+    c: fmi3Instance,
+    vr: *const fmi3ValueReference,
+    nvr: usize,
+    _values: *mut fmi3UInt16,
+    _nValues: usize,
+) -> fmi3Status {
     // SAFETY: the host's arguments of this FMI function, passed on as they came.
     unsafe { other_type(c, "fmi3GetUInt16", allowed::GET, "UInt16", vr, nvr) }
 }
@@ -688,7 +746,13 @@ pub unsafe extern "C" fn fmi3GetUInt16(c: fmi3Instance, vr: *const fmi3ValueRefe
 /// nothing, and any reference is refused with the type its variable has. Allowed in the modes of
 /// fmi3SetInt32.
 #[no_mangle]
-pub unsafe extern "C" fn fmi3SetUInt16(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, _values: *const fmi3UInt16, _nValues: usize) -> fmi3Status {
+pub unsafe extern "C" fn fmi3SetUInt16(
+    c: fmi3Instance,
+    vr: *const fmi3ValueReference,
+    nvr: usize,
+    _values: *const fmi3UInt16,
+    _nValues: usize,
+) -> fmi3Status {
     // SAFETY: the host's arguments of this FMI function, passed on as they came.
     unsafe { other_type(c, "fmi3SetUInt16", allowed::SET_OTHER, "UInt16", vr, nvr) }
 }
@@ -697,7 +761,13 @@ pub unsafe extern "C" fn fmi3SetUInt16(c: fmi3Instance, vr: *const fmi3ValueRefe
 /// nothing, and any reference is refused with the type its variable has. Allowed in the modes of
 /// fmi3GetFloat64.
 #[no_mangle]
-pub unsafe extern "C" fn fmi3GetUInt32(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, _values: *mut fmi3UInt32, _nValues: usize) -> fmi3Status {
+pub unsafe extern "C" fn fmi3GetUInt32(
+    c: fmi3Instance,
+    vr: *const fmi3ValueReference,
+    nvr: usize,
+    _values: *mut fmi3UInt32,
+    _nValues: usize,
+) -> fmi3Status {
     // SAFETY: the host's arguments of this FMI function, passed on as they came.
     unsafe { other_type(c, "fmi3GetUInt32", allowed::GET, "UInt32", vr, nvr) }
 }
@@ -706,7 +776,13 @@ pub unsafe extern "C" fn fmi3GetUInt32(c: fmi3Instance, vr: *const fmi3ValueRefe
 /// nothing, and any reference is refused with the type its variable has. Allowed in the modes of
 /// fmi3SetInt32.
 #[no_mangle]
-pub unsafe extern "C" fn fmi3SetUInt32(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, _values: *const fmi3UInt32, _nValues: usize) -> fmi3Status {
+pub unsafe extern "C" fn fmi3SetUInt32(
+    c: fmi3Instance,
+    vr: *const fmi3ValueReference,
+    nvr: usize,
+    _values: *const fmi3UInt32,
+    _nValues: usize,
+) -> fmi3Status {
     // SAFETY: the host's arguments of this FMI function, passed on as they came.
     unsafe { other_type(c, "fmi3SetUInt32", allowed::SET_OTHER, "UInt32", vr, nvr) }
 }
@@ -715,7 +791,13 @@ pub unsafe extern "C" fn fmi3SetUInt32(c: fmi3Instance, vr: *const fmi3ValueRefe
 /// nothing, and any reference is refused with the type its variable has. Allowed in the modes of
 /// fmi3GetFloat64.
 #[no_mangle]
-pub unsafe extern "C" fn fmi3GetInt64(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, _values: *mut fmi3Int64, _nValues: usize) -> fmi3Status {
+pub unsafe extern "C" fn fmi3GetInt64(
+    c: fmi3Instance,
+    vr: *const fmi3ValueReference,
+    nvr: usize,
+    _values: *mut fmi3Int64,
+    _nValues: usize,
+) -> fmi3Status {
     // SAFETY: the host's arguments of this FMI function, passed on as they came.
     unsafe { other_type(c, "fmi3GetInt64", allowed::GET, "Int64", vr, nvr) }
 }
@@ -724,7 +806,13 @@ pub unsafe extern "C" fn fmi3GetInt64(c: fmi3Instance, vr: *const fmi3ValueRefer
 /// nothing, and any reference is refused with the type its variable has. Allowed in the modes of
 /// fmi3SetInt32.
 #[no_mangle]
-pub unsafe extern "C" fn fmi3SetInt64(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, _values: *const fmi3Int64, _nValues: usize) -> fmi3Status {
+pub unsafe extern "C" fn fmi3SetInt64(
+    c: fmi3Instance,
+    vr: *const fmi3ValueReference,
+    nvr: usize,
+    _values: *const fmi3Int64,
+    _nValues: usize,
+) -> fmi3Status {
     // SAFETY: the host's arguments of this FMI function, passed on as they came.
     unsafe { other_type(c, "fmi3SetInt64", allowed::SET_OTHER, "Int64", vr, nvr) }
 }
@@ -733,7 +821,13 @@ pub unsafe extern "C" fn fmi3SetInt64(c: fmi3Instance, vr: *const fmi3ValueRefer
 /// nothing, and any reference is refused with the type its variable has. Allowed in the modes of
 /// fmi3GetFloat64.
 #[no_mangle]
-pub unsafe extern "C" fn fmi3GetUInt64(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, _values: *mut fmi3UInt64, _nValues: usize) -> fmi3Status {
+pub unsafe extern "C" fn fmi3GetUInt64(
+    c: fmi3Instance,
+    vr: *const fmi3ValueReference,
+    nvr: usize,
+    _values: *mut fmi3UInt64,
+    _nValues: usize,
+) -> fmi3Status {
     // SAFETY: the host's arguments of this FMI function, passed on as they came.
     unsafe { other_type(c, "fmi3GetUInt64", allowed::GET, "UInt64", vr, nvr) }
 }
@@ -742,7 +836,13 @@ pub unsafe extern "C" fn fmi3GetUInt64(c: fmi3Instance, vr: *const fmi3ValueRefe
 /// nothing, and any reference is refused with the type its variable has. Allowed in the modes of
 /// fmi3SetInt32.
 #[no_mangle]
-pub unsafe extern "C" fn fmi3SetUInt64(c: fmi3Instance, vr: *const fmi3ValueReference, nvr: usize, _values: *const fmi3UInt64, _nValues: usize) -> fmi3Status {
+pub unsafe extern "C" fn fmi3SetUInt64(
+    c: fmi3Instance,
+    vr: *const fmi3ValueReference,
+    nvr: usize,
+    _values: *const fmi3UInt64,
+    _nValues: usize,
+) -> fmi3Status {
     // SAFETY: the host's arguments of this FMI function, passed on as they came.
     unsafe { other_type(c, "fmi3SetUInt64", allowed::SET_OTHER, "UInt64", vr, nvr) }
 }

@@ -57,7 +57,14 @@ impl Sphere {
     /// Advances the state from `t` to `t_end` with the wall moving as `wall`, landing on branch switches.
     /// With `stop_at_event`, stops at the first located switch after `t` that changes the contact state and
     /// returns its time.
-    pub(super) fn advance_adaptive(&mut self, wall: &WallMotion, t: f64, t_end: f64, y: &mut State, stop_at_event: bool) -> Result<Option<f64>, StepError> {
+    pub(super) fn advance_adaptive(
+        &mut self,
+        wall: &WallMotion,
+        t: f64,
+        t_end: f64,
+        y: &mut State,
+        stop_at_event: bool,
+    ) -> Result<Option<f64>, StepError> {
         let (t_start, mut start_state) = (t, self.contact_state());
         let mut t = t;
         let mut h = if self.last_step > 0.0 { self.last_step } else { self.initial_step(y) };

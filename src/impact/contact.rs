@@ -129,7 +129,16 @@ impl Contact {
     pub fn new(law: AnyLaw, damping: NormalDamping, alpha_nominal: f64, rate_nominal: f64) -> Contact {
         // A placeholder until the unit accepts its initial state.
         let accepted = Evaluation::separated(f64::INFINITY, law.initial_history());
-        Contact { law, damping, alpha_nominal, rate_nominal, accepted, accepted_alpha: f64::NAN, max_overlap: f64::NEG_INFINITY, lead_vertical_ends: false }
+        Contact {
+            law,
+            damping,
+            alpha_nominal,
+            rate_nominal,
+            accepted,
+            accepted_alpha: f64::NAN,
+            max_overlap: f64::NEG_INFINITY,
+            lead_vertical_ends: false,
+        }
     }
 
     /// The history accepted so far.

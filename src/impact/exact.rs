@@ -203,7 +203,14 @@ impl Sphere {
     /// With `stop_at_event`, stops at the first branch switch after `t` that changes the contact state and
     /// returns its time (switches at `t` itself are where the step starts: a master returning there would
     /// make no progress).
-    pub(super) fn advance_exact(&mut self, wall: &WallMotion, t: f64, t_end: f64, y: &mut State, stop_at_event: bool) -> Result<Option<f64>, StepError> {
+    pub(super) fn advance_exact(
+        &mut self,
+        wall: &WallMotion,
+        t: f64,
+        t_end: f64,
+        y: &mut State,
+        stop_at_event: bool,
+    ) -> Result<Option<f64>, StepError> {
         let t_start = t;
         let u = wall.velocity;
         let mut t = t;

@@ -14,6 +14,6 @@ mod verlet;
 
 pub use contact::{Contact, ContactForce};
 pub use oblique::{Spin, Tangential};
-pub use shear::{Shear, ShearForce};
 pub use oblique_adaptive::{Mode as StickSlip, TangentialMode, ME_STATES as OBLIQUE_ME_STATES};
+pub use shear::{Shear, ShearForce};
 pub use sphere::{Solver, Sphere, State, StepError, WallMotion};

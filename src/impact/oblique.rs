@@ -254,7 +254,13 @@ pub struct ImpactOptions {
 
 impl Default for ImpactOptions {
     fn default() -> ImpactOptions {
-        ImpactOptions { angular_velocity: 0.0, rolling_friction: 0.0, lever: Lever::MidOverlap, rayleigh_fraction: 0.01, solver: ObliqueSolver::Verlet }
+        ImpactOptions {
+            angular_velocity: 0.0,
+            rolling_friction: 0.0,
+            lever: Lever::MidOverlap,
+            rayleigh_fraction: 0.01,
+            solver: ObliqueSolver::Verlet,
+        }
     }
 }
 
@@ -373,7 +379,8 @@ pub fn impact(scene: &Scene, normal_velocity: f64, tangential_velocity: f64, opt
         if rolling_friction != 0.0 {
             return Err(ParamError::Inconsistent {
                 name: "rolling_friction",
-                why: "the adaptive integrator has no rolling friction (a torque that switches with the spin's sign); use the verlet integrator".into(),
+                why: "the adaptive integrator has no rolling friction (a torque that switches with the spin's sign); use the verlet integrator"
+                    .into(),
             }
             .into());
         }
@@ -381,7 +388,8 @@ pub fn impact(scene: &Scene, normal_velocity: f64, tangential_velocity: f64, opt
     let law = AnyLaw::from_scene(scene)?;
     let eff = Effective::from_scene(scene)?;
     let damping = NormalDamping::from_scene(scene, eff.mass);
-    let h = rayleigh_fraction * rayleigh_time_step(scene.particle_radius, scene.particle_density, scene.particle_shear_modulus(), scene.particle_poisson_ratio);
+    let h = rayleigh_fraction
+        * rayleigh_time_step(scene.particle_radius, scene.particle_density, scene.particle_shear_modulus(), scene.particle_poisson_ratio);
     // Start one step before the first touch, on the way in.
     let gap = normal_velocity * h;
     let mut contact = Contact::new(law, damping, 1e-3 * eff.radius, normal_velocity);
@@ -396,7 +404,9 @@ pub fn impact(scene: &Scene, normal_velocity: f64, tangential_velocity: f64, opt
     let mut spin = Spin { velocity: tangential_velocity, angular_velocity, ..Spin::default() };
     let wall = WallMotion { t0: 0.0, position: 0.0, velocity: 0.0 };
     let inertia = tangential.inertia;
-    let kinetic = |y: &State, s: &Spin| 0.5 * eff.mass * (y.velocity * y.velocity + s.velocity * s.velocity) + 0.5 * inertia * s.angular_velocity * s.angular_velocity;
+    let kinetic = |y: &State, s: &Spin| {
+        0.5 * eff.mass * (y.velocity * y.velocity + s.velocity * s.velocity) + 0.5 * inertia * s.angular_velocity * s.angular_velocity
+    };
     let before = kinetic(&y, &spin);
     let (mut t, mut max_overlap, mut max_force, mut slid_throughout, mut contact_steps) = (0.0, 0.0f64, 0.0f64, true, 0u64);
     let mut sliding_at_separation = false;
@@ -406,7 +416,9 @@ pub fn impact(scene: &Scene, normal_velocity: f64, tangential_velocity: f64, opt
     loop {
         match solver {
             ObliqueSolver::Verlet => sphere.advance_oblique_verlet(&mut tangential, h, &wall, 0.0, t, t + h, &mut y, &mut spin, false).map(|_| ())?,
-            ObliqueSolver::Adaptive(_) => sphere.advance_oblique_adaptive(&mut tangential, &mut mode, &wall, 0.0, t, t + h, &mut y, &mut spin, false).map(|_| ())?,
+            ObliqueSolver::Adaptive(_) => {
+                sphere.advance_oblique_adaptive(&mut tangential, &mut mode, &wall, 0.0, t, t + h, &mut y, &mut spin, false).map(|_| ())?
+            }
         }
         t += h;
         let alpha = -y.bottom;
@@ -419,7 +431,8 @@ pub fn impact(scene: &Scene, normal_velocity: f64, tangential_velocity: f64, opt
                 slid_throughout &= tangential.sliding;
             }
         }
-        if alpha < 0.0 && y.velocity > 0.0 && !sphere.contact.accepted.branch.in_contact() && sphere.contact.force(alpha, -y.velocity).total() == 0.0 {
+        if alpha < 0.0 && y.velocity > 0.0 && !sphere.contact.accepted.branch.in_contact() && sphere.contact.force(alpha, -y.velocity).total() == 0.0
+        {
             break;
         }
         if t > t_max {

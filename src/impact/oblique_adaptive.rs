@@ -133,22 +133,22 @@ impl Sphere {
         let lever = tg.lever(alpha);
         // The power the tangential force puts into the motion along the wall and the spin.
         let power = tan.force * (y[3] - lever * y[4]);
-        [
-            normal.bottom,
-            normal.velocity,
-            normal.work,
-            tan.force / self.mass,
-            -lever * tan.force / tg.inertia,
-            tan.spring_rate,
-            -power,
-            y[3],
-        ]
+        [normal.bottom, normal.velocity, normal.work, tan.force / self.mass, -lever * tan.force / tg.inertia, tan.spring_rate, -power, y[3]]
     }
 
     /// Model Exchange: the derivatives of the `ME_STATES` states `x` into `dx`; returns the tangential
     /// part of the work's derivative (the power the tangential force takes from the motion) [W].
     #[allow(clippy::too_many_arguments)] // the state and the wall's two motions
-    pub fn oblique_me_derivatives(&self, tg: &Tangential, mode: &TangentialMode, wall: &WallMotion, w_t: f64, t: f64, x: &[f64], dx: &mut [f64]) -> f64 {
+    pub fn oblique_me_derivatives(
+        &self,
+        tg: &Tangential,
+        mode: &TangentialMode,
+        wall: &WallMotion,
+        w_t: f64,
+        t: f64,
+        x: &[f64],
+        dx: &mut [f64],
+    ) -> f64 {
         let d = self.oblique_rhs(tg, mode.mode, wall, w_t, t, &from_me(x));
         dx[..ME_STATES].copy_from_slice(&d[..ME_STATES]);
         dx[2] += d[6];
@@ -175,7 +175,17 @@ impl Sphere {
     /// (at the first touch, where the spring and its limit are 1e-14 N and the host's absolute
     /// tolerance is set by the impact's force scale) moves on instead of switching forever.
     #[allow(clippy::too_many_arguments)] // the state the decision reads
-    pub fn oblique_me_event(&self, tg: &Tangential, mode: &mut TangentialMode, wall: &WallMotion, w_t: f64, t: f64, x: &mut [f64], was_in_contact: bool, repeat: u32) {
+    pub fn oblique_me_event(
+        &self,
+        tg: &Tangential,
+        mode: &mut TangentialMode,
+        wall: &WallMotion,
+        w_t: f64,
+        t: f64,
+        x: &mut [f64],
+        was_in_contact: bool,
+        repeat: u32,
+    ) {
         let mut y = from_me(x);
         let switched = self.tangential_indicator(tg, mode.mode, wall, w_t, t, &y) <= 0.0;
         self.settle_tangential(tg, mode, wall, w_t, t, &mut y, was_in_contact, switched);
@@ -280,7 +290,17 @@ impl Sphere {
     /// contact the mode that holds is settled (`settle_mode`; `switched`: the tangential indicator was
     /// the one that crossed).
     #[allow(clippy::too_many_arguments)] // the state the decision reads
-    pub(crate) fn settle_tangential(&self, tg: &Tangential, mode: &mut TangentialMode, wall: &WallMotion, w_t: f64, t: f64, x: &mut Y, was_in_contact: bool, switched: bool) {
+    pub(crate) fn settle_tangential(
+        &self,
+        tg: &Tangential,
+        mode: &mut TangentialMode,
+        wall: &WallMotion,
+        w_t: f64,
+        t: f64,
+        x: &mut Y,
+        was_in_contact: bool,
+        switched: bool,
+    ) {
         let (alpha, rate) = (wall.at(t) - x[0], wall.velocity - x[1]);
         if !self.contact.accepted.branch.in_contact() {
             x[5] = 0.0;
@@ -316,7 +336,8 @@ impl Sphere {
         let mut event = None;
         let mut x: Y = [y.bottom, y.velocity, y.work, spin.velocity, spin.angular_velocity, tangential.spring.force.x, spin.work, spin.position];
         let mut t = t0;
-        let mut h = if self.last_step > 0.0 { self.last_step } else { 1e-2 * self.contact.alpha_nominal / y.velocity.abs().max(self.contact.rate_nominal) };
+        let mut h =
+            if self.last_step > 0.0 { self.last_step } else { 1e-2 * self.contact.alpha_nominal / y.velocity.abs().max(self.contact.rate_nominal) };
         let mut steps = 0u64;
         while t < t_end {
             if t_end - t <= 4.0 * f64::EPSILON * t_end.abs() {

@@ -2,8 +2,8 @@
 
 use super::params::Effective;
 use super::tangential::TangentialModel;
-use super::{LawInfo, LawOptions};
 use super::{Branch, Evaluation, NormalLaw};
+use super::{LawInfo, LawOptions};
 use crate::error::ParamError;
 use crate::vocabulary::NoOptions;
 

@@ -13,12 +13,12 @@
 
 use super::params::Effective;
 use super::tangential::TangentialModel;
-use super::{LawInfo, LawOptions};
 use super::{Branch, Evaluation, NormalLaw};
+use super::{LawInfo, LawOptions};
 use crate::error::ParamError;
+use crate::numeric::cbrt;
 use crate::vocabulary::Range;
 use std::f64::consts::PI;
-use crate::numeric::cbrt;
 
 crate::choice_enum! {
     /// Where a JKR contact ends on unloading.
@@ -400,7 +400,8 @@ impl NormalLaw for Jkr {
     /// The adhesive branch under displacement control ends vertically at alpha_f; the zone is alpha_c -
     /// alpha_f. With force detachment the contact ends at the force minimum, where the curve is smooth.
     fn vertical_end(&self, branch: Branch, _h: &JkrHistory) -> Option<f64> {
-        (branch == Branch::Adhesive && self.detachment == JkrDetachment::Displacement).then(|| self.curve.pull_off_overlap() - self.curve.detach_overlap())
+        (branch == Branch::Adhesive && self.detachment == JkrDetachment::Displacement)
+            .then(|| self.curve.pull_off_overlap() - self.curve.detach_overlap())
     }
 
     /// One contact-radius solve for force, stiffness, damping and Mindlin (same numbers as the three

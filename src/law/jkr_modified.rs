@@ -12,8 +12,8 @@
 use super::jkr::{on_curve_at, JkrCurve};
 use super::params::Effective;
 use super::tangential::TangentialModel;
-use super::{LawInfo, LawOptions};
 use super::{Branch, Evaluation, NormalLaw};
+use super::{LawInfo, LawOptions};
 use crate::error::ParamError;
 use crate::vocabulary::Range;
 
@@ -72,10 +72,11 @@ impl JkrModified {
     /// The damping stiffness 2 E* r at contact radius `a`, with r as `stiffness_radius` says.
     #[inline(always)]
     fn damping_at(&self, alpha: f64, a: f64) -> f64 {
-        2.0 * self.curve.youngs_modulus * match self.stiffness_radius {
-            JkrStiffnessRadius::Contact => a,
-            JkrStiffnessRadius::Hertz => (self.curve.radius * alpha).sqrt(),
-        }
+        2.0 * self.curve.youngs_modulus
+            * match self.stiffness_radius {
+                JkrStiffnessRadius::Contact => a,
+                JkrStiffnessRadius::Hertz => (self.curve.radius * alpha).sqrt(),
+            }
     }
 }
 

@@ -67,4 +67,3 @@ impl Field for ModelKind {
         Ok(())
     }
 }
-

@@ -185,7 +185,8 @@ impl NormalLaw for Luding {
             };
         }
         if spring <= -self.kc * alpha {
-            return self.on_adhesion_limit(alpha, LudingHistory { established: true, delta_peak: h.delta_peak, delta_0: (1.0 + self.kc / k2) * alpha });
+            return self
+                .on_adhesion_limit(alpha, LudingHistory { established: true, delta_peak: h.delta_peak, delta_0: (1.0 + self.kc / k2) * alpha });
         }
         Evaluation {
             force: spring - self.f0,
@@ -356,7 +357,12 @@ mod variant_tests {
                 for v in [5.0, 8.0, 12.0, 20.0] {
                     let (a, b) = (restitution::luding(&l, mass, v), energy_balance::impact(&l, mass, v, 2.45e-6).unwrap());
                     assert_eq!(a.sticks, b.sticks, "{variant:?} f0 {f0} {v}");
-                    assert!((a.rebound_velocity - b.rebound_velocity).abs() < 1e-8 * v, "{variant:?} f0 {f0} {v}: {} vs {}", a.rebound_velocity, b.rebound_velocity);
+                    assert!(
+                        (a.rebound_velocity - b.rebound_velocity).abs() < 1e-8 * v,
+                        "{variant:?} f0 {f0} {v}: {} vs {}",
+                        a.rebound_velocity,
+                        b.rebound_velocity
+                    );
                     assert!((a.max_overlap / b.max_overlap - 1.0).abs() < 1e-8);
                 }
             }

@@ -24,9 +24,9 @@ pub mod walton_braun;
 
 use crate::error::ParamError;
 use crate::vocabulary::{Key, Options};
-use serde_json::{Map, Value};
-use params::Effective;
 pub use kind::ModelKind;
+use params::Effective;
+use serde_json::{Map, Value};
 use tangential::TangentialModel;
 
 /// The branch of a force-overlap diagram the contact is on.

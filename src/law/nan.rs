@@ -14,8 +14,8 @@
 //!   and alpha_max follows alpha (Eq. 10), which recomputes k_e, k_c, alpha_p, f_cp and the overlaps of
 //!   Eqs. 11-14 so that the force stays continuous.
 
-use super::params::Effective;
 use super::nan_params::NanParams;
+use super::params::Effective;
 use super::{Branch, Evaluation, LawInfo, LawOptions, NormalLaw};
 use crate::error::ParamError;
 use crate::vocabulary::Range;

@@ -2,9 +2,9 @@
 //! `000` Sec. 3 (yield point, stiffnesses, pull-off force). Each function is one equation.
 
 use crate::error::ParamError;
+use crate::numeric::cbrt;
 use crate::vocabulary::Range;
 use std::f64::consts::PI;
-use crate::numeric::cbrt;
 
 crate::choice_enum! {
     /// Correlation from yield stress to limiting contact pressure.

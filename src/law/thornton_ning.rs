@@ -20,9 +20,9 @@ use super::tangential::TangentialModel;
 use super::{Branch, Evaluation, LawInfo, LawOptions, NormalLaw};
 use crate::error::ParamError;
 use crate::numeric::brent;
+use crate::numeric::cbrt;
 use crate::vocabulary::NoOptions;
 use std::f64::consts::PI;
-use crate::numeric::cbrt;
 
 /// Thornton and Ning's law of one contact pair (the module documentation says which equations).
 #[derive(Debug, Clone, PartialEq)]

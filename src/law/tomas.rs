@@ -295,7 +295,13 @@ impl LawInfo for Tomas {
     fn from_pair(pair: &Effective, options: &LawOptions) -> Result<Tomas, ParamError> {
         let own = &options.tomas;
         // kappa_p < kappa_A (003 Sec. 3.3): a range across two keys.
-        check_closed_low("tomas_repulsion_coefficient", own.tomas_repulsion_coefficient, 0.0, own.tomas_area_coefficient, "(below tomas_area_coefficient)")?;
+        check_closed_low(
+            "tomas_repulsion_coefficient",
+            own.tomas_repulsion_coefficient,
+            0.0,
+            own.tomas_area_coefficient,
+            "(below tomas_area_coefficient)",
+        )?;
         let p_f = match own.tomas_yield_strength {
             Some(p) => p,
             None => pair.require_yield_pressure("tomas (no tomas_yield_strength given)")?,

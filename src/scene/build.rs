@@ -42,7 +42,6 @@ impl NormalDamping {
             mass,
         }
     }
-
 }
 
 impl Effective {
@@ -93,14 +92,6 @@ impl Effective {
             }
             yield_pressure = yield_pressure.map(|p| p * factor);
         }
-        Ok(Effective {
-            radius,
-            mass,
-            youngs_modulus,
-            shear_modulus,
-            surface_energy: s.surface_energy,
-            yield_pressure,
-        })
+        Ok(Effective { radius, mass, youngs_modulus, shear_modulus, surface_energy: s.surface_energy, yield_pressure })
     }
-
 }

@@ -4,8 +4,8 @@
 use super::work::work_terms;
 use crate::law::nan::Nan;
 use crate::numeric::brent;
-use std::f64::consts::PI;
 use crate::numeric::cbrt;
+use std::f64::consts::PI;
 
 /// The characteristic velocities of one particle-wall pair.
 #[derive(Debug, Clone, Copy, PartialEq)]

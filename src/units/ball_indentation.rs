@@ -11,9 +11,9 @@
 use super::scene_params;
 use super::variables::{Value, VarType, Variable};
 use super::{Model, UnitError, UnitInfo};
-use crate::bed::{constraint_factor, file};
 use crate::bed::indentation::{DepthOrigin, Indentation, Motion, Setup, TestState, FAST, SEED_WINDOW};
 use crate::bed::replicas::{check_replica, over_beds, Replicas};
+use crate::bed::{constraint_factor, file};
 use crate::bed::{BedError, BedScene};
 use crate::scene::{Key, KeyDefault, KEYS};
 use serde_json::{Map, Value as Json};
@@ -307,7 +307,8 @@ impl BallIndentation {
                 path.display()
             )));
         }
-        constraint_factor::at(constraint_factor::points(), scene.consolidation_stress).map_err(|why| refuse(format!("bed_file {}: {why}", path.display())))
+        constraint_factor::at(constraint_factor::points(), scene.consolidation_stress)
+            .map_err(|why| refuse(format!("bed_file {}: {why}", path.display())))
     }
 
     fn setup(values: &[Value]) -> Result<Setup, UnitError> {
@@ -422,7 +423,8 @@ impl Model for BallIndentation {
                 other => UnitError::from(other),
             })?;
             if let Some(first) = tests.first() {
-                check_replica(&first.scene, &scene).map_err(|why| variable("bed_file", format!("replica {} of {}: bed_file {}: {why}", k + 1, paths.len(), path.display())))?;
+                check_replica(&first.scene, &scene)
+                    .map_err(|why| variable("bed_file", format!("replica {} of {}: bed_file {}: {why}", k + 1, paths.len(), path.display())))?;
             }
             self.check_bed(values, &scene, path)?;
             let indenter = self.indenter_pair(values, &scene)?;

@@ -142,15 +142,7 @@ struct SnapshotNormalOnly {
 
 impl ContactElement {
     fn new(u: &UnitInfo) -> ContactElement {
-        ContactElement {
-            variables: u.variables.clone(),
-            contact: None,
-            shear: None,
-            gap: 0.0,
-            law_work: 0.0,
-            damping_work: 0.0,
-            events: Vec::new(),
-        }
+        ContactElement { variables: u.variables.clone(), contact: None, shear: None, gap: 0.0, law_work: 0.0, damping_work: 0.0, events: Vec::new() }
     }
 
     fn build(&self, values: &[Value]) -> Result<(Contact, Shear, f64), UnitError> {

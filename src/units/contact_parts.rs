@@ -2,8 +2,8 @@
 //! both report with the same meaning, and writing those outputs.
 
 use super::scene_params;
-use super::UnitError;
 use super::variables::{Value, VarType, Variable};
+use super::UnitError;
 use crate::impact::{Contact, ContactForce};
 use crate::law::damping::NormalDamping;
 use crate::law::params::Effective;
@@ -40,7 +40,8 @@ pub fn max_overlap_output() -> Variable {
 }
 
 pub fn plastic_overlap_output() -> Variable {
-    Variable::output("plastic_overlap", VarType::Real, "m", "overlap at which the current unloading branch meets zero force (alpha_p)").with_nominal(1e-9)
+    Variable::output("plastic_overlap", VarType::Real, "m", "overlap at which the current unloading branch meets zero force (alpha_p)")
+        .with_nominal(1e-9)
 }
 
 pub fn pull_off_force_output() -> Variable {
@@ -59,7 +60,6 @@ pub struct Outputs {
 }
 
 impl Outputs {
-
     /// Writes force, overlap, state and history at `alpha`, `rate` on the accepted branch of `c`; returns
     /// the total force.
     pub fn write(&self, values: &mut [Value], c: &Contact, alpha: f64, rate: f64) -> ContactForce {

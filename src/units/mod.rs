@@ -13,9 +13,9 @@ pub mod particle_wall_impact;
 mod scene_params;
 pub mod unconfined_compression;
 
-use std::sync::OnceLock;
 pub use error::UnitError;
 pub use scene_params::DEFAULT_SCENE;
+use std::sync::OnceLock;
 use variables::Value;
 
 /// The log categories of every unit (FMI 2.0 Sec. 2.2.4), name and meaning. The descriptions name the
@@ -174,7 +174,6 @@ fn uuid_of(text: &str) -> String {
     format!("{{{:08x}-{:04x}-{:04x}-{:04x}-{:012x}}}", a >> 32, (a >> 16) & 0xffff, a & 0xffff, b >> 48, b & 0xffff_ffff_ffff)
 }
 
-
 /// Every unit of the crate, built once.
 pub fn all() -> &'static [UnitInfo] {
     static UNITS: OnceLock<Vec<UnitInfo>> = OnceLock::new();
@@ -222,7 +221,10 @@ pub(crate) fn engine_threads(t: f64) -> Result<usize, UnitError> {
 /// 1 MiB (a contact unit's snapshot is a few hundred bytes) or with bytes left over.
 pub(crate) fn decode<T: serde::de::DeserializeOwned>(bytes: &[u8]) -> Result<T, UnitError> {
     if bytes.len() > 1 << 20 {
-        return Err(UnitError::SavedState(format!("the saved model state cannot be read: {} bytes, above the 1 MiB a contact unit's state can take", bytes.len())));
+        return Err(UnitError::SavedState(format!(
+            "the saved model state cannot be read: {} bytes, above the 1 MiB a contact unit's state can take",
+            bytes.len()
+        )));
     }
     crate::codec::from_bytes(bytes).map_err(|e| UnitError::SavedState(format!("the saved model state cannot be read: {e}")))
 }

@@ -338,7 +338,10 @@ impl ParticleWallImpact {
         let g = within(values, REFS.gravity, "gravity", MAX_GRAVITY, "m/s2")?;
         let tol = finite(values, REFS.tolerance, "tolerance", "")?;
         if !(1e-14..=1e-2).contains(&tol) {
-            return Err(UnitError::Variable { name: "tolerance", why: format!("parameter `tolerance` = {tol:e} is out of range: allowed [1e-14, 1e-2]") });
+            return Err(UnitError::Variable {
+                name: "tolerance",
+                why: format!("parameter `tolerance` = {tol:e} is out of range: allowed [1e-14, 1e-2]"),
+            });
         }
         within(values, REFS.wall_velocity, "wall_velocity", MAX_SPEED, "m/s")?;
         let fraction = finite(values, REFS.rayleigh_fraction, "rayleigh_fraction", "")?;
@@ -348,12 +351,19 @@ impl ParticleWallImpact {
                 why: format!("parameter `rayleigh_fraction` = {fraction:e} is out of range: allowed (0, 1]"),
             });
         }
-        let rayleigh =
-            time_step::rayleigh_time_step(scene.particle_radius, scene.particle_density, scene.particle_shear_modulus(), scene.particle_poisson_ratio);
+        let rayleigh = time_step::rayleigh_time_step(
+            scene.particle_radius,
+            scene.particle_density,
+            scene.particle_shear_modulus(),
+            scene.particle_poisson_ratio,
+        );
         let solver = solver(values[REFS.solver].as_str(), &contact.law, fraction * rayleigh)?;
         let rolling = finite(values, REFS.rolling_friction, "rolling_friction", "")?;
         if !(0.0..=1e3).contains(&rolling) {
-            return Err(UnitError::Variable { name: "rolling_friction", why: format!("parameter `rolling_friction` = {rolling:e} is out of range: allowed [0, 1e3]") });
+            return Err(UnitError::Variable {
+                name: "rolling_friction",
+                why: format!("parameter `rolling_friction` = {rolling:e} is out of range: allowed [0, 1e3]"),
+            });
         }
         if rolling > 0.0 && !matches!(solver, Solver::Verlet { .. }) {
             return Err(UnitError::Variable {
@@ -502,13 +512,15 @@ fn solver(name: &str, law: &AnyLaw, verlet_step: f64) -> Result<Solver, UnitErro
         "exact" => Err(UnitError::Variable {
             name: "solver",
             why: format!(
-            "parameter `solver` = \"exact\" needs a piecewise-linear contact_model ({}), not \"{}\"; use \"adaptive\" or \"auto\"",
-            ModelKind::piecewise_linear_names(),
-            law.model().name()
+                "parameter `solver` = \"exact\" needs a piecewise-linear contact_model ({}), not \"{}\"; use \"adaptive\" or \"auto\"",
+                ModelKind::piecewise_linear_names(),
+                law.model().name()
             ),
         }),
         "verlet" => Ok(Solver::Verlet { step: verlet_step }),
-        other => Err(UnitError::Variable { name: "solver", why: format!("parameter `solver` = \"{other}\" is not one of {}", Solver::NAMES.join(", ")) }),
+        other => {
+            Err(UnitError::Variable { name: "solver", why: format!("parameter `solver` = \"{other}\" is not one of {}", Solver::NAMES.join(", ")) })
+        }
     }
 }
 
@@ -535,7 +547,10 @@ impl Model for ParticleWallImpact {
     fn initialize(&mut self, values: &[Value], t0: f64, model_exchange: bool) -> Result<(), UnitError> {
         let (mut sphere, radius, tangential) = self.build(values)?;
         if model_exchange && tangential.rolling_friction != 0.0 {
-            return Err(UnitError::Variable { name: "rolling_friction", why: format!("`rolling_friction` = {:e}: {ME_NO_ROLLING}", tangential.rolling_friction) });
+            return Err(UnitError::Variable {
+                name: "rolling_friction",
+                why: format!("`rolling_friction` = {:e}: {ME_NO_ROLLING}", tangential.rolling_friction),
+            });
         }
         let gap = finite(values, REFS.initial_gap, "initial_gap", "m")?;
         if gap < 0.0 {
@@ -557,7 +572,11 @@ impl Model for ParticleWallImpact {
         sphere.accept(&wall, t0, &self.y);
         sphere.contact.max_overlap = f64::NEG_INFINITY;
         self.sphere = Some(sphere);
-        self.spin = Spin { velocity: real(values, REFS.initial_tangential_velocity), angular_velocity: real(values, REFS.initial_angular_velocity), ..Spin::default() };
+        self.spin = Spin {
+            velocity: real(values, REFS.initial_tangential_velocity),
+            angular_velocity: real(values, REFS.initial_angular_velocity),
+            ..Spin::default()
+        };
         self.tangential = Some(tangential);
         self.mode = TangentialMode::default();
         self.announced = false;
@@ -600,7 +619,9 @@ impl Model for ParticleWallImpact {
         values[REFS.angular_velocity] = Value::Real(self.spin.angular_velocity);
         let (f_t, sliding) = match (&self.tangential, self.me_wall) {
             // Model Exchange: the force at the host's states (CS keeps the force its step ended with).
-            (Some(tg), Some(_)) => (sphere.oblique_me_force(tg, &self.mode, &wall, w_t, self.t, &self.me_states()), matches!(self.mode.mode, StickSlip::Slide(_))),
+            (Some(tg), Some(_)) => {
+                (sphere.oblique_me_force(tg, &self.mode, &wall, w_t, self.t, &self.me_states()), matches!(self.mode.mode, StickSlip::Slide(_)))
+            }
             (Some(tg), None) => (tg.force, tg.sliding),
             (None, _) => (0.0, false),
         };
@@ -1088,7 +1109,8 @@ mod derivative_state_tests {
                     m.do_step(values, t + k as f64 * h, h).unwrap();
                 }
                 m.compute(values, false);
-                [REFS.tangential_velocity, REFS.angular_velocity, REFS.tangential_force, REFS.sphere_velocity, REFS.dissipated_energy].map(|vr| values[vr].as_real())
+                [REFS.tangential_velocity, REFS.angular_velocity, REFS.tangential_force, REFS.sphere_velocity, REFS.dissipated_energy]
+                    .map(|vr| values[vr].as_real())
             };
             let first = run(&mut m, &mut values);
             let (mut fresh, mut fresh_values) = oblique(solver);

@@ -294,7 +294,9 @@ impl Model for UnconfinedCompression {
             }
             let specimen = Specimen::new(engine, scene, setup, (dt != 0.0).then_some(dt)).map_err(|e| match e {
                 // A bed not prepared in a die is the file's fault; the settings and time_step name themselves.
-                BedError::Param(p @ ParamError::Inconsistent { name: "bed", .. }) => variable("bed_file", format!("{which}bed_file {}: {p}", path.display())),
+                BedError::Param(p @ ParamError::Inconsistent { name: "bed", .. }) => {
+                    variable("bed_file", format!("{which}bed_file {}: {p}", path.display()))
+                }
                 BedError::Param(p) => UnitError::Param(p),
                 BedError::Setup(why) => variable("bed_file", format!("{which}bed_file {}: {why}", path.display())),
             })?;
@@ -376,7 +378,8 @@ impl Model for UnconfinedCompression {
         if self.specimens.is_empty() {
             return Ok(Vec::new());
         }
-        let states: Vec<Vec<u8>> = self.specimens.iter().map(Specimen::save).collect::<Result<_, _>>().map_err(|e| UnitError::SavedState(e.to_string()))?;
+        let states: Vec<Vec<u8>> =
+            self.specimens.iter().map(Specimen::save).collect::<Result<_, _>>().map_err(|e| UnitError::SavedState(e.to_string()))?;
         crate::codec::to_bytes(&states).map_err(|e| UnitError::SavedState(format!("the specimens' states cannot be saved: {e}")))
     }
 
@@ -390,11 +393,16 @@ impl Model for UnconfinedCompression {
             return Ok(());
         }
         let threads = Self::threads(values)?;
-        let states: Vec<Vec<u8>> = crate::codec::from_bytes(bytes).map_err(|e| UnitError::SavedState(format!("the saved specimens cannot be read: {e}")))?;
+        let states: Vec<Vec<u8>> =
+            crate::codec::from_bytes(bytes).map_err(|e| UnitError::SavedState(format!("the saved specimens cannot be read: {e}")))?;
         if states.is_empty() {
             return Err(UnitError::SavedState("the saved state holds no specimen".into()));
         }
-        let specimens = states.iter().map(|b| Specimen::restore(b, Some(threads))).collect::<Result<Vec<_>, _>>().map_err(|e| UnitError::SavedState(e.to_string()))?;
+        let specimens = states
+            .iter()
+            .map(|b| Specimen::restore(b, Some(threads)))
+            .collect::<Result<Vec<_>, _>>()
+            .map_err(|e| UnitError::SavedState(e.to_string()))?;
         self.specimens = specimens;
         self.reported_done = self.done();
         self.reported_tenths = self.tenths();

@@ -129,7 +129,14 @@ impl<L: BedLaw> Engine<L> {
                 .into_iter()
                 .zip(self.buffers.iter_mut())
                 .zip(&self.parts)
-                .map(|(((load, dipole), b), &base)| Sink { base, load, spill: &mut b.load, dipole, dipole_spill: &mut b.dipole, wall_force: &mut b.wall_force })
+                .map(|(((load, dipole), b), &base)| Sink {
+                    base,
+                    load,
+                    spill: &mut b.load,
+                    dipole,
+                    dipole_spill: &mut b.dipole,
+                    wall_force: &mut b.wall_force,
+                })
                 .collect()
         };
         for (k, sink) in sinks.drain(..).enumerate() {

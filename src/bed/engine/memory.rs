@@ -114,9 +114,9 @@ impl<L: BedLaw> Engine<L> {
     pub(crate) fn remembering(&self) -> impl Iterator<Item = (usize, u32, usize)> + '_ {
         let sp = &self.particles.species;
         (0..self.list.rows()).flat_map(move |i| {
-            (self.list.start[i] as usize..).zip(self.list.row(i)).filter_map(move |(k, &j)| {
-                self.memory.remembers(k, self.pair(sp[i] as usize, sp[j as usize] as usize).initial).then_some((i, j, k))
-            })
+            (self.list.start[i] as usize..)
+                .zip(self.list.row(i))
+                .filter_map(move |(k, &j)| self.memory.remembers(k, self.pair(sp[i] as usize, sp[j as usize] as usize).initial).then_some((i, j, k)))
         })
     }
 

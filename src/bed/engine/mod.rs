@@ -25,9 +25,9 @@ pub(crate) mod near;
 mod partition;
 
 pub use contact_memory::ContactMemory;
-pub use memory::WallContacts;
 pub use isa::Isa;
 pub use lanes::LaneLaw;
+pub use memory::WallContacts;
 pub use partition::{Accum, Load};
 
 use super::interaction::{BedLaw, Interaction};
@@ -334,7 +334,10 @@ impl<L: BedLaw> Engine<L> {
 
     /// Sets the forces of the last step (a bed loaded from a file continues exactly).
     pub fn set_totals(&mut self, force: &[Vec3], torque: &[Vec3], rolling: &[f64]) {
-        assert!(force.len() == self.total.load.len() && torque.len() == force.len() && rolling.len() == force.len(), "one force, torque and rolling load per sphere");
+        assert!(
+            force.len() == self.total.load.len() && torque.len() == force.len() && rolling.len() == force.len(),
+            "one force, torque and rolling load per sphere"
+        );
         for (l, ((f, t), r)) in self.total.load.iter_mut().zip(force.iter().zip(torque).zip(rolling)) {
             *l = Load::new(*f, *t, *r);
         }
@@ -527,7 +530,8 @@ impl<L: BedLaw> Engine<L> {
         if threads == 1 {
             return kick_range(isa, 0, &mut p.velocity, &mut p.angular_velocity, &mut p.position, body, load, refs, kick, records);
         }
-        let records: Vec<&mut [lanes::record::Record]> = if records.is_empty() { (0..threads).map(|_| &mut [][..]).collect() } else { split_at_cuts(records, &cuts) };
+        let records: Vec<&mut [lanes::record::Record]> =
+            if records.is_empty() { (0..threads).map(|_| &mut [][..]).collect() } else { split_at_cuts(records, &cuts) };
         let chunks: Vec<_> = split_at_cuts(&mut p.velocity, &cuts)
             .into_iter()
             .zip(split_at_cuts(&mut p.angular_velocity, &cuts))
@@ -614,7 +618,9 @@ impl<L: BedLaw> Engine<L> {
         let (force, torque) = (self.total.forces(), self.total.torques());
         let vectors = p.position.iter().chain(&p.velocity).chain(&p.angular_velocity).chain(&force).chain(&torque);
         let words = vectors.flat_map(|v| [v.x, v.y, v.z]).chain(self.total.load.iter().map(|l| l.rolling));
-        words.fold(0xcbf2_9ce4_8422_2325u64, |h, x| x.to_bits().to_le_bytes().iter().fold(h, |h, &b| (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3)))
+        words.fold(0xcbf2_9ce4_8422_2325u64, |h, x| {
+            x.to_bits().to_le_bytes().iter().fold(h, |h, &b| (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3))
+        })
     }
 }
 
@@ -665,7 +671,18 @@ impl<'a> References<'a> {
 /// `kick_body` with the engine's instruction set; with `records` (one per sphere of the range, else
 /// empty) it also writes the spheres' records after the drift (`lanes::record`).
 #[allow(clippy::too_many_arguments)]
-fn kick_range(isa: Isa, base: usize, v: &mut [Vec3], w: &mut [Vec3], x: &mut [Vec3], body: Body, load: &[Load], refs: References, kick: Kick, records: &mut [lanes::record::Record]) -> (f64, f64) {
+fn kick_range(
+    isa: Isa,
+    base: usize,
+    v: &mut [Vec3],
+    w: &mut [Vec3],
+    x: &mut [Vec3],
+    body: Body,
+    load: &[Load],
+    refs: References,
+    kick: Kick,
+    records: &mut [lanes::record::Record],
+) -> (f64, f64) {
     let n = v.len();
     assert!(records.is_empty() || records.len() == n, "one record per sphere of the range");
     #[cfg(target_arch = "x86_64")]
@@ -702,7 +719,16 @@ fn pack_range(base: usize, v: &[Vec3], w: &[Vec3], x: &[Vec3], body: Body, recor
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
 #[allow(clippy::too_many_arguments)]
-unsafe fn kick_avx2(base: usize, v: &mut [Vec3], w: &mut [Vec3], x: &mut [Vec3], body: Body, load: &[Load], refs: References, kick: Kick) -> (f64, f64) {
+unsafe fn kick_avx2(
+    base: usize,
+    v: &mut [Vec3],
+    w: &mut [Vec3],
+    x: &mut [Vec3],
+    body: Body,
+    load: &[Load],
+    refs: References,
+    kick: Kick,
+) -> (f64, f64) {
     kick_body(base, v, w, x, body, load, refs, kick)
 }
 
@@ -767,7 +793,9 @@ fn near_shell(skin: f64, forget: f64) -> f64 {
 /// every pair a neck still pulls, and a neck that still pulls must not forget.
 fn beyond_reach(whose: &str, reach: f64, skin: f64, forget: f64) -> Result<(), String> {
     if !(skin > reach) {
-        return Err(format!("skin = {skin:e} m must exceed {whose} adhesive necks' reach, {reach:e} m (the largest separation at which a contact still pulls)"));
+        return Err(format!(
+            "skin = {skin:e} m must exceed {whose} adhesive necks' reach, {reach:e} m (the largest separation at which a contact still pulls)"
+        ));
     }
     if !(forget > reach) {
         return Err(format!(

@@ -202,7 +202,10 @@ mod tests {
     fn hertz_stiffness_radius_leaves_the_lanes_and_keeps_the_tangential_ratio_4_g_over_e() {
         // 004 Tables 5.1-5.3's glass beads.
         let Value::Object(mut map) = json!({"contact_model": "jkr_modified", "particle_youngs_modulus": 55e9,
-            "particle_poisson_ratio": 0.25, "surface_energy": 0.5, "friction_coefficient": 0.15}) else { unreachable!() };
+            "particle_poisson_ratio": 0.25, "surface_energy": 0.5, "friction_coefficient": 0.15})
+        else {
+            unreachable!()
+        };
         let (r, rho) = (5e-4, 2500.0);
         let m = rho * 4.0 / 3.0 * std::f64::consts::PI * r * r * r;
         for (name, on_lanes) in [("contact", true), ("hertz", false)] {

@@ -60,7 +60,17 @@ unsafe fn store3(v: &mut [Vec3], q: usize, c: [__m256d; 3]) {
 /// AVX2 must be available.
 #[target_feature(enable = "avx2")]
 #[allow(clippy::too_many_arguments)] // as `kick_body`
-pub unsafe fn kick4(base: usize, v: &mut [Vec3], w: &mut [Vec3], x: &mut [Vec3], body: Body, load: &[Load], refs: References, kick: Kick, records: &mut [Record]) -> (f64, f64) {
+pub unsafe fn kick4(
+    base: usize,
+    v: &mut [Vec3],
+    w: &mut [Vec3],
+    x: &mut [Vec3],
+    body: Body,
+    load: &[Load],
+    refs: References,
+    kick: Kick,
+    records: &mut [Record],
+) -> (f64, f64) {
     let Kick { g, h, halves, dt } = kick;
     let end = base + v.len() / 4 * 4;
     let (inv_mass, inv_inertia, radius) = (&body.inv_mass[base..end], &body.inv_inertia[base..end], &body.radius[base..end]);

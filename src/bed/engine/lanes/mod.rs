@@ -162,7 +162,13 @@ mod x86 {
         ///
         /// # Safety
         /// The CPU runs the width's instruction set.
-        unsafe fn evaluate_lanes<'l, V: Simd>(_p: &[V; LAW_PARAMS], _alpha: V, _h: &History<V>, _law: &dyn Fn(usize) -> &'l Self, _guess: V) -> Eval<V> {
+        unsafe fn evaluate_lanes<'l, V: Simd>(
+            _p: &[V; LAW_PARAMS],
+            _alpha: V,
+            _h: &History<V>,
+            _law: &dyn Fn(usize) -> &'l Self,
+            _guess: V,
+        ) -> Eval<V> {
             unreachable!("no lanes for this law")
         }
     }
@@ -483,7 +489,8 @@ mod x86 {
                 let tangential: [V; 3] = std::array::from_fn(|c| tangential[c].keep(rubs & touch));
                 // The memory: a visited lane in contact keeps the new spring (where it rubs), one out of
                 // contact forgets it; a lane not visited keeps its own.
-                let new_s: [V::Array; 3] = std::array::from_fn(|c| V::select(visit, V::select(rubs, f_s[c], s0[c]).keep(ev.in_contact), s0[c]).to_array());
+                let new_s: [V::Array; 3] =
+                    std::array::from_fn(|c| V::select(visit, V::select(rubs, f_s[c], s0[c]).keep(ev.in_contact), s0[c]).to_array());
                 let new_radius = ev.radius.to_array();
                 for k in 0..w {
                     if visit_bits & (1 << k) != 0 {
@@ -520,7 +527,14 @@ mod x86 {
     /// # Safety
     /// AVX2 must be available.
     #[target_feature(enable = "avx2")]
-    pub unsafe fn near_avx2<L: BedLaw>(e: &LaneInput<L>, near: &Near, normal: &mut [L::History], spring: &mut [Vec3], radius_memory: &mut [f64], sink: &mut Sink) {
+    pub unsafe fn near_avx2<L: BedLaw>(
+        e: &LaneInput<L>,
+        near: &Near,
+        normal: &mut [L::History],
+        spring: &mut [Vec3],
+        radius_memory: &mut [f64],
+        sink: &mut Sink,
+    ) {
         // SAFETY: AVX2 (this function's contract).
         unsafe { near_pairs::<L, F64x4>(e, near, normal, spring, radius_memory, sink) }
     }
@@ -530,7 +544,14 @@ mod x86 {
     /// # Safety
     /// AVX-512 F and DQ must be available.
     #[target_feature(enable = "avx2,avx512f,avx512dq")]
-    pub unsafe fn near_avx512<L: BedLaw>(e: &LaneInput<L>, near: &Near, normal: &mut [L::History], spring: &mut [Vec3], radius_memory: &mut [f64], sink: &mut Sink) {
+    pub unsafe fn near_avx512<L: BedLaw>(
+        e: &LaneInput<L>,
+        near: &Near,
+        normal: &mut [L::History],
+        spring: &mut [Vec3],
+        radius_memory: &mut [f64],
+        sink: &mut Sink,
+    ) {
         // SAFETY: AVX-512 F and DQ (this function's contract).
         unsafe { near_pairs::<L, F64x8>(e, near, normal, spring, radius_memory, sink) }
     }
@@ -542,7 +563,14 @@ mod x86 {
     /// with a spring, or with a history that forbids skipping, as the scalar loop's `pair`. The entries
     /// keep slot order, so each body's sum is the scalar loop's, added in its order.
     #[inline(always)]
-    unsafe fn near_pairs<L: BedLaw, V: Simd>(e: &LaneInput<L>, near: &Near, normal: &mut [L::History], spring: &mut [Vec3], radius_memory: &mut [f64], sink: &mut Sink) {
+    unsafe fn near_pairs<L: BedLaw, V: Simd>(
+        e: &LaneInput<L>,
+        near: &Near,
+        normal: &mut [L::History],
+        spring: &mut [Vec3],
+        radius_memory: &mut [f64],
+        sink: &mut Sink,
+    ) {
         // SAFETY: the caller runs this with the width's instruction set (the lane helpers and the law's
         // lane functions need it); the unchecked reads of sphere data and table rows use indices checked
         // against their arrays once per block (below), every other slice access is checked, and the raw

@@ -127,8 +127,8 @@ impl LaneLaw for Nan {
 #[cfg(test)]
 mod tests {
     use super::super::simd::{F64x4, Mask, Simd};
-    use super::super::x86::{History, LaneLaw};
     use super::super::x86::ORDER;
+    use super::super::x86::{History, LaneLaw};
     use super::super::LAW_PARAMS;
     use crate::bed::interaction::{ContactTemplate, Interaction};
     use crate::law::nan::Nan;
@@ -146,7 +146,10 @@ mod tests {
             return;
         }
         let Value::Object(map) = json!({"contact_model": "nan", "particle_youngs_modulus": 1.2e9, "particle_poisson_ratio": 0.33,
-            "particle_yield_pressure": 25e6, "surface_energy": 0.24}) else { unreachable!() };
+            "particle_yield_pressure": 25e6, "surface_energy": 0.24})
+        else {
+            unreachable!()
+        };
         let (r, rho) = (2.45e-6, 1350.0);
         let m = rho * 4.0 / 3.0 * std::f64::consts::PI * r * r * r;
         let base = ContactTemplate::particle(&map, r, rho).unwrap();

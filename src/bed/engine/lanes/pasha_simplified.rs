@@ -12,7 +12,16 @@ impl LaneLaw for PashaSimplified {
     const LANES: Lanes = Lanes::Vector;
 
     fn lane_params(&self) -> Option<[f64; LAW_PARAMS]> {
-        (self.stiffness.law == PashaStiffnessLaw::Constant).then_some([self.stiffness.k_e, self.k_p, self.k_cp, self.f_0p, self.f_ce, self.alpha_0, 0.0, 0.0])
+        (self.stiffness.law == PashaStiffnessLaw::Constant).then_some([
+            self.stiffness.k_e,
+            self.k_p,
+            self.k_cp,
+            self.f_0p,
+            self.f_ce,
+            self.alpha_0,
+            0.0,
+            0.0,
+        ])
     }
 
     #[inline(always)]

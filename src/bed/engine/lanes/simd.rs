@@ -651,7 +651,8 @@ mod tests {
         // the records (whose column 7 is a pad).
         let value = |i: usize, q: usize| (100 * i + q) as f64 + 0.25;
         let column = |q: usize| if q < 7 { q } else { q + 1 };
-        let records: Vec<Record> = (0..20).map(|i| Record(std::array::from_fn(|c| (0..10).find(|&q| column(q) == c).map_or(0.0, |q| value(i, q))))).collect();
+        let records: Vec<Record> =
+            (0..20).map(|i| Record(std::array::from_fn(|c| (0..10).find(|&q| column(q) == c).map_or(0.0, |q| value(i, q))))).collect();
         let vec3 = |q: usize| (0..20).map(|i| Vec3::new(value(i, q), value(i, q + 1), value(i, q + 2))).collect::<Vec<_>>();
         let (position, velocity, spin) = (vec3(0), vec3(4), vec3(7));
         let radius: Vec<f64> = (0..20).map(|i| value(i, 3)).collect();
@@ -675,7 +676,12 @@ mod tests {
         let mut want = got.clone();
         // SAFETY: as above.
         unsafe {
-            let share = Share { force: [lane(0), lane(1), lane(2)], rolling: lane(3), torque_i: [lane(4), lane(5), lane(6)], torque_j: [lane(7), lane(8), lane(9)] };
+            let share = Share {
+                force: [lane(0), lane(1), lane(2)],
+                rolling: lane(3),
+                torque_i: [lane(4), lane(5), lane(6)],
+                torque_j: [lane(7), lane(8), lane(9)],
+            };
             V::add_shares(&mut Rows::new(0, &mut got, &mut []), &i[..V::N], &j[..V::N], share);
         }
         for k in 0..V::N {
