@@ -44,7 +44,7 @@ def main(out):
         rows = load(path)
         x, y = binned(rows)
         level = summary(rows, WINDOW)["plateau"] / 1e3
-        ax.plot(x, y, color=colour, lw=1.0, ls=style, label=f"{label}: {level:.2f} kPa over h/r 0.35-0.5")
+        ax.plot(x, y, color=colour, lw=1.0, ls=style, label=f"{label}: {level:.2f} kPa over h/r {WINDOW[0]}-{WINDOW[1]}")
     ax.set_xlabel("h / r [-] (depth from the first touch)")
     ax.set_ylabel("F / A(h) [kPa] (mean over bins of 0.01 h/r)")
     ax.set_xlim(0.0, 0.5)
