@@ -292,6 +292,15 @@ fn indent_change_lays_a_scene_over_the_same_bed() {
     let progress: Vec<&str> = err.lines().filter(|l| l.contains("% ") && l.contains("left ~")).collect();
     assert!(progress.iter().any(|l| l.contains("loading") && l.contains("h/r")), "{err}");
     assert!(progress.last().is_some_and(|l| l.starts_with("100% done")), "{err}");
+    // The loading is nearly the whole job, so the bar passes 80 % before the turn (it stopped at 50 % and
+    // doubled the time left when the unloading counted as half).
+    let last_loading = progress
+        .iter()
+        .filter_map(|l| l.split_once('%'))
+        .filter(|(_, rest)| rest.trim_start().starts_with("loading"))
+        .filter_map(|(percent, _)| percent.trim().parse::<f64>().ok())
+        .fold(0.0, f64::max);
+    assert!(last_loading >= 80.0, "the last loading line at {last_loading} %: {err}");
     // The shipped bed's rolling friction is 0.01 (scenes/bed_004_ch6_quarter.json).
     let (code, err, same) = indent("same.csv", Some(r#"{"rolling_friction": 0.01}"#));
     assert_eq!(code, 0, "{err}");
