@@ -278,9 +278,6 @@ impl Bar {
     }
 }
 
-/// The loading's share of an indentation's progress bar (the unloading is short; see its use).
-const LOADING_SHARE: f64 = 0.95;
-
 fn clock(s: f64) -> String {
     if s.is_finite() {
         format!("{:02}:{:02}:{:02}", (s / 3600.0) as u64, ((s % 3600.0) / 60.0) as u64, (s % 60.0) as u64)
@@ -597,6 +594,9 @@ fn changed_scene(engine: &mut AnyEngine, scene: &BedScene, overlay: &str) -> Res
     }
     Ok(changed)
 }
+
+/// The loading's share of an indentation's progress bar (the unloading is short; see `indent_cmd`).
+const LOADING_SHARE: f64 = 0.95;
 
 fn indent_cmd(a: IndentArgs) -> Result<(), String> {
     let (mut engine, mut scene) = load(&a.bed, a.threads.map(usize::from))?;
